@@ -1,0 +1,52 @@
+# Two commands do all the set-up on a fresh Debian 12 machine:
+#   make render   install what is missing, build, render scenes/cornell_box.json into out/
+#   make test     the same set-up, then every test (ctest + pytest)
+# A second run with nothing changed rebuilds nothing.
+SHELL := /bin/bash
+PYTHON ?= python3
+VENV := .venv
+VPY := $(VENV)/bin/python
+BUILD := build/py
+BIN := $(BUILD)/cpp/pellucid-render
+DEB_PACKAGES := libembree-dev libopenimageio-dev libglm-dev libtbb-dev nlohmann-json3-dev \
+                libpugixml-dev libtinyobjloader-dev libgtest-dev
+PY_DEPS := "pybind11>=2.12" "scikit-build-core>=0.10" "numpy" "pytest" "cmake>=3.18" "ninja" "matplotlib" "tqdm"
+SOURCES := $(shell find cpp bindings python tests/cpp cmake -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name '*.txt' -o -name '*.cmake' -o -name '*.pyi' \) 2>/dev/null) CMakeLists.txt pyproject.toml
+
+.PHONY: render test deps clean
+.DEFAULT_GOAL := render
+
+# Debian packages: installed only when one is missing (needs root or sudo).
+$(VENV)/.deb-stamp:
+	@missing=$$(for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "installing Debian packages: $$missing"; \
+	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+	@mkdir -p $(VENV) && touch $@
+
+$(VENV)/.py-stamp: $(VENV)/.deb-stamp
+	@test -x $(VPY) || $(PYTHON) -m venv $(VENV)
+	$(VPY) -m pip install -q --upgrade pip
+	$(VPY) -m pip install -q $(PY_DEPS)
+	@touch $@
+
+# Editable, incremental install: the CMake build in build/py also builds pellucid-render and the tests.
+$(VENV)/.install-stamp: $(VENV)/.py-stamp $(SOURCES)
+	$(VPY) -m pip install -q --no-build-isolation -e . -Cbuild-dir=$(BUILD)
+	@touch $@
+
+deps: $(VENV)/.install-stamp
+
+render: deps
+	@mkdir -p out
+	$(BIN) scenes/cornell_box.json -o out/cornell_box.exr -o out/cornell_box.png
+	@echo "rendered: $(CURDIR)/out/cornell_box.exr and $(CURDIR)/out/cornell_box.png"
+
+test: deps
+	cd $(BUILD) && ctest --output-on-failure -j2
+	$(VPY) -m pytest -q
+
+clean:
+	rm -rf build out $(VENV)

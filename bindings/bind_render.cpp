@@ -1,0 +1,35 @@
+// render(): releases the GIL, returns zero-copy numpy arrays.
+// SPDX-License-Identifier: Apache-2.0
+#include <atomic>
+
+#include "bind.h"
+#include "pellucid/api.h"
+
+namespace pellucid::bind {
+namespace {
+std::atomic<bool> g_cancel{false};
+}
+
+void bind_render(py::module_& m) {
+    m.def("render_full", [](const Scene& scene, int spp, int64_t seed, int threads, double time_budget,
+                            double target_rel_error, bool progress) {
+        RenderOptions o{spp, seed, threads, time_budget, target_rel_error, progress, &g_cancel};
+        g_cancel = false;
+        RenderResult r;
+        {
+            py::gil_scoped_release nogil;
+            r = render(scene, o);
+        }
+        py::dict stats;
+        stats["spp"] = r.stats.spp;
+        stats["seconds"] = r.stats.seconds;
+        stats["samples"] = r.stats.samples;
+        stats["invalid_samples"] = r.stats.invalid_samples;
+        stats["cancelled"] = r.stats.cancelled;
+        return py::make_tuple(image_to_array(std::move(r.image)), image_to_array(std::move(r.variance)), stats);
+    }, py::arg("scene"), py::arg("spp") = -1, py::arg("seed") = -1, py::arg("threads") = 0,
+       py::arg("time_budget") = 0.0, py::arg("target_rel_error") = 0.0, py::arg("progress") = false,
+       "Render; returns (image, variance, stats). Use pellucid.render for the documented API.");
+    m.def("cancel", [] { g_cancel = true; }, "Ask the running render to stop after its current tiles.");
+}
+}  // namespace pellucid::bind

@@ -1,0 +1,53 @@
+// Scene loading from files and dicts (dicts become the same SceneDesc IR as JSON files).
+// SPDX-License-Identifier: Apache-2.0
+#include <cmath>
+
+#include "bind.h"
+#include "pellucid/api.h"
+#include "pellucid/util/error.h"
+
+namespace pellucid::bind {
+
+Node to_node(const py::handle& obj, const std::string& path) {
+    if (obj.is_none()) return Node();
+    if (py::isinstance<py::bool_>(obj)) return Node::boolean(obj.cast<bool>());
+    if (py::isinstance<py::int_>(obj)) return Node::number(obj.cast<double>(), true);
+    if (py::isinstance<py::float_>(obj)) return Node::number(obj.cast<double>(), false);
+    if (py::isinstance<py::str>(obj)) return Node::string(obj.cast<std::string>());
+    if (py::isinstance<py::dict>(obj)) {
+        Node o = Node::object();
+        for (auto item : obj.cast<py::dict>()) {
+            if (!py::isinstance<py::str>(item.first))
+                throw Error("<dict>: " + (path.empty() ? std::string("<root>") : path) + ": keys must be strings");
+            std::string key = item.first.cast<std::string>();
+            o.set(key, to_node(item.second, path_join(path, key)));
+        }
+        return o;
+    }
+    if (py::isinstance<py::array>(obj)) return to_node(obj.attr("tolist")(), path);
+    if (py::isinstance<py::list>(obj) || py::isinstance<py::tuple>(obj)) {
+        Node a = Node::array();
+        size_t i = 0;
+        for (auto item : obj) a.push_back(to_node(item, path_index(path, i++)));
+        return a;
+    }
+    if (py::hasattr(obj, "__float__")) return Node::number(obj.cast<double>(), false);
+    throw Error("<dict>: " + path + ": unsupported value of type " + std::string(py::str(obj.get_type().attr("__name__"))));
+}
+
+void bind_scene(py::module_& m) {
+    py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A built, immutable scene.")
+        .def_property_readonly("width", [](const Scene& s) { return s.width; })
+        .def_property_readonly("height", [](const Scene& s) { return s.height; })
+        .def_property_readonly("spp", [](const Scene& s) { return s.spp; })
+        .def_property_readonly("source", [](const Scene& s) { return s.source; })
+        .def("__repr__", &Scene::to_string);
+    m.def("load_file", [](const std::string& path) { return std::const_pointer_cast<Scene>(load_file(path)); },
+          py::arg("path"), py::call_guard<py::gil_scoped_release>(), "Load and build a scene file (.json).");
+    m.def("load_dict", [](const py::dict& d, const std::string& base_dir) {
+        SceneDesc desc{to_node(d, ""), "<dict>", base_dir};
+        py::gil_scoped_release nogil;
+        return std::const_pointer_cast<Scene>(load_desc(desc));
+    }, py::arg("d"), py::arg("base_dir") = ".", "Build a scene from a dict with the JSON format's structure.");
+}
+}  // namespace pellucid::bind

@@ -1,0 +1,68 @@
+// BSDF: a BxDF placed on a surface (shading frame + geometric normal). The only place that converts
+// between world and local directions; integrators never see local coordinates.
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <cmath>
+#include <optional>
+
+#include "pellucid/bxdf/bxdf.h"
+#include "pellucid/math/frame.h"
+
+namespace pellucid {
+
+class BSDF {
+public:
+    BSDF(const BxDF& bxdf, const Frame& shading, const Normal3f& ng)
+        : m_bxdf(bxdf), m_frame(shading), m_ng(ng) {}
+
+    BxDFFlags flags() const { return pellucid::flags(m_bxdf); }
+    const BxDF& bxdf() const { return m_bxdf; }
+
+    /// f·|cos θi| for world directions; 0 where the shading and geometric hemispheres disagree
+    /// (a light leak through a shading normal).
+    Spectrum eval(const Vec3f& wo_w, const Vec3f& wi_w, TransportMode mode = TransportMode::Radiance) const {
+        Vec3f wo = m_frame.to_local(wo_w), wi = m_frame.to_local(wi_w);
+        if (wo.z == 0.f || leaks(wo_w, wi_w, wo, wi)) return Spectrum(0.f);
+        Spectrum f = pellucid::eval(m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, wi);
+        if (mode == TransportMode::Importance) f *= shading_correction(wo_w, wi_w, wo, wi);
+        return f;
+    }
+    float pdf(const Vec3f& wo_w, const Vec3f& wi_w, TransportMode mode = TransportMode::Radiance) const {
+        Vec3f wo = m_frame.to_local(wo_w), wi = m_frame.to_local(wi_w);
+        if (wo.z == 0.f) return 0.f;
+        return pellucid::pdf(m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, wi);
+    }
+    /// Sample wi (world space). Returns nullopt for wo on the horizon, failed, zero-pdf,
+    /// zero-weight or leaking samples.
+    std::optional<BxDFSample> sample(const Vec3f& wo_w, float u_lobe, const Vec2f& u,
+                                     TransportMode mode = TransportMode::Radiance) const {
+        Vec3f wo = m_frame.to_local(wo_w);
+        if (wo.z == 0.f) return std::nullopt;
+        auto s = pellucid::sample(m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, u_lobe, u);
+        if (!s || !(s->pdf > 0.f) || s->weight.is_black() || s->wi.z == 0.f) return std::nullopt;
+        Vec3f wi_local = s->wi;
+        s->wi = m_frame.to_world(wi_local);
+        if (leaks(wo_w, s->wi, wo, wi_local)) return std::nullopt;
+        if (mode == TransportMode::Importance) s->weight *= shading_correction(wo_w, s->wi, wo, wi_local);
+        return s;
+    }
+    Vec3f to_local(const Vec3f& v) const { return m_frame.to_local(v); }
+    Vec3f to_world(const Vec3f& v) const { return m_frame.to_world(v); }
+
+private:
+    // Shading and geometric normals must agree on which side each direction is on.
+    bool leaks(const Vec3f& wo_w, const Vec3f& wi_w, const Vec3f& wo, const Vec3f& wi) const {
+        return dot(wo_w, m_ng) * wo.z <= 0.f || dot(wi_w, m_ng) * wi.z <= 0.f;
+    }
+    // Veach 1997, eq. 5.17: adjoint BSDF correction for shading normals under importance transport.
+    float shading_correction(const Vec3f& wo_w, const Vec3f& wi_w, const Vec3f& wo, const Vec3f& wi) const {
+        float num = std::fabs(wo.z * dot(wi_w, m_ng));
+        float den = std::fabs(wi.z * dot(wo_w, m_ng));
+        return den > 0.f ? num / den : 0.f;
+    }
+
+    BxDF m_bxdf;
+    Frame m_frame;
+    Normal3f m_ng;
+};
+}  // namespace pellucid

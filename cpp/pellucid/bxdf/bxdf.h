@@ -1,0 +1,68 @@
+// The closed list of reflection models and free functions that dispatch over it.
+// Adding a model = one type + one entry in `BxDF`; the property suite picks it up automatically.
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+#include "pellucid/bxdf/bxdf_types.h"
+#include "pellucid/bxdf/conductor.h"
+#include "pellucid/bxdf/dielectric.h"
+#include "pellucid/bxdf/lambertian.h"
+#include "pellucid/bxdf/oren_nayar.h"
+#include "pellucid/bxdf/plastic.h"
+#include "pellucid/bxdf/principled.h"
+
+namespace pellucid {
+
+/// Detection trait for the BxDF contract in bxdf_types.h.
+template <class T, class = void>
+struct is_bxdf : std::false_type {};
+template <class T>
+struct is_bxdf<T, std::void_t<
+    decltype(std::declval<const T&>().eval(std::declval<const BxDFContext&>(), Vec3f(), Vec3f())),
+    decltype(std::declval<const T&>().pdf(std::declval<const BxDFContext&>(), Vec3f(), Vec3f())),
+    decltype(std::declval<const T&>().sample(std::declval<const BxDFContext&>(), Vec3f(), 0.f, Vec2f())),
+    decltype(std::declval<const T&>().flags()), decltype(std::declval<const T&>().to_string())>>
+    : std::integral_constant<bool,
+          std::is_same_v<decltype(std::declval<const T&>().eval(BxDFContext{}, Vec3f(), Vec3f())), Spectrum> &&
+          std::is_same_v<decltype(std::declval<const T&>().pdf(BxDFContext{}, Vec3f(), Vec3f())), float> &&
+          std::is_same_v<decltype(std::declval<const T&>().sample(BxDFContext{}, Vec3f(), 0.f, Vec2f())),
+                         std::optional<BxDFSample>>> {};
+template <class T>
+inline constexpr bool is_bxdf_v = is_bxdf<T>::value;
+
+/// The closed list. Beckmann is instantiated only for the rough conductor (its tests exercise the
+/// distribution); the other microfacet models use GGX.
+using BxDF = std::variant<Lambertian, OrenNayar, SmoothConductor<ConductorFresnel>, RoughConductor,
+                          RoughConductorBeckmann, SmoothDielectric, RoughDielectric<GGX>, ThinDielectric,
+                          SmoothPlastic, RoughPlastic<GGX>, Principled>;
+
+namespace detail {
+template <class V>
+struct all_bxdfs;
+template <class... Ts>
+struct all_bxdfs<std::variant<Ts...>> : std::bool_constant<(is_bxdf_v<Ts> && ...)> {};
+}  // namespace detail
+static_assert(detail::all_bxdfs<BxDF>::value, "every BxDF alternative must satisfy the contract");
+
+inline Spectrum eval(const BxDF& b, const BxDFContext& c, const Vec3f& wo, const Vec3f& wi) {
+    return std::visit([&](const auto& x) { return x.eval(c, wo, wi); }, b);
+}
+inline float pdf(const BxDF& b, const BxDFContext& c, const Vec3f& wo, const Vec3f& wi) {
+    return std::visit([&](const auto& x) { return x.pdf(c, wo, wi); }, b);
+}
+inline std::optional<BxDFSample> sample(const BxDF& b, const BxDFContext& c, const Vec3f& wo,
+                                        float u_lobe, const Vec2f& u) {
+    return std::visit([&](const auto& x) { return x.sample(c, wo, u_lobe, u); }, b);
+}
+inline BxDFFlags flags(const BxDF& b) {
+    return std::visit([](const auto& x) { return x.flags(); }, b);
+}
+inline std::string to_string(const BxDF& b) {
+    return std::visit([](const auto& x) { return x.to_string(); }, b);
+}
+}  // namespace pellucid

@@ -1,0 +1,189 @@
+// Conductors: the smooth mirror (delta lobe) and Torrance–Sparrow microfacet reflection with
+// optional Kulla–Conty multiple-scattering compensation.
+// SPDX-License-Identifier: Apache-2.0
+//
+// SmoothConductor<Fresnel> ("conductor"):
+// | parameter            | type     | default | meaning                                        |
+// |----------------------|----------|---------|------------------------------------------------|
+// | material             | string   | "Cu"    | named metal (ior.h); overridden by eta/k       |
+// | eta, k               | spectrum | —       | complex IOR per channel (ConductorFresnel)     |
+// | specular_reflectance | spectrum | 1       | multiplier on F (not physical; for artists)     |
+// JSON: {"type": "conductor", "material": "Au"}
+//
+// MicrofacetReflection<Distribution, Fresnel> ("roughconductor"); RoughConductor = <GGX, ConductorFresnel>:
+// | parameter            | type     | default | meaning                                        |
+// |----------------------|----------|---------|------------------------------------------------|
+// | distribution         | string   | "ggx"   | "ggx" or "beckmann"                            |
+// | alpha                | float    | 0.1     | isotropic α (≥ 0; α = roughness², microfacet.h)|
+// | alpha_u, alpha_v     | float    | alpha   | anisotropic α along the tangent / bitangent    |
+// | material, eta, k     |          |         | as for "conductor"                             |
+// | specular_reflectance | spectrum | 1       | multiplier on F                                |
+// | multiscatter         | bool     | false   | Kulla–Conty compensation (GGX only)            |
+// JSON: {"type": "roughconductor", "material": "Al", "distribution": "ggx", "alpha_u": 0.05,
+//        "alpha_v": 0.3, "multiscatter": true}
+//
+// Model no more than needed (docs/materials.md):
+//  * Specular collapse: when max(αx, αy) < 1e-3 (Distribution::effectively_smooth()) the rough
+//    model IS the smooth mirror: sample() returns the delta lobe and eval()/pdf() return 0. The
+//    directional albedo is continuous across the switch (test_bxdf_properties.cpp,
+//    ConductorSmoothSwitchIsContinuous).
+//  * Kulla–Conty is skipped when the average energy it restores is below 1e-3, i.e. when
+//    1 − E_avg(α) < 1e-3 (measured with the GGX table: α < 0.016). Single directions at
+//    extreme grazing (μ ≲ α) can still lose more; that sliver is ignored. For anisotropic α the
+//    table is read at α = sqrt(αx αy). Beckmann never compensates (no table).
+#pragma once
+#include <optional>
+#include <string>
+#include <type_traits>
+
+#include "pellucid/bxdf/bxdf_types.h"
+#include "pellucid/bxdf/fresnel.h"
+#include "pellucid/bxdf/kulla_conty.h"
+#include "pellucid/bxdf/microfacet.h"
+#include "pellucid/math/spherical.h"
+#include "pellucid/sampling/warp.h"
+
+namespace pellucid {
+
+/// Smallest |cos θ| used in divisions (grazing directions stay finite).
+constexpr float kMinCos = 1e-7f;
+
+/// Torrance–Sparrow / Cook–Torrance BRDF value f = D G F / (4 cos θo cos θi) (Torrance & Sparrow
+/// 1967; Cook & Torrance 1982, eq. 3; Walter et al. 2007, eq. 20). Without the cos θi of eval().
+inline float torrance_sparrow(float D, float G, float F, float cos_o, float cos_i) {
+    return D * G * F / (4.f * cos_o * cos_i);
+}
+
+/// Ideal mirror: weight = specular_reflectance · F(|cos θo|), discrete probability 1.
+template <class Fresnel>
+class SmoothConductor {
+public:
+    explicit SmoothConductor(const Fresnel& fr = Fresnel{}, const Spectrum& specular_reflectance = Spectrum(1.f))
+        : m_fr(fr), m_scale(specular_reflectance) {}
+
+    Spectrum eval(const BxDFContext&, const Vec3f&, const Vec3f&) const { return Spectrum(0.f); }
+    float pdf(const BxDFContext&, const Vec3f&, const Vec3f&) const { return 0.f; }
+    std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float, const Vec2f&) const {
+        if (!has_flag(ctx.allowed, BxDFFlags::SpecularReflection) || wo.z == 0.f) return std::nullopt;
+        BxDFSample s;
+        s.wi = Vec3f(-wo.x, -wo.y, wo.z);
+        s.weight = m_scale * m_fr.eval(std::fabs(wo.z));
+        s.pdf = 1.f;
+        s.lobe = BxDFFlags::SpecularReflection;
+        return s;
+    }
+    BxDFFlags flags() const { return m_scale.is_black() ? BxDFFlags::None : BxDFFlags::SpecularReflection; }
+    std::string to_string() const {
+        return "SmoothConductor[" + m_fr.to_string() + ", specular_reflectance=" + m_scale.to_string() + "]";
+    }
+
+private:
+    Fresnel m_fr;
+    Spectrum m_scale;
+};
+
+/// Torrance–Sparrow microfacet reflection with VNDF sampling; collapses to the mirror when smooth.
+template <class Distribution, class Fresnel>
+class MicrofacetReflection {
+public:
+    MicrofacetReflection(const Distribution& distrib, const Fresnel& fr,
+                         const Spectrum& specular_reflectance = Spectrum(1.f), bool multiscatter = false)
+        : m_d(distrib), m_fr(fr), m_scale(specular_reflectance) {
+        if constexpr (std::is_same_v<Distribution, GGX>) {
+            if (multiscatter && !m_d.effectively_smooth()) setup_multiscatter();
+        }
+    }
+
+    Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
+        if (m_d.effectively_smooth() || !same_hemisphere(wo, wi)) return Spectrum(0.f);
+        Vec3f o = wo.z < 0.f ? -wo : wo, i = wo.z < 0.f ? -wi : wi;
+        Vec3f h = o + i;
+        if (length2(h) == 0.f) return Spectrum(0.f);
+        Vec3f wm = normalize(h);
+        float co = std::max(o.z, kMinCos), ci = std::max(i.z, kMinCos);
+        Spectrum F = m_fr.eval(dot(o, wm));
+        Spectrum f = m_scale * F * (torrance_sparrow(m_d.D(wm), m_d.G(o, i), 1.f, co, ci) * ci);
+        if (m_ms) f += ms_lobe(co, ci) * ci;
+        return f;
+    }
+    float pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
+        if (m_d.effectively_smooth() || !has_flag(ctx.allowed, BxDFFlags::GlossyReflection) ||
+            !same_hemisphere(wo, wi))
+            return 0.f;
+        Vec3f o = wo.z < 0.f ? -wo : wo, i = wo.z < 0.f ? -wi : wi;
+        Vec3f h = o + i;
+        if (length2(h) == 0.f) return 0.f;
+        Vec3f wm = normalize(h);
+        float c = dot(o, wm);
+        float p = c > 0.f ? m_d.pdf_visible(o, wm) / (4.f * c) : 0.f;  // Walter et al. 2007, eq. 14
+        if (m_ms) {
+            float p_ms = ms_probability(o.z);
+            p = (1.f - p_ms) * p + p_ms * i.z * kInvPi;
+        }
+        return p;
+    }
+    std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
+                                     const Vec2f& u) const {
+        if (wo.z == 0.f) return std::nullopt;
+        if (m_d.effectively_smooth())
+            return SmoothConductor<Fresnel>(m_fr, m_scale).sample(ctx, wo, u_lobe, u);
+        if (!has_flag(ctx.allowed, BxDFFlags::GlossyReflection)) return std::nullopt;
+        Vec3f o = wo.z < 0.f ? -wo : wo, i;
+        if (m_ms && u_lobe < ms_probability(o.z)) {
+            i = square_to_cosine_hemisphere(u);
+        } else {
+            i = reflect(o, m_d.sample_visible(o, u));
+        }
+        if (i.z <= 0.f) return std::nullopt;
+        BxDFSample s;
+        s.wi = wo.z < 0.f ? -i : i;
+        s.pdf = pdf(ctx, wo, s.wi);
+        if (!(s.pdf > 0.f)) return std::nullopt;
+        s.weight = eval(ctx, wo, s.wi) / s.pdf;
+        s.lobe = BxDFFlags::GlossyReflection;
+        return s;
+    }
+    BxDFFlags flags() const {
+        if (m_scale.is_black()) return BxDFFlags::None;
+        return m_d.effectively_smooth() ? BxDFFlags::SpecularReflection : BxDFFlags::GlossyReflection;
+    }
+    const Distribution& distribution() const { return m_d; }
+    bool multiscatter() const { return m_ms; }
+    std::string to_string() const {
+        return "MicrofacetReflection[" + m_d.to_string() + ", " + m_fr.to_string() +
+               ", specular_reflectance=" + m_scale.to_string() + ", multiscatter=" + (m_ms ? "true" : "false") + "]";
+    }
+
+private:
+    void setup_multiscatter() {
+        const GGXAlbedoTable& t = GGXAlbedoTable::get();
+        m_alpha_ms = std::sqrt(m_d.alpha_x() * m_d.alpha_y());
+        if (t.average_loss(m_alpha_ms) < 1e-3f) return;  // effect below 1e-3: skip (header comment)
+        m_e_avg = t.E_avg(m_alpha_ms);
+        m_fms = m_scale * kulla_conty_fms(m_fr.average(), m_e_avg);
+        m_ms = true;
+    }
+    // Kulla–Conty lobe f_ms without the cos θi (kulla_conty.h).
+    Spectrum ms_lobe(float co, float ci) const {
+        const GGXAlbedoTable& t = GGXAlbedoTable::get();
+        float num = (1.f - t.E(co, m_alpha_ms)) * (1.f - t.E(ci, m_alpha_ms));
+        return m_fms * (num / (kPi * std::max(1e-6f, 1.f - m_e_avg)));
+    }
+    // Probability of sampling the cosine lobe: the white missing energy 1 − E(μo).
+    float ms_probability(float co) const {
+        return clamp(1.f - GGXAlbedoTable::get().E(co, m_alpha_ms), 0.f, 1.f);
+    }
+
+    Distribution m_d;
+    Fresnel m_fr;
+    Spectrum m_scale;
+    bool m_ms = false;
+    float m_alpha_ms = 0.f, m_e_avg = 1.f;
+    Spectrum m_fms{0.f};
+};
+
+template <class Distribution>
+using RoughConductorT = MicrofacetReflection<Distribution, ConductorFresnel>;
+using RoughConductor = RoughConductorT<GGX>;
+using RoughConductorBeckmann = RoughConductorT<Beckmann>;
+}  // namespace pellucid

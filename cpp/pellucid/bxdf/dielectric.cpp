@@ -1,0 +1,199 @@
+// Smooth, thin and rough dielectric BxDFs.
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/bxdf/dielectric.h"
+
+#include <cmath>
+
+namespace pellucid {
+namespace {
+constexpr float kMinCosD = 1e-7f;
+
+// Selection probabilities (pr, pt) of reflection and transmission for the allowed lobes.
+void lobe_probabilities(const BxDFContext& ctx, float R, float T, float& pr, float& pt) {
+    pr = has_flag(ctx.allowed, BxDFFlags::Reflection) ? R : 0.f;
+    pt = has_flag(ctx.allowed, BxDFFlags::Transmission) ? T : 0.f;
+}
+BxDFFlags interface_flags(bool refl, bool trans, BxDFFlags kind) {
+    BxDFFlags f = BxDFFlags::None;
+    if (refl) f |= BxDFFlags::Reflection | kind;
+    if (trans) f |= BxDFFlags::Transmission | kind;
+    return f;
+}
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+SmoothDielectric::SmoothDielectric(float eta, const Spectrum& r, const Spectrum& t)
+    : m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_r(r), m_t(t) {}
+
+std::optional<BxDFSample> SmoothDielectric::sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
+                                                   const Vec2f&) const {
+    if (wo.z == 0.f) return std::nullopt;
+    float R = fresnel_dielectric(wo.z, m_eta), T = 1.f - R, pr, pt;
+    lobe_probabilities(ctx, R, T, pr, pt);
+    if (!(pr + pt > 0.f)) return std::nullopt;
+    BxDFSample s;
+    if (u_lobe < pr / (pr + pt)) {
+        // Mirror reflection (TIR lands here with R = 1).
+        s.wi = Vec3f(-wo.x, -wo.y, wo.z);
+        s.pdf = pr / (pr + pt);
+        s.weight = m_r * (R / s.pdf);
+        s.lobe = BxDFFlags::SpecularReflection;
+        return s;
+    }
+    float etap;
+    if (!refract(wo, Vec3f(0, 0, 1), m_eta, &etap, &s.wi) || s.wi.z * wo.z >= 0.f) return std::nullopt;
+    s.pdf = pt / (pr + pt);
+    s.weight = m_t * (T / s.pdf);
+    if (ctx.mode == TransportMode::Radiance) s.weight /= etap * etap;
+    s.eta = etap;
+    s.lobe = BxDFFlags::SpecularTransmission;
+    return s;
+}
+
+BxDFFlags SmoothDielectric::flags() const {
+    return interface_flags(m_eta != 1.f && !m_r.is_black(), !m_t.is_black(), BxDFFlags::Specular);
+}
+std::string SmoothDielectric::to_string() const {
+    return "SmoothDielectric[eta=" + std::to_string(m_eta) + ", specular_reflectance=" + m_r.to_string() +
+           ", specular_transmittance=" + m_t.to_string() + "]";
+}
+
+// ---------------------------------------------------------------------------------------------
+ThinDielectric::ThinDielectric(float eta, const Spectrum& r, const Spectrum& t)
+    : m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_r(r), m_t(t) {}
+
+std::optional<BxDFSample> ThinDielectric::sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
+                                                 const Vec2f&) const {
+    if (wo.z == 0.f) return std::nullopt;
+    float R = fresnel_dielectric(std::fabs(wo.z), m_eta), T = 1.f - R;
+    // Sum over internal bounces (geometric series); R < 1 always since no TIR from outside.
+    if (R < 1.f) {
+        R += T * T * R / (1.f - R * R);
+        T = 1.f - R;
+    }
+    float pr, pt;
+    lobe_probabilities(ctx, R, T, pr, pt);
+    if (!(pr + pt > 0.f)) return std::nullopt;
+    BxDFSample s;
+    if (u_lobe < pr / (pr + pt)) {
+        s.wi = Vec3f(-wo.x, -wo.y, wo.z);
+        s.pdf = pr / (pr + pt);
+        s.weight = m_r * (R / s.pdf);
+        s.lobe = BxDFFlags::SpecularReflection;
+    } else {
+        s.wi = -wo;
+        s.pdf = pt / (pr + pt);
+        s.weight = m_t * (T / s.pdf);
+        s.lobe = BxDFFlags::SpecularTransmission;
+    }
+    return s;
+}
+BxDFFlags ThinDielectric::flags() const {
+    return interface_flags(m_eta != 1.f && !m_r.is_black(), !m_t.is_black(), BxDFFlags::Specular);
+}
+std::string ThinDielectric::to_string() const {
+    return "ThinDielectric[eta=" + std::to_string(m_eta) + ", specular_reflectance=" + m_r.to_string() +
+           ", specular_transmittance=" + m_t.to_string() + "]";
+}
+
+// ---------------------------------------------------------------------------------------------
+template <class D>
+RoughDielectric<D>::RoughDielectric(const D& d, float eta, const Spectrum& r, const Spectrum& t)
+    : m_d(d), m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_r(r), m_t(t) {}
+
+template <class D>
+typename RoughDielectric<D>::EvalPdf RoughDielectric<D>::eval_pdf(const BxDFContext& ctx, const Vec3f& wo,
+                                                                  const Vec3f& wi) const {
+    EvalPdf out;
+    float co = wo.z, ci = wi.z;
+    if (co == 0.f || ci == 0.f) return out;
+    bool reflect = co * ci > 0.f;
+    double etap = reflect ? 1.0 : (co > 0.f ? double(m_eta) : 1.0 / double(m_eta));
+    // Generalised half vector (Walter et al. 2007, eq. 16), oriented to +z. Computed in double:
+    // wo·wm and wi·wm of nearly orthogonal vectors otherwise lose most digits to cancellation.
+    Vec3d h = Vec3d(wi) * etap + Vec3d(wo);
+    double hl = glm::length(h);
+    if (!(hl > 0.0)) return out;
+    Vec3d wmd = h / (h.z < 0.0 ? -hl : hl);
+    Vec3f wm(wmd);
+    float dot_o = float(glm::dot(Vec3d(wo), wmd)), dot_i = float(glm::dot(Vec3d(wi), wmd));
+    // Back-facing microfacets contribute nothing (Walter et al. 2007, §5.1, χ⁺ terms).
+    if (dot_i * ci <= 0.f || dot_o * co <= 0.f) return out;
+    // Fresnel is symmetric across the interface, but near the critical angle of the denser side it
+    // is ill-conditioned (√ singularity), so for transmission evaluate it from the less dense side.
+    float cos_f = dot_o;
+    if (!reflect && ((co > 0.f) != (m_eta >= 1.f))) cos_f = dot_i;
+    double Fd = fresnel_dielectric_d(cos_f == dot_o ? glm::dot(Vec3d(wo), wmd) : glm::dot(Vec3d(wi), wmd), m_eta);
+    float F = float(Fd), T = float(1.0 - Fd), pr, pt;
+    lobe_probabilities(ctx, F, T, pr, pt);
+    float aco = std::max(std::fabs(co), kMinCosD);
+    float Dm = m_d.D(wm), G = m_d.G(wo, wi), vis = m_d.pdf_visible(wo, wm);
+    if (reflect) {
+        out.f = m_r * (Dm * G * F / (4.f * aco));  // eq. 20 × |cos θi|
+        out.pdf = pr + pt > 0.f ? vis / (4.f * std::fabs(dot_o)) * pr / (pr + pt) : 0.f;
+        return out;
+    }
+    float denom = float(sqr(dot_i + dot_o / etap));
+    if (!(denom > 0.f)) return out;
+    // eq. 21 × |cos θi| in the Importance form; Radiance divides by η'² (Veach 1997, eq. 5.12).
+    float ft = Dm * T * G * std::fabs(dot_i * dot_o) / (aco * denom);
+    if (ctx.mode == TransportMode::Radiance) ft = float(ft / (etap * etap));
+    out.f = m_t * ft;
+    float dwm_dwi = std::fabs(dot_i) / denom;  // eq. 17
+    out.pdf = pr + pt > 0.f ? vis * dwm_dwi * pt / (pr + pt) : 0.f;
+    return out;
+}
+
+template <class D>
+Spectrum RoughDielectric<D>::eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
+    if (is_smooth()) return Spectrum(0.f);
+    return eval_pdf(ctx, wo, wi).f;
+}
+template <class D>
+float RoughDielectric<D>::pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
+    if (is_smooth()) return 0.f;
+    return eval_pdf(ctx, wo, wi).pdf;
+}
+
+template <class D>
+std::optional<BxDFSample> RoughDielectric<D>::sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
+                                                     const Vec2f& u) const {
+    if (is_smooth()) return SmoothDielectric(m_eta, m_r, m_t).sample(ctx, wo, u_lobe, u);
+    if (wo.z == 0.f) return std::nullopt;
+    Vec3f wm = m_d.sample_visible(wo, u);
+    double Fd = fresnel_dielectric_d(dot(wo, wm), m_eta);
+    float pr, pt;
+    lobe_probabilities(ctx, float(Fd), float(1.0 - Fd), pr, pt);
+    if (!(pr + pt > 0.f)) return std::nullopt;
+    BxDFSample s;
+    if (u_lobe < pr / (pr + pt)) {
+        s.wi = reflect(wo, wm);
+        if (!same_hemisphere(wo, s.wi)) return std::nullopt;
+        s.lobe = BxDFFlags::GlossyReflection;
+    } else {
+        float etap;
+        if (!refract(wo, wm, m_eta, &etap, &s.wi) || s.wi.z * wo.z >= 0.f) return std::nullopt;
+        s.eta = etap;
+        s.lobe = BxDFFlags::GlossyTransmission;
+    }
+    EvalPdf ep = eval_pdf(ctx, wo, s.wi);  // f does not depend on ctx.allowed, pdf does
+    if (!(ep.pdf > 0.f)) return std::nullopt;
+    s.pdf = ep.pdf;
+    s.weight = ep.f / ep.pdf;
+    return s;
+}
+
+template <class D>
+BxDFFlags RoughDielectric<D>::flags() const {
+    if (is_smooth()) return SmoothDielectric(m_eta, m_r, m_t).flags();
+    return interface_flags(!m_r.is_black(), !m_t.is_black(), BxDFFlags::Glossy);
+}
+template <class D>
+std::string RoughDielectric<D>::to_string() const {
+    return "RoughDielectric[" + m_d.to_string() + ", eta=" + std::to_string(m_eta) +
+           ", specular_reflectance=" + m_r.to_string() + ", specular_transmittance=" + m_t.to_string() + "]";
+}
+
+template class RoughDielectric<GGX>;
+template class RoughDielectric<Beckmann>;
+}  // namespace pellucid

@@ -1,0 +1,37 @@
+// Pinhole perspective camera.
+// SPDX-License-Identifier: Apache-2.0
+//
+// | parameter | type      | default | meaning                                                        |
+// |-----------|-----------|---------|----------------------------------------------------------------|
+// | fov       | float     | 45      | field of view in degrees, along fov_axis                       |
+// | fov_axis  | string    | "x"     | x, y, smaller or larger (as Mitsuba 3)                         |
+// | to_world  | transform | identity| camera-to-world; the camera looks down +z with +y up (look_at) |
+// JSON: {"type": "perspective", "fov": 40, "to_world": [{"look_at": {"origin": [0,0,4],
+//        "target": [0,0,0], "up": [0,1,0]}}]}
+#pragma once
+#include <string>
+
+#include "pellucid/math/ray.h"
+#include "pellucid/math/transform.h"
+
+namespace pellucid {
+
+class PerspectiveCamera {
+public:
+    PerspectiveCamera() = default;
+    /// fov_x_deg is the horizontal field of view after resolving fov_axis.
+    PerspectiveCamera(const Transform& to_world, float fov_x_deg, int width, int height);
+
+    /// Ray through film position (x, y) in pixels, (0, 0) = top-left corner of the image.
+    Ray generate_ray(float x, float y) const {
+        Vec3f d(m_tan_x * (1.f - 2.f * x * m_inv_w), m_tan_y * (1.f - 2.f * y * m_inv_h), 1.f);
+        return Ray{m_origin, normalize(m_to_world.vector(d)), kInfinity};
+    }
+    std::string to_string() const;
+
+private:
+    Transform m_to_world;
+    Point3f m_origin{0.f};
+    float m_tan_x = 1.f, m_tan_y = 1.f, m_inv_w = 1.f, m_inv_h = 1.f, m_fov_x = 45.f;
+};
+}  // namespace pellucid

@@ -1,0 +1,136 @@
+// Embree 3 wrapper: every rtc* call of pellucid lives here.
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/geometry/embree_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <string>
+
+#include "pellucid/util/error.h"
+
+namespace pellucid {
+
+struct EmbreeScene::Impl {
+    RTCDevice device = nullptr;
+    RTCScene scene = nullptr;
+    uint32_t next_id = 0;
+    std::string error;  // set by the device's error callback, raised after each build call
+    void check() {
+        if (!error.empty()) {
+            std::string e = error;
+            error.clear();
+            throw Error(e);
+        }
+    }
+};
+
+namespace {
+// Exceptions must not cross Embree's C frames, so the callback only records the message.
+void error_callback(void* user, RTCError code, const char* str) {
+    static_cast<std::string*>(user)->assign("Embree error " + std::to_string(int(code)) + ": " +
+                                            (str ? str : ""));
+}
+}  // namespace
+
+EmbreeScene::EmbreeScene() : m_impl(std::make_unique<Impl>()) {
+    m_impl->device = rtcNewDevice(nullptr);
+    if (!m_impl->device) throw Error("could not create an Embree device");
+    rtcSetDeviceErrorFunction(m_impl->device, error_callback, &m_impl->error);
+    m_impl->scene = rtcNewScene(m_impl->device);
+    rtcSetSceneBuildQuality(m_impl->scene, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneFlags(m_impl->scene, RTC_SCENE_FLAG_ROBUST);
+}
+
+EmbreeScene::~EmbreeScene() {
+    if (m_impl->scene) rtcReleaseScene(m_impl->scene);
+    if (m_impl->device) rtcReleaseDevice(m_impl->device);
+}
+
+uint32_t EmbreeScene::add_mesh(const TriangleMesh& mesh) {
+    RTCGeometry g = rtcNewGeometry(m_impl->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), mesh.positions.size()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+        for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.positions[i][k];
+    auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               3 * sizeof(uint32_t), mesh.triangle_count()));
+    for (size_t i = 0; i < mesh.indices.size(); ++i) idx[i] = mesh.indices[i];
+    rtcCommitGeometry(g);
+    uint32_t id = m_impl->next_id++;
+    rtcAttachGeometryByID(m_impl->scene, g, id);
+    rtcReleaseGeometry(g);
+    m_impl->check();
+    return id;
+}
+
+uint32_t EmbreeScene::add_sphere(const Point3f& c, float r) {
+    RTCGeometry g = rtcNewGeometry(m_impl->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+    v[0] = c.x;
+    v[1] = c.y;
+    v[2] = c.z;
+    v[3] = r;
+    rtcCommitGeometry(g);
+    uint32_t id = m_impl->next_id++;
+    rtcAttachGeometryByID(m_impl->scene, g, id);
+    rtcReleaseGeometry(g);
+    m_impl->check();
+    return id;
+}
+
+void EmbreeScene::commit() {
+    rtcCommitScene(m_impl->scene);
+    m_impl->check();
+}
+
+bool EmbreeScene::intersect(const Ray& ray, RayHit& hit) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = ray.o.x;
+    rh.ray.org_y = ray.o.y;
+    rh.ray.org_z = ray.o.z;
+    rh.ray.dir_x = ray.d.x;
+    rh.ray.dir_y = ray.d.y;
+    rh.ray.dir_z = ray.d.z;
+    rh.ray.tnear = 0.f;
+    rh.ray.tfar = ray.tmax;
+    rh.ray.mask = ~0u;
+    rh.ray.flags = 0;
+    rh.ray.time = 0.f;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(m_impl->scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        hit.geom_id = ~0u;
+        return false;
+    }
+    hit.t = rh.ray.tfar;
+    hit.geom_id = rh.hit.geomID;
+    hit.prim_id = rh.hit.primID;
+    hit.u = rh.hit.u;
+    hit.v = rh.hit.v;
+    hit.ng = Vec3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    return true;
+}
+
+bool EmbreeScene::occluded(const Ray& ray) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = ray.o.x;
+    r.org_y = ray.o.y;
+    r.org_z = ray.o.z;
+    r.dir_x = ray.d.x;
+    r.dir_y = ray.d.y;
+    r.dir_z = ray.d.z;
+    r.tnear = 0.f;
+    r.tfar = ray.tmax;
+    r.mask = ~0u;
+    r.flags = 0;
+    r.time = 0.f;
+    rtcOccluded1(m_impl->scene, &ctx, &r);
+    return r.tfar < 0.f;
+}
+}  // namespace pellucid

@@ -1,0 +1,45 @@
+// EmbreeScene: the ray-tracing kernel. The only file that includes <embree3/rtcore.h> is the .cpp,
+// so an Embree 4 migration touches one file.
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <cstdint>
+#include <memory>
+
+#include "pellucid/geometry/mesh.h"
+#include "pellucid/math/ray.h"
+
+namespace pellucid {
+
+/// Raw hit record as the kernel reports it.
+struct RayHit {
+    float t = kInfinity;
+    uint32_t geom_id = ~0u;  ///< = the index returned by add_mesh/add_sphere
+    uint32_t prim_id = 0;
+    float u = 0.f, v = 0.f;  ///< triangle barycentrics of vertices 1 and 2
+    Vec3f ng{0.f};           ///< unnormalised geometric normal
+    bool hit() const { return geom_id != ~0u; }
+};
+
+class EmbreeScene {
+public:
+    EmbreeScene();
+    ~EmbreeScene();
+    EmbreeScene(const EmbreeScene&) = delete;
+    EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+    /// Add a mesh (its buffers are copied into Embree). Returns the geometry id, dense from 0.
+    uint32_t add_mesh(const TriangleMesh& mesh);
+    /// Add an analytic sphere. Returns the geometry id.
+    uint32_t add_sphere(const Point3f& center, float radius);
+    void commit();
+
+    /// Closest hit in (0, ray.tmax]. Thread-safe after commit().
+    bool intersect(const Ray& ray, RayHit& hit) const;
+    /// Any hit in (0, ray.tmax].
+    bool occluded(const Ray& ray) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
+}  // namespace pellucid

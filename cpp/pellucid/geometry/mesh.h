@@ -1,0 +1,33 @@
+// Triangle meshes in world space, structure of arrays (positions, optional normals and uvs).
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pellucid/math/transform.h"
+#include "pellucid/math/vec.h"
+
+namespace pellucid {
+
+struct TriangleMesh {
+    std::vector<Point3f> positions;
+    std::vector<Normal3f> normals;  ///< per vertex, optional (empty = flat shading)
+    std::vector<Vec2f> uvs;         ///< per vertex, optional
+    std::vector<uint32_t> indices;  ///< 3 per triangle
+
+    size_t triangle_count() const { return indices.size() / 3; }
+    float triangle_area(size_t tri) const;
+    /// Apply a transform (normals with the inverse transpose).
+    void transform(const Transform& t);
+    /// Drop triangles of zero (or non-finite) area; returns how many were removed.
+    size_t remove_degenerate();
+    /// Throws pellucid::Error (prefixed by `where`) for out-of-range indices, bad sizes or NaNs.
+    void validate(const std::string& where) const;
+    /// Area-weighted vertex normals.
+    void compute_smooth_normals();
+
+    static TriangleMesh rectangle();  ///< [-1,1]² in the z = 0 plane, normal +z (Mitsuba's)
+    static TriangleMesh cube();       ///< [-1,1]³, outward normals, flat faces (Mitsuba's)
+};
+}  // namespace pellucid

@@ -1,0 +1,116 @@
+// Path tracing with NEE and MIS (Veach 1997, ch. 9; the power heuristic, eq. 9.13).
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/integrator/path.h"
+
+#include <algorithm>
+
+#include "pellucid/sampling/mis.h"
+#include "pellucid/util/error.h"
+
+namespace pellucid {
+
+std::unique_ptr<Integrator> make_integrator(const Scene& scene) {
+    if (scene.integrator.type == "path") return std::make_unique<PathIntegrator>(scene.integrator);
+    throw Error("integrator.type: unknown integrator '" + scene.integrator.type + "'");
+}
+
+RenderResult PathIntegrator::render(const Scene& scene, const RenderOptions& opts) const {
+    return render_loop(scene, opts, [this](const Scene& s, const Ray& r, PCG32& rng) { return Li(s, r, rng); });
+}
+
+std::string PathIntegrator::to_string() const {
+    return "PathIntegrator[max_depth=" + std::to_string(m_s.max_depth) + ", rr_depth=" +
+           std::to_string(m_s.rr_depth) + ", strategy=" + m_s.strategy + "]";
+}
+
+namespace {
+// Light contribution of one area/environment hit found by BSDF sampling, MIS-weighted against the
+// light-sampling strategy that could have produced the same direction.
+float bsdf_hit_weight(bool use_mis, bool use_nee, bool specular, float bsdf_pdf, float light_pdf) {
+    if (specular || !use_nee) return 1.f;
+    if (!use_mis) return 0.f;  // "nee": light sampling alone accounts for non-delta directions
+    return power_heuristic(bsdf_pdf, light_pdf);
+}
+}  // namespace
+
+Spectrum PathIntegrator::Li(const Scene& scene, Ray ray, PCG32& rng) const {
+    const bool use_nee = m_s.strategy != "bsdf" && !scene.lights.empty();
+    const bool use_mis = m_s.strategy == "mis";
+    Spectrum L(0.f), beta(1.f);
+    bool specular = true;  // the camera ray counts as a delta "bounce"
+    float prev_pdf = 0.f, eta_scale = 1.f;
+    LightSampleContext prev_ctx;
+    SurfaceInteraction si;
+
+    for (int depth = 1;; ++depth) {  // depth = number of path segments, including this ray
+        if (!scene.intersect(ray, si)) {
+            for (uint32_t li : scene.infinite_lights) {
+                const auto& env = std::get<ConstantLight>(scene.lights[li]);
+                float lpdf = scene.light_pmf(li) * env.pdf_li(prev_ctx, ray.d);
+                L += beta * env.Le(ray.d) * bsdf_hit_weight(use_mis, use_nee, specular, prev_pdf, lpdf);
+            }
+            break;
+        }
+        if (si.light_id >= 0) {
+            Spectrum Le = scene.emitted(si);
+            if (!Le.is_black()) {
+                float lpdf = 0.f;
+                if (!specular) {
+                    const auto& al = std::get<AreaLight>(scene.lights[size_t(si.light_id)]);
+                    lpdf = scene.light_pmf(size_t(si.light_id)) * al.pdf_li(prev_ctx, ray.d, si.p, si.ng);
+                }
+                L += beta * Le * bsdf_hit_weight(use_mis, use_nee, specular, prev_pdf, lpdf);
+            }
+        }
+        if (m_s.max_depth >= 0 && depth >= m_s.max_depth) break;
+
+        BSDF bsdf = scene.bsdf(si);
+        BxDFFlags flags = bsdf.flags();
+        if (flags == BxDFFlags::None) break;
+        const Vec3f wo = si.wo;
+        LightSampleContext ctx{si.p, si.ng};
+
+        // Next-event estimation: one light chosen uniformly, one point on it.
+        if (use_nee && is_non_specular(flags)) {
+            float u_light = rng.next_float();
+            Vec2f u = rng.next_2d();
+            size_t li = std::min(scene.lights.size() - 1, size_t(u_light * float(scene.lights.size())));
+            float pmf = scene.light_pmf(li);
+            auto ls = std::visit([&](const auto& l) { return l.sample_li(ctx, u); }, scene.lights[li]);
+            if (ls && ls->pdf > 0.f) {
+                Spectrum f = bsdf.eval(wo, ls->wi);
+                if (!f.is_black()) {
+                    Ray shadow = ls->infinite ? si.spawn_ray(ls->wi) : si.spawn_ray_to(ls->p_light, ls->n_light, ls->p_error);
+                    if (!scene.occluded(shadow)) {
+                        float light_pdf = pmf * ls->pdf;
+                        float w = (ls->delta || !use_mis) ? 1.f : power_heuristic(light_pdf, bsdf.pdf(wo, ls->wi));
+                        L += beta * f * ls->L * (w / light_pdf);
+                    }
+                }
+            }
+        }
+
+        // Continue the path by sampling the BSDF.
+        float u_lobe = rng.next_float();
+        Vec2f u = rng.next_2d();
+        auto bs = bsdf.sample(wo, u_lobe, u);
+        if (!bs) break;
+        beta *= bs->weight;
+        prev_pdf = bs->pdf;
+        specular = bs->is_specular();
+        if (has_flag(bs->lobe, BxDFFlags::Transmission)) eta_scale *= sqr(bs->eta);
+        prev_ctx = ctx;
+        ray = si.spawn_ray(bs->wi);
+
+        // Russian roulette on the throughput with the η² factor removed (pbrt-v4 §13.4.1 / Mitsuba 3
+        // path.cpp): survive with q = min(max β·η², 0.95) from rr_depth on.
+        if (depth >= m_s.rr_depth) {
+            float q = std::min(beta.max_component() * eta_scale, 0.95f);
+            if (!(rng.next_float() < q)) break;
+            beta /= q;
+        }
+        if (beta.is_black()) break;
+    }
+    return L;
+}
+}  // namespace pellucid

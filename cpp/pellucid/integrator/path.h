@@ -1,0 +1,27 @@
+// Unidirectional path tracer with next-event estimation and multiple importance sampling.
+// SPDX-License-Identifier: Apache-2.0
+//
+// | parameter | type   | default | meaning                                                              |
+// |-----------|--------|---------|----------------------------------------------------------------------|
+// | max_depth | int    | -1      | longest path in segments (1 = emitters seen directly, 2 = direct light); -1 = unbounded |
+// | rr_depth  | int    | 5       | Russian roulette from this depth on                                  |
+// | strategy  | string | "mis"   | "mis": light + BSDF sampling, power heuristic; "nee": light sampling (BSDF sampling only through delta lobes); "bsdf": BSDF sampling only |
+// JSON: "integrator": {"type": "path", "max_depth": 8}
+#pragma once
+#include "pellucid/integrator/integrator.h"
+#include "pellucid/scene/scene.h"
+
+namespace pellucid {
+
+class PathIntegrator final : public Integrator {
+public:
+    explicit PathIntegrator(const IntegratorSettings& s) : m_s(s) {}
+    RenderResult render(const Scene& scene, const RenderOptions& opts) const override;
+    std::string to_string() const override;
+    /// Radiance arriving along -ray.d at ray.o (one sample).
+    Spectrum Li(const Scene& scene, Ray ray, PCG32& rng) const;
+
+private:
+    IntegratorSettings m_s;
+};
+}  // namespace pellucid

@@ -1,0 +1,119 @@
+// Area lights.
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/light/area.h"
+
+#include <cmath>
+
+#include "pellucid/math/constants.h"
+#include "pellucid/math/frame.h"
+#include "pellucid/sampling/warp.h"
+
+namespace pellucid {
+
+AreaLight::AreaLight(const TriangleMesh& mesh, const Spectrum& radiance, bool two_sided)
+    : m_radiance(radiance), m_two_sided(two_sided), m_is_sphere(false) {
+    size_t n = mesh.triangle_count();
+    std::vector<float> areas(n);
+    m_tri.reserve(3 * n);
+    m_tri_n.reserve(n);
+    for (size_t t = 0; t < n; ++t) {
+        const Point3f& a = mesh.positions[mesh.indices[3 * t]];
+        const Point3f& b = mesh.positions[mesh.indices[3 * t + 1]];
+        const Point3f& c = mesh.positions[mesh.indices[3 * t + 2]];
+        m_tri.insert(m_tri.end(), {a, b, c});
+        Vec3f ng = cross(b - a, c - a);
+        areas[t] = 0.5f * length(ng);
+        ng = areas[t] > 0.f ? normalize(ng) : Vec3f(0, 0, 1);
+        // Emission follows the shading normals' side when the mesh has them (as the hit record does).
+        if (!mesh.normals.empty()) {
+            Vec3f ns = mesh.normals[mesh.indices[3 * t]] + mesh.normals[mesh.indices[3 * t + 1]] +
+                       mesh.normals[mesh.indices[3 * t + 2]];
+            if (dot(ns, ng) < 0.f) ng = -ng;
+        }
+        m_tri_n.push_back(ng);
+        m_area += areas[t];
+    }
+    m_tri_dist = Distribution1D(areas);
+}
+
+AreaLight::AreaLight(const Point3f& center, float radius, bool flip_normals, const Spectrum& radiance,
+                     bool two_sided)
+    : m_radiance(radiance), m_two_sided(two_sided), m_is_sphere(true), m_center(center),
+      m_radius(radius), m_flip(flip_normals) {
+    m_area = 4.f * kPi * radius * radius;
+}
+
+std::optional<LightLiSample> AreaLight::sample_li(const LightSampleContext& ctx, Vec2f u) const {
+    LightLiSample s;
+    if (!m_is_sphere) {
+        float u_rem;
+        size_t t = m_tri_dist.sample_discrete(u.x, nullptr, &u_rem);
+        Vec2f b = square_to_uniform_triangle(Vec2f(u_rem, u.y));
+        const Point3f* v = &m_tri[3 * t];
+        s.p_light = v[0] * (1.f - b.x - b.y) + v[1] * b.x + v[2] * b.y;
+        s.n_light = m_tri_n[t];
+        s.p_error = gamma(6) * (abs(v[0]) + abs(v[1]) + abs(v[2]));
+    } else {
+        Vec3f to_c = m_center - ctx.p;
+        float d2 = length2(to_c);
+        if (d2 > m_radius * m_radius * 1.0001f) {
+            // Outside: sample the cone of directions subtended by the sphere (uniform solid angle).
+            float d = std::sqrt(d2);
+            float sin2_max = m_radius * m_radius / d2;
+            float cos_max = safe_sqrt(1.f - sin2_max);
+            Frame f = Frame::from_z(to_c / d);
+            Vec3f w = f.to_world(square_to_uniform_cone(u, cos_max));
+            // Nearest intersection of the ray (ctx.p, w) with the sphere, in double for accuracy.
+            Vec3d o(ctx.p - m_center), wd(w);
+            double bq = glm::dot(o, wd), cq = glm::dot(o, o) - double(m_radius) * m_radius;
+            double disc = std::max(0.0, bq * bq - cq);
+            double t = -bq - std::sqrt(disc);
+            Vec3f p = m_center + m_radius * normalize(Vec3f(o + t * wd));
+            s.p_light = p;
+            s.n_light = normalize(p - m_center) * (m_flip ? -1.f : 1.f);
+            s.p_error = gamma(5) * (abs(p) + abs(m_center)) + Vec3f(gamma(5) * m_radius);
+            s.wi = w;
+            s.pdf = square_to_uniform_cone_pdf(Vec3f(0, 0, 1), cos_max);
+            s.L = L(s.n_light, -w);
+            if (s.L.is_black() || !(s.pdf > 0.f)) return std::nullopt;
+            return s;
+        }
+        Vec3f n = square_to_uniform_sphere(u);
+        s.p_light = m_center + m_radius * n;
+        s.n_light = m_flip ? -n : n;
+        s.p_error = gamma(5) * (abs(s.p_light) + abs(m_center)) + Vec3f(gamma(5) * m_radius);
+    }
+    Vec3f d = s.p_light - ctx.p;
+    float dist2 = length2(d);
+    if (!(dist2 > 0.f)) return std::nullopt;
+    s.wi = d / std::sqrt(dist2);
+    float cos_l = absdot(s.n_light, s.wi);
+    if (!(cos_l > 0.f)) return std::nullopt;
+    s.pdf = dist2 / (cos_l * m_area);
+    s.L = L(s.n_light, -s.wi);
+    if (s.L.is_black() || !std::isfinite(s.pdf)) return std::nullopt;
+    return s;
+}
+
+float AreaLight::pdf_li(const LightSampleContext& ctx, const Vec3f& wi, const Point3f& p_light,
+                        const Normal3f& n_light) const {
+    if (m_is_sphere) {
+        Vec3f to_c = m_center - ctx.p;
+        float d2 = length2(to_c);
+        if (d2 > m_radius * m_radius * 1.0001f) {
+            float cos_max = safe_sqrt(1.f - m_radius * m_radius / d2);
+            return square_to_uniform_cone_pdf(Vec3f(0, 0, 1), cos_max);
+        }
+    }
+    float dist2 = length2(p_light - ctx.p);
+    float cos_l = absdot(n_light, wi);
+    return cos_l > 0.f ? dist2 / (cos_l * m_area) : 0.f;
+}
+
+float AreaLight::power() const { return kPi * m_area * m_radiance.average() * (m_two_sided ? 2.f : 1.f); }
+
+std::string AreaLight::to_string() const {
+    return std::string("AreaLight[") + (m_is_sphere ? "sphere" : "mesh") + ", radiance=" + m_radiance.to_string() +
+           ", area=" + std::to_string(m_area) + (m_two_sided ? ", two_sided" : "") + "]";
+}
+}  // namespace pellucid

@@ -1,0 +1,14 @@
+// The closed list of light types.
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <variant>
+
+#include "pellucid/light/area.h"
+#include "pellucid/light/constant.h"
+
+namespace pellucid {
+using Light = std::variant<AreaLight, ConstantLight>;
+inline std::string to_string(const Light& l) {
+    return std::visit([](const auto& x) { return x.to_string(); }, l);
+}
+}  // namespace pellucid

@@ -1,0 +1,67 @@
+// Piecewise-constant 1D distribution (discrete and continuous sampling by inverting the CDF).
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <algorithm>
+#include <vector>
+
+namespace pellucid {
+
+class Distribution1D {
+public:
+    Distribution1D() = default;
+    /// weights must be ≥ 0; if all are 0 the distribution falls back to uniform.
+    explicit Distribution1D(const std::vector<float>& weights) : m_func(weights) {
+        size_t n = m_func.size();
+        m_cdf.assign(n + 1, 0.0);
+        for (size_t i = 0; i < n; ++i) m_cdf[i + 1] = m_cdf[i] + double(std::max(0.f, m_func[i]));
+        m_total = m_cdf[n];
+        if (!(m_total > 0.0)) {
+            for (size_t i = 0; i < n; ++i) m_cdf[i + 1] = double(i + 1);
+            m_total = double(n);
+            std::fill(m_func.begin(), m_func.end(), 1.f);
+        }
+        for (auto& c : m_cdf) c /= m_total;
+    }
+    size_t size() const { return m_func.size(); }
+    double total() const { return m_total; }
+    /// Discrete probability of index i.
+    float pmf(size_t i) const { return float(m_cdf[i + 1] - m_cdf[i]); }
+
+    /// Sample an index with probability pmf(i); u_remapped receives u rescaled to [0,1) within the
+    /// chosen cell, so it can be reused.
+    size_t sample_discrete(float u, float* pmf_out = nullptr, float* u_remapped = nullptr) const {
+        size_t i = find(u);
+        double lo = m_cdf[i], hi = m_cdf[i + 1];
+        if (pmf_out) *pmf_out = float(hi - lo);
+        if (u_remapped) *u_remapped = hi > lo ? float(std::min(0.99999994, (u - lo) / (hi - lo))) : 0.f;
+        return i;
+    }
+    /// Sample x in [0,1) with density func(x)/integral; pdf receives that density.
+    float sample_continuous(float u, float* pdf, size_t* index = nullptr) const {
+        size_t i = find(u);
+        double lo = m_cdf[i], hi = m_cdf[i + 1];
+        double du = hi > lo ? (u - lo) / (hi - lo) : 0.0;
+        if (pdf) *pdf = float(double(m_func[i]) * double(size()) / m_total);
+        if (index) *index = i;
+        return float(std::min(0.99999994, (double(i) + du) / double(size())));
+    }
+    float pdf_continuous(float x) const {
+        size_t i = std::min(size() - 1, size_t(std::max(0.f, x) * float(size())));
+        return float(double(m_func[i]) * double(size()) / m_total);
+    }
+
+private:
+    size_t find(float u) const {
+        // Largest i with cdf[i] <= u, skipping empty cells.
+        size_t i = size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), double(u)) - m_cdf.begin());
+        i = i == 0 ? 0 : i - 1;
+        i = std::min(i, size() - 1);
+        while (i > 0 && m_cdf[i + 1] == m_cdf[i]) --i;
+        while (i + 1 < size() && m_cdf[i + 1] == m_cdf[i]) ++i;
+        return i;
+    }
+    std::vector<float> m_func;
+    std::vector<double> m_cdf;
+    double m_total = 0.0;
+};
+}  // namespace pellucid

@@ -1,0 +1,63 @@
+// PCG32 random number generator (O'Neill 2014, "PCG: A Family of Simple Fast Space-Efficient
+// Statistically Good Algorithms for Random Number Generation", pcg32 = XSH RR 64/32).
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <cstdint>
+
+#include "pellucid/math/constants.h"
+#include "pellucid/math/vec.h"
+
+namespace pellucid {
+
+/// 64-bit finaliser of MurmurHash3 / splitmix64; used to decorrelate seeds.
+inline uint64_t mix_bits(uint64_t v) {
+    v ^= v >> 31;
+    v *= 0x7fb5d329728ea185ULL;
+    v ^= v >> 27;
+    v *= 0x81dadef4bc2dd44dULL;
+    v ^= v >> 33;
+    return v;
+}
+
+class PCG32 {
+public:
+    PCG32() { seed(0x853c49e6748fea9bULL, 0xda3e39cb94b95bdbULL); }
+    PCG32(uint64_t init_state, uint64_t stream) { seed(init_state, stream); }
+
+    /// Seed for one (pixel, sample index, user seed) triple: every such triple owns an independent
+    /// stream, so images do not depend on how work is split across threads.
+    static PCG32 for_sample(uint64_t pixel, uint64_t sample_index, uint64_t seed) {
+        uint64_t stream = mix_bits(pixel * 0x9E3779B97F4A7C15ULL ^ mix_bits(seed + 0x632BE59BD9B4E019ULL));
+        return PCG32(mix_bits(sample_index ^ (stream << 1)), stream);
+    }
+
+    void seed(uint64_t init_state, uint64_t stream) {
+        m_state = 0u;
+        m_inc = (stream << 1u) | 1u;
+        next_u32();
+        m_state += init_state;
+        next_u32();
+    }
+    uint32_t next_u32() {
+        uint64_t old = m_state;
+        m_state = old * 0x5851f42d4c957f2dULL + m_inc;
+        uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
+        uint32_t rot = uint32_t(old >> 59u);
+        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31));
+    }
+    /// Uniform float in [0, 1).
+    float next_float() { return std::fmin(float(next_u32()) * 0x1p-32f, kOneMinusEpsilon); }
+    Vec2f next_2d() {
+        float a = next_float();
+        return Vec2f(a, next_float());
+    }
+    /// Uniform double in [0, 1).
+    double next_double() {
+        uint64_t v = (uint64_t(next_u32()) << 21) ^ uint64_t(next_u32());
+        return double(v & ((1ULL << 53) - 1)) * 0x1p-53;
+    }
+
+private:
+    uint64_t m_state, m_inc;
+};
+}  // namespace pellucid

@@ -1,0 +1,273 @@
+// Scene building.
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/scene/build.h"
+
+#include <cmath>
+#include <map>
+
+#include "pellucid/scene/registry.h"
+#include "pellucid/util/error.h"
+#include "pellucid/util/log.h"
+
+namespace pellucid {
+namespace {
+
+constexpr int kMaxResolution = 16384;
+constexpr int64_t kMaxPixels = int64_t(1) << 28;
+
+class Builder {
+public:
+    Builder(const SceneDesc& d, Scene& s) : m_desc(d), m_scene(s), m_ctx{d.source, d.base_dir} {}
+
+    void build() {
+        Properties root(m_desc.root, m_desc.source, "");
+        build_film(root.get_node("film"));
+        build_sampler(root.get_node("sampler"));
+        build_integrator(root.get_node("integrator"));
+        build_camera(root.get_node("camera"));
+        build_materials(root.get_node("materials"));
+        build_shapes(root.get_node("shapes"));
+        build_lights(root.get_node("lights"));
+        root.check_unqueried();
+        if (m_scene.shapes.empty() && m_scene.lights.empty())
+            log_warning(m_desc.source + ": the scene has no shapes and no lights; it renders black");
+        m_scene.accel.commit();
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& path, const std::string& msg) const {
+        throw Error(format_error(m_desc.source, path, msg));
+    }
+
+    void build_film(const Node* n) {
+        if (!n) return;
+        Properties p(*n, m_desc.source, "film");
+        m_scene.width = p.get_int("width", 256);
+        m_scene.height = p.get_int("height", 256);
+        for (auto [key, v] : {std::pair<const char*, int>{"width", m_scene.width}, {"height", m_scene.height}})
+            if (v < 1 || v > kMaxResolution)
+                p.fail(key, "resolution " + std::to_string(v) + " is out of range [1, " +
+                                std::to_string(kMaxResolution) + "]");
+        if (int64_t(m_scene.width) * m_scene.height > kMaxPixels)
+            p.fail("", "resolution " + std::to_string(m_scene.width) + "x" + std::to_string(m_scene.height) +
+                           " exceeds the limit of 2^28 pixels");
+        if (const Node* f = p.get_node("filter")) {
+            Properties fp(*f, m_desc.source, "film.filter");
+            std::string type = fp.type();
+            auto it = filter_registry().find(type);
+            if (it == filter_registry().end())
+                fp.fail("type", "unknown filter '" + type + "' (known: box, gaussian, tent)");
+            m_scene.filter = it->second(fp);
+            fp.check_unqueried();
+        }
+        p.check_unqueried();
+    }
+
+    void build_sampler(const Node* n) {
+        if (!n) return;
+        Properties p(*n, m_desc.source, "sampler");
+        if (p.has("type") && p.type() != "independent")
+            p.fail("type", "unknown sampler '" + p.get_string("type") + "' (known: independent)");
+        m_scene.spp = p.get_int("sample_count", 16);
+        if (m_scene.spp < 1 || m_scene.spp > (1 << 24))
+            p.fail("sample_count", "value " + std::to_string(m_scene.spp) + " is out of range [1, 16777216]");
+        int seed = p.get_int("seed", 0);
+        if (seed < 0) p.fail("seed", "value " + std::to_string(seed) + " must be >= 0");
+        m_scene.seed = uint64_t(seed);
+        p.check_unqueried();
+    }
+
+    void build_integrator(const Node* n) {
+        if (!n) return;
+        Properties p(*n, m_desc.source, "integrator");
+        IntegratorSettings& s = m_scene.integrator;
+        s.type = p.type();
+        if (s.type != "path") p.fail("type", "unknown integrator '" + s.type + "' (known: path)");
+        s.max_depth = p.get_int("max_depth", -1);
+        if (s.max_depth < -1) p.fail("max_depth", "value " + std::to_string(s.max_depth) + " must be >= -1");
+        s.rr_depth = p.get_int("rr_depth", 5);
+        if (s.rr_depth < 1) p.fail("rr_depth", "value " + std::to_string(s.rr_depth) + " must be >= 1");
+        s.strategy = p.get_string("strategy", "mis");
+        if (s.strategy != "mis" && s.strategy != "nee" && s.strategy != "bsdf")
+            p.fail("strategy", "unknown strategy '" + s.strategy + "' (known: bsdf, mis, nee)");
+        p.check_unqueried();
+    }
+
+    void build_camera(const Node* n) {
+        Transform to_world;
+        float fov = 45.f;
+        std::string axis = "x";
+        if (n) {
+            Properties p(*n, m_desc.source, "camera");
+            std::string type = p.type();
+            if (type != "perspective") p.fail("type", "unknown camera '" + type + "' (known: perspective)");
+            fov = p.get_float("fov", 45.f);
+            if (!(fov > 0.f && fov < 180.f)) p.fail("fov", "value " + std::to_string(fov) + " must be in (0, 180)");
+            axis = p.get_string("fov_axis", "x");
+            to_world = p.get_transform("to_world");
+            if (axis != "x" && axis != "y" && axis != "smaller" && axis != "larger")
+                p.fail("fov_axis", "unknown axis '" + axis + "' (known: x, y, smaller, larger)");
+            p.check_unqueried();
+        }
+        float w = float(m_scene.width), h = float(m_scene.height);
+        bool along_y = axis == "y" || (axis == "smaller" && h < w) || (axis == "larger" && h > w);
+        float fov_x = fov;
+        if (along_y) fov_x = degrees(2.f * std::atan(std::tan(radians(fov) * 0.5f) * w / h));
+        m_scene.camera = PerspectiveCamera(to_world, fov_x, m_scene.width, m_scene.height);
+    }
+
+    uint32_t add_material(const Node& n, const std::string& path, const std::string& name) {
+        Properties p(n, m_desc.source, path);
+        std::string type = p.type();
+        auto it = material_registry().find(type);
+        if (it == material_registry().end()) {
+            std::vector<std::string> names;
+            for (const auto& [k, v] : material_registry()) names.push_back(k);
+            p.fail("type", "unknown material type '" + type + "' (known: " + join_names(names) + ")");
+        }
+        m_scene.materials.push_back(it->second(p, m_ctx));
+        m_scene.material_names.push_back(name);
+        p.check_unqueried();
+        return uint32_t(m_scene.materials.size() - 1);
+    }
+
+    void build_materials(const Node* n) {
+        if (!n) return;
+        if (!n->is_object()) fail("materials", std::string("expected an object of named materials, got a ") + n->kind_name());
+        for (const auto& [name, m] : n->members()) m_materials[name] = add_material(m, path_join("materials", name), name);
+    }
+
+    uint32_t resolve_material(Properties& p, const std::string& path) {
+        const Node* m = p.get_node("material");
+        if (!m) {
+            if (m_default_material < 0) {
+                m_scene.materials.push_back(DiffuseMaterial{});
+                m_scene.material_names.push_back("<default>");
+                m_default_material = int(m_scene.materials.size() - 1);
+            }
+            return uint32_t(m_default_material);
+        }
+        if (m->is_string()) {
+            auto it = m_materials.find(m->as_string());
+            if (it == m_materials.end()) p.fail("material", "no material '" + m->as_string() + "'");
+            return it->second;
+        }
+        return add_material(*m, path_join(path, "material"), path_join(path, "material"));
+    }
+
+    void build_shapes(const Node* n) {
+        if (!n) return;
+        if (!n->is_array()) fail("shapes", std::string("expected an array, got a ") + n->kind_name());
+        for (size_t i = 0; i < n->size(); ++i) build_shape(n->items()[i], path_index("shapes", i));
+    }
+
+    void build_shape(const Node& n, const std::string& path) {
+        Properties p(n, m_desc.source, path);
+        std::string type = p.type();
+        auto it = shape_registry().find(type);
+        if (it == shape_registry().end()) {
+            std::vector<std::string> names;
+            for (const auto& [k, v] : shape_registry()) names.push_back(k);
+            p.fail("type", "unknown shape type '" + type + "' (known: " + join_names(names) + ")");
+        }
+        ShapeGeometry g = it->second(p, m_ctx);
+        Transform to_world = p.get_transform("to_world");
+        ShapeRecord rec;
+        rec.name = path;
+        rec.material = resolve_material(p, path);
+        const Node* emitter = p.get_node("emitter");
+        p.check_unqueried();
+        if (g.is_sphere) {
+            to_sphere(g, to_world, p);
+            rec.kind = ShapeRecord::Kind::Sphere;
+            rec.center = g.center;
+            rec.radius = g.radius;
+            rec.flip_normals = g.flip_normals;
+        } else {
+            g.mesh.transform(to_world);
+            g.mesh.validate(format_error(m_desc.source, path, ""));
+            size_t removed = g.mesh.remove_degenerate();
+            if (removed)
+                log_warning(format_error(m_desc.source, path, "skipped " + std::to_string(removed) +
+                                                                 " zero-area triangle(s)"));
+            if (g.mesh.triangle_count() == 0) {
+                log_warning(format_error(m_desc.source, path, "mesh has no triangles left; shape skipped"));
+                return;
+            }
+            rec.kind = ShapeRecord::Kind::Mesh;
+            rec.mesh_index = uint32_t(m_scene.meshes.size());
+        }
+        if (emitter) rec.light = build_area_light(*emitter, path_join(path, "emitter"), g);
+        uint32_t id = g.is_sphere ? m_scene.accel.add_sphere(g.center, g.radius) : m_scene.accel.add_mesh(g.mesh);
+        PELLUCID_CHECK(id == m_scene.shapes.size(), "geometry ids must be dense");
+        if (!g.is_sphere) {
+            m_scene.triangle_count += g.mesh.triangle_count();
+            m_scene.meshes.push_back(std::move(g.mesh));
+        }
+        m_scene.shapes.push_back(rec);
+    }
+
+    void to_sphere(ShapeGeometry& g, const Transform& t, Properties& p) {
+        // A sphere's to_world must be a similarity (uniform scale, rotation, translation).
+        Vec3f ax = t.vector(Vec3f(1, 0, 0)), ay = t.vector(Vec3f(0, 1, 0)), az = t.vector(Vec3f(0, 0, 1));
+        float sx = length(ax), sy = length(ay), sz = length(az);
+        if (std::fabs(sx - sy) > 1e-4f * sx || std::fabs(sx - sz) > 1e-4f * sx ||
+            std::fabs(dot(ax, ay)) > 1e-4f * sx * sy || std::fabs(dot(ax, az)) > 1e-4f * sx * sz)
+            p.fail("to_world", "a sphere's transform must scale uniformly (got scales " + std::to_string(sx) +
+                                   ", " + std::to_string(sy) + ", " + std::to_string(sz) + ")");
+        g.center = t.point(g.center);
+        g.radius *= sx;
+    }
+
+    int32_t build_area_light(const Node& n, const std::string& path, const ShapeGeometry& g) {
+        Properties p(n, m_desc.source, path);
+        std::string type = p.type();
+        if (type != "area") p.fail("type", "unknown emitter type '" + type + "' (known: area)");
+        Spectrum radiance = p.get_spectrum("radiance", Spectrum(1.f));
+        if (radiance.has_negative()) p.fail("radiance", "value " + radiance.to_string() + " must be >= 0");
+        bool two_sided = p.get_bool("two_sided", false);
+        p.check_unqueried();
+        if (radiance.is_black()) {
+            log_warning(format_error(m_desc.source, path, "emitter has zero radiance; skipped"));
+            return -1;
+        }
+        if (g.is_sphere) m_scene.lights.emplace_back(AreaLight(g.center, g.radius, g.flip_normals, radiance, two_sided));
+        else m_scene.lights.emplace_back(AreaLight(g.mesh, radiance, two_sided));
+        return int32_t(m_scene.lights.size() - 1);
+    }
+
+    void build_lights(const Node* n) {
+        if (!n) return;
+        if (!n->is_array()) fail("lights", std::string("expected an array, got a ") + n->kind_name());
+        for (size_t i = 0; i < n->size(); ++i) {
+            std::string path = path_index("lights", i);
+            Properties p(n->items()[i], m_desc.source, path);
+            std::string type = p.type();
+            if (type != "constant") p.fail("type", "unknown light type '" + type + "' (known: constant)");
+            Spectrum L = p.get_spectrum("radiance", Spectrum(1.f));
+            if (L.has_negative()) p.fail("radiance", "value " + L.to_string() + " must be >= 0");
+            p.check_unqueried();
+            if (L.is_black()) {
+                log_warning(format_error(m_desc.source, path, "light has zero power; skipped"));
+                continue;
+            }
+            m_scene.infinite_lights.push_back(uint32_t(m_scene.lights.size()));
+            m_scene.lights.emplace_back(ConstantLight(L));
+        }
+    }
+
+    const SceneDesc& m_desc;
+    Scene& m_scene;
+    BuildContext m_ctx;
+    std::map<std::string, uint32_t> m_materials;
+    int m_default_material = -1;
+};
+}  // namespace
+
+std::unique_ptr<Scene> build_scene(const SceneDesc& desc) {
+    auto scene = std::make_unique<Scene>();
+    scene->source = desc.source;
+    Builder(desc, *scene).build();
+    return scene;
+}
+}  // namespace pellucid

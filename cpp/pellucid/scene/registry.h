@@ -1,0 +1,45 @@
+// The registry: ONE explicit table per object family, from "type" name to builder function
+// (Tungsten's BsdfFactory style; no static self-registration).
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "pellucid/geometry/mesh.h"
+#include "pellucid/image/filter.h"
+#include "pellucid/material/material.h"
+#include "pellucid/scene/properties.h"
+
+namespace pellucid {
+
+/// What a shape builder produces: a world-space mesh, or an analytic sphere.
+struct ShapeGeometry {
+    bool is_sphere = false;
+    TriangleMesh mesh;
+    Point3f center{0.f};
+    float radius = 1.f;
+    bool flip_normals = false;
+};
+
+/// Read-only context for builders that resolve files.
+struct BuildContext {
+    std::string source;
+    std::string base_dir;
+    /// Resolve a path relative to the scene file's directory.
+    std::string resolve(const std::string& path) const;
+};
+
+using MaterialBuilder = Material (*)(Properties&, const BuildContext&);
+using ShapeBuilder = ShapeGeometry (*)(Properties&, const BuildContext&);
+using FilterBuilder = Filter (*)(Properties&);
+
+const std::map<std::string, MaterialBuilder>& material_registry();
+const std::map<std::string, ShapeBuilder>& shape_registry();
+const std::map<std::string, FilterBuilder>& filter_registry();
+/// Every registered type per family ("materials", "shapes", "lights", "emitters", "filters",
+/// "cameras", "integrators"), for documentation checks and error messages.
+std::map<std::string, std::vector<std::string>> registry_types();
+/// "a, b, c"
+std::string join_names(const std::vector<std::string>& names);
+}  // namespace pellucid

@@ -1,0 +1,107 @@
+// Scene queries: hit records from kernel hits.
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/scene/scene.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace pellucid {
+namespace {
+void fill_triangle(const TriangleMesh& m, const RayHit& h, SurfaceInteraction& si) {
+    uint32_t i0 = m.indices[3 * h.prim_id], i1 = m.indices[3 * h.prim_id + 1], i2 = m.indices[3 * h.prim_id + 2];
+    const Point3f &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
+    float b1 = h.u, b2 = h.v, b0 = 1.f - b1 - b2;
+    si.p = b0 * p0 + b1 * p1 + b2 * p2;
+    // Barycentric interpolation error bound (pbrt-v4 §6.8.5, eq. 6.31).
+    si.p_error = gamma(7) * (abs(b0 * p0) + abs(b1 * p1) + abs(b2 * p2));
+    Vec3f e1 = p1 - p0, e2 = p2 - p0;
+    si.ng = normalize(cross(e1, e2));
+    Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
+    if (!m.uvs.empty()) {
+        uv0 = m.uvs[i0];
+        uv1 = m.uvs[i1];
+        uv2 = m.uvs[i2];
+    }
+    si.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
+    // dp/du, dp/dv from the uv parameterisation (pbrt-v4 §6.5.3).
+    Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+    Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
+    float det = duv02.x * duv12.y - duv02.y * duv12.x;
+    bool degenerate_uv = std::fabs(det) < 1e-9f;
+    if (!degenerate_uv) {
+        float inv = 1.f / det;
+        si.dpdu = (duv12.y * dp02 - duv02.y * dp12) * inv;
+        si.dpdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
+    }
+    if (degenerate_uv || length2(cross(si.dpdu, si.dpdv)) == 0.f) {
+        Frame f = Frame::from_z(si.ng);
+        si.dpdu = f.s;
+        si.dpdv = f.t;
+    }
+    Normal3f ns = si.ng;
+    if (!m.normals.empty()) {
+        Normal3f n = b0 * m.normals[i0] + b1 * m.normals[i1] + b2 * m.normals[i2];
+        if (length2(n) > 0.f) {
+            ns = normalize(n);
+            if (dot(ns, si.ng) < 0.f) si.ng = -si.ng;  // geometric normal follows the shading side
+        }
+    }
+    si.shading = Frame::from_xz(si.dpdu, ns);
+}
+
+void fill_sphere(const ShapeRecord& s, const Ray& ray, const RayHit& h, SurfaceInteraction& si) {
+    Point3f hit = ray.o + h.t * ray.d;
+    Vec3f n = hit - s.center;
+    float len = length(n);
+    n = len > 0.f ? n / len : Vec3f(0, 0, 1);
+    // Re-project onto the surface; the remaining error is a few ulps of |p| (pbrt-v4 §6.8.5).
+    si.p = s.center + s.radius * n;
+    si.p_error = gamma(5) * (abs(si.p) + abs(s.center)) + Vec3f(gamma(5) * s.radius);
+    si.ng = s.flip_normals ? -n : n;
+    float phi = std::atan2(n.y, n.x);
+    if (phi < 0.f) phi += 2.f * kPi;
+    float theta = safe_acos(n.z);
+    si.uv = Vec2f(phi * kInv2Pi, theta * kInvPi);
+    si.dpdu = Vec3f(-2.f * kPi * s.radius * n.y, 2.f * kPi * s.radius * n.x, 0.f);
+    float st = std::sqrt(n.x * n.x + n.y * n.y);
+    if (st > 1e-6f)
+        si.dpdv = kPi * s.radius * Vec3f(n.z * n.x / st, n.z * n.y / st, -st);
+    if (length2(si.dpdu) < 1e-12f || st <= 1e-6f) {
+        Frame f = Frame::from_z(n);
+        si.dpdu = f.s;
+        si.dpdv = f.t;
+    }
+    si.shading = Frame::from_xz(si.dpdu, si.ng);
+}
+}  // namespace
+
+bool Scene::intersect(const Ray& ray, SurfaceInteraction& si) const {
+    RayHit h;
+    h.t = ray.tmax;
+    if (!accel.intersect(ray, h)) return false;
+    const ShapeRecord& s = shapes[h.geom_id];
+    if (s.kind == ShapeRecord::Kind::Mesh) fill_triangle(meshes[s.mesh_index], h, si);
+    else fill_sphere(s, ray, h, si);
+    si.t = h.t;
+    si.wo = -ray.d;
+    si.shape_id = h.geom_id;
+    si.prim_id = h.prim_id;
+    si.material_id = s.material;
+    si.light_id = s.light;
+    return true;
+}
+
+Spectrum Scene::emitted(const SurfaceInteraction& si) const {
+    if (si.light_id < 0) return Spectrum(0.f);
+    return std::get<AreaLight>(lights[size_t(si.light_id)]).L(si.ng, si.wo);
+}
+
+std::string Scene::to_string() const {
+    std::ostringstream os;
+    os << "Scene[source=" << source << ", film=" << width << "x" << height << ", spp=" << spp
+       << ", shapes=" << shapes.size() << ", triangles=" << triangle_count << ", materials=" << materials.size()
+       << ", lights=" << lights.size() << ", integrator=" << integrator.type << "(max_depth="
+       << integrator.max_depth << ")]";
+    return os.str();
+}
+}  // namespace pellucid

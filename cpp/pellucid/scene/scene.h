@@ -1,0 +1,71 @@
+// Scene: the immutable, built scene that rendering reads (const Scene&).
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pellucid/bxdf/bsdf.h"
+#include "pellucid/camera/perspective.h"
+#include "pellucid/geometry/embree_scene.h"
+#include "pellucid/geometry/interaction.h"
+#include "pellucid/image/filter.h"
+#include "pellucid/light/light.h"
+#include "pellucid/material/material.h"
+
+namespace pellucid {
+
+struct ShapeRecord {
+    enum class Kind { Mesh, Sphere } kind = Kind::Mesh;
+    uint32_t mesh_index = 0;  ///< into Scene::meshes (Kind::Mesh)
+    Point3f center{0.f};      ///< Kind::Sphere
+    float radius = 1.f;
+    bool flip_normals = false;
+    uint32_t material = 0;
+    int32_t light = -1;
+    std::string name;  ///< key path in the scene description, for messages
+};
+
+/// Integrator settings (plain data).
+struct IntegratorSettings {
+    std::string type = "path";
+    int max_depth = -1;   ///< longest path in segments (Mitsuba 3 convention), -1 = unbounded
+    int rr_depth = 5;     ///< Russian roulette starts at this depth
+    std::string strategy = "mis";  ///< "mis", "nee", "bsdf"
+};
+
+class Scene {
+public:
+    Scene() = default;
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+
+    /// Closest hit, filled into si. Thread-safe.
+    bool intersect(const Ray& ray, SurfaceInteraction& si) const;
+    bool occluded(const Ray& ray) const { return accel.occluded(ray); }
+    BSDF bsdf(const SurfaceInteraction& si) const {
+        return BSDF(get_bxdf(materials[si.material_id], si), si.shading, si.ng);
+    }
+    /// Emitted radiance at a surface hit toward si.wo (0 if the shape is not an emitter).
+    Spectrum emitted(const SurfaceInteraction& si) const;
+    float light_pmf(size_t /*light*/) const { return lights.empty() ? 0.f : 1.f / float(lights.size()); }
+    std::string to_string() const;
+
+    EmbreeScene accel;
+    std::vector<TriangleMesh> meshes;
+    std::vector<ShapeRecord> shapes;
+    std::vector<Material> materials;
+    std::vector<std::string> material_names;
+    std::vector<Light> lights;
+    std::vector<uint32_t> infinite_lights;  ///< indices into lights
+    PerspectiveCamera camera;
+    Filter filter = GaussianFilter{};
+    int width = 256, height = 256;
+    int spp = 16;
+    uint64_t seed = 0;
+    IntegratorSettings integrator;
+    std::string source;
+    uint64_t triangle_count = 0;
+};
+}  // namespace pellucid

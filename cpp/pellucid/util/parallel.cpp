@@ -1,0 +1,28 @@
+// Parallel loops through oneTBB.
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/util/parallel.h"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace pellucid {
+int hardware_threads() { return tbb::info::default_concurrency(); }
+
+void parallel_for(int64_t n, int threads, const std::function<void(int64_t)>& body) {
+    if (n <= 0) return;
+    int nt = threads > 0 ? threads : hardware_threads();
+    if (nt == 1) {
+        for (int64_t i = 0; i < n; ++i) body(i);
+        return;
+    }
+    tbb::task_arena arena(nt);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<int64_t>(0, n, 1),
+                          [&](const tbb::blocked_range<int64_t>& r) {
+                              for (int64_t i = r.begin(); i != r.end(); ++i) body(i);
+                          });
+    });
+}
+}  // namespace pellucid

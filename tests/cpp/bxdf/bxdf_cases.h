@@ -1,0 +1,254 @@
+// Parameter sets for the BxDF property suite: one BxDFCases<T> specialisation per alternative of
+// `BxDF` (a missing specialisation is a compile error, so a new model cannot skip the suite).
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <string>
+#include <vector>
+
+#include "pellucid/bxdf/bxdf.h"
+#include "pellucid/bxdf/ior.h"
+
+namespace pellucid::test {
+
+/// Incident directions with generic azimuths and cosines, so that delta directions never fall on
+/// a χ² bin edge.
+inline Vec3f dir(float cos_theta, float phi) {
+    float s = std::sqrt(std::max(0.f, 1.f - cos_theta * cos_theta));
+    return Vec3f(s * std::cos(phi), s * std::sin(phi), cos_theta);
+}
+inline std::vector<Vec3f> wo_front() { return {dir(0.83f, 0.31f), dir(0.27f, 2.23f)}; }
+inline std::vector<Vec3f> wo_both() { return {dir(0.83f, 0.31f), dir(0.27f, 2.23f), dir(-0.61f, 4.1f)}; }
+
+template <class T>
+struct Case {
+    std::string name;
+    T bxdf;
+    std::vector<Vec3f> wos = wo_front();
+    TransportMode mode = TransportMode::Radiance;
+    bool lossless = false;  ///< white furnace must give 1 (within furnace_tol + 5 SE)
+    float furnace_tol = 1e-5f;
+    bool chi2 = true;
+};
+
+template <class T>
+struct BxDFCases;  // static std::vector<Case<T>> cases(); static std::vector<T> sweep();
+
+// Parameter grids of the stability sweep (REFERENCE.md §7.2).
+inline const std::vector<float>& sweep_alphas() {
+    static const std::vector<float> v{0.f, 1e-6f, 1e-4f, 1e-3f, 1e-2f, 0.1f, 0.5f, 1.f};
+    return v;
+}
+inline const std::vector<float>& sweep_etas() {
+    static const std::vector<float> v{1.f, 1.0001f, 0.9999f, 1.33f, 1.5f, 1.f / 1.5f, 2.42f};
+    return v;
+}
+inline const std::vector<float>& sweep_reflectances() {
+    static const std::vector<float> v{0.f, 1.f};
+    return v;
+}
+
+inline ConductorFresnel metal(const char* name) {
+    ConductorIOR c = conductor_ior(name);
+    return ConductorFresnel{c.eta, c.k};
+}
+
+template <>
+struct BxDFCases<Lambertian> {
+    static std::vector<Case<Lambertian>> cases() {
+        Case<Lambertian> white{"white", Lambertian(Spectrum(1.f))};
+        white.lossless = true;
+        return {{"albedo0.7", Lambertian(Spectrum(0.7f, 0.5f, 0.3f))}, white};
+    }
+    static std::vector<Lambertian> sweep() { return {Lambertian(Spectrum(0.f)), Lambertian(Spectrum(1.f))}; }
+};
+
+template <>
+struct BxDFCases<OrenNayar> {
+    static std::vector<Case<OrenNayar>> cases() {
+        Case<OrenNayar> eon_white{"eon_white_r1", OrenNayar(Spectrum(1.f), 1.f, OrenNayarVariant::EON)};
+        eon_white.lossless = true;
+        eon_white.furnace_tol = 1e-4f;
+        eon_white.chi2 = false;
+        return {{"classic_sigma0.5", OrenNayar(Spectrum(0.8f), 0.5f, OrenNayarVariant::Classic)},
+                {"eon_r0.7", OrenNayar(Spectrum(0.9f, 0.6f, 0.3f), 0.7f, OrenNayarVariant::EON)},
+                eon_white};
+    }
+    static std::vector<OrenNayar> sweep() {
+        std::vector<OrenNayar> v;
+        for (float r : sweep_reflectances())
+            for (float s : {0.f, 1e-4f, 0.5f, 1.f, 10.f}) {
+                v.emplace_back(Spectrum(r), s, OrenNayarVariant::Classic);
+                v.emplace_back(Spectrum(r), s, OrenNayarVariant::EON);
+            }
+        return v;
+    }
+};
+
+template <>
+struct BxDFCases<SmoothConductor<ConductorFresnel>> {
+    using T = SmoothConductor<ConductorFresnel>;
+    static std::vector<Case<T>> cases() {
+        Case<T> white{"none", T(metal("none"))};
+        white.lossless = true;
+        white.chi2 = false;
+        return {{"Au", T(metal("Au"))}, white};
+    }
+    static std::vector<T> sweep() {
+        std::vector<T> v;
+        for (float k : {0.f, 1e3f})
+            for (float eta : sweep_etas()) v.emplace_back(ConductorFresnel{Spectrum(eta), Spectrum(k)});
+        return v;
+    }
+};
+
+template <class D>
+struct BxDFCases<MicrofacetReflection<D, ConductorFresnel>> {
+    using T = MicrofacetReflection<D, ConductorFresnel>;
+    static std::vector<Case<T>> cases() {
+        std::vector<Case<T>> c{{"Cu_iso0.3", T(D(0.3f), metal("Cu"))},
+                               {"Al_aniso0.15x0.45", T(D(0.15f, 0.45f), metal("Al"))}};
+        if constexpr (std::is_same_v<D, GGX>) {
+            c.push_back({"Au_ms_alpha0.6", T(D(0.6f), metal("Au"), Spectrum(1.f), true)});
+            for (float a : {0.5f, 1.f}) {
+                Case<T> w{"white_ms_alpha" + std::to_string(a), T(D(a), metal("none"), Spectrum(1.f), true)};
+                w.lossless = true;
+                w.furnace_tol = 3e-3f;  // table interpolation error of E(μ, α) (test_kulla_conty.cpp)
+                w.chi2 = a == 1.f;
+                c.push_back(w);
+            }
+        }
+        return c;
+    }
+    static std::vector<T> sweep() {
+        std::vector<T> v;
+        for (float a : sweep_alphas())
+            for (float k : {0.f, 1e3f})
+                for (float eta : {1.f, 1.5f, 0.2f})
+                    for (bool ms : {false, true}) v.emplace_back(D(a, 0.5f * a), ConductorFresnel{Spectrum(eta), Spectrum(k)}, Spectrum(1.f), ms);
+        return v;
+    }
+};
+
+template <>
+struct BxDFCases<SmoothDielectric> {
+    static std::vector<Case<SmoothDielectric>> cases() {
+        Case<SmoothDielectric> glass{"glass_importance", SmoothDielectric(1.5f)};
+        glass.wos = {dir(0.83f, 0.31f), dir(0.27f, 2.23f), dir(-0.61f, 4.1f), dir(-0.85f, 1.f)};
+        glass.mode = TransportMode::Importance;
+        glass.lossless = true;
+        Case<SmoothDielectric> water{"water_radiance", SmoothDielectric(1.333f)};
+        water.wos = wo_both();
+        return {glass, water};
+    }
+    static std::vector<SmoothDielectric> sweep() {
+        std::vector<SmoothDielectric> v;
+        for (float eta : sweep_etas()) v.emplace_back(eta);
+        return v;
+    }
+};
+
+template <>
+struct BxDFCases<ThinDielectric> {
+    static std::vector<Case<ThinDielectric>> cases() {
+        Case<ThinDielectric> c{"thin1.5", ThinDielectric(1.5f)};
+        c.wos = wo_both();
+        c.lossless = true;
+        return {c};
+    }
+    static std::vector<ThinDielectric> sweep() {
+        std::vector<ThinDielectric> v;
+        for (float eta : sweep_etas()) v.emplace_back(eta);
+        return v;
+    }
+};
+
+template <>
+struct BxDFCases<RoughDielectric<GGX>> {
+    using T = RoughDielectric<GGX>;
+    static std::vector<Case<T>> cases() {
+        Case<T> a{"eta1.5_alpha0.3", T(GGX(0.3f), 1.5f)};
+        a.wos = wo_both();
+        Case<T> b{"eta1.33_aniso_importance", T(GGX(0.2f, 0.5f), 1.333f)};
+        b.wos = wo_both();
+        b.mode = TransportMode::Importance;
+        return {a, b};
+    }
+    static std::vector<T> sweep() {
+        std::vector<T> v;
+        for (float a : sweep_alphas())
+            for (float eta : sweep_etas()) v.emplace_back(GGX(a), eta);
+        return v;
+    }
+};
+
+template <>
+struct BxDFCases<SmoothPlastic> {
+    static std::vector<Case<SmoothPlastic>> cases() {
+        Case<SmoothPlastic> white{"coupled_white", SmoothPlastic(1.5f, Spectrum(1.f), Spectrum(1.f))};
+        white.lossless = true;
+        white.furnace_tol = 1e-4f;  // quadrature of F_avg (1e-6) and float sums
+        white.chi2 = false;
+        return {{"coupled", SmoothPlastic(1.49f, Spectrum(0.2f, 0.5f, 0.8f), Spectrum(1.f))},
+                {"sum", SmoothPlastic(1.5f, Spectrum(0.5f), Spectrum(0.5f), PlasticVariant::Sum)},
+                white};
+    }
+    static std::vector<SmoothPlastic> sweep() {
+        std::vector<SmoothPlastic> v;
+        for (float eta : sweep_etas())
+            for (float r : sweep_reflectances())
+                for (auto var : {PlasticVariant::Coupled, PlasticVariant::Sum})
+                    v.emplace_back(eta, Spectrum(r), Spectrum(1.f - r), var);
+        return v;
+    }
+};
+
+template <>
+struct BxDFCases<RoughPlastic<GGX>> {
+    using T = RoughPlastic<GGX>;
+    static std::vector<Case<T>> cases() {
+        return {{"coupled_alpha0.2", T(GGX(0.2f), 1.49f, Spectrum(0.2f, 0.5f, 0.8f), Spectrum(1.f))},
+                {"sum_alpha0.4", T(GGX(0.4f), 1.5f, Spectrum(0.5f), Spectrum(0.5f), PlasticVariant::Sum)}};
+    }
+    static std::vector<T> sweep() {
+        std::vector<T> v;
+        for (float a : sweep_alphas())
+            for (float eta : sweep_etas())
+                for (float r : sweep_reflectances()) v.emplace_back(GGX(a), eta, Spectrum(r), Spectrum(1.f));
+        return v;
+    }
+};
+
+template <>
+struct BxDFCases<Principled> {
+    static PrincipledParams params(float metallic, float rough, float cc, float sheen, float aniso) {
+        PrincipledParams p;
+        p.base_color = Spectrum(0.6f, 0.3f, 0.15f);
+        p.metallic = metallic;
+        p.roughness = rough;
+        p.clearcoat = cc;
+        p.clearcoat_gloss = 0.7f;
+        p.sheen = sheen;
+        p.anisotropic = aniso;
+        return p;
+    }
+    static std::vector<Case<Principled>> cases() {
+        return {{"dielectric_clearcoat_sheen", Principled(params(0.f, 0.6f, 1.f, 0.5f, 0.f))},
+                {"metal_aniso", Principled(params(1.f, 0.5f, 0.f, 0.f, 0.8f))},
+                {"mixed", Principled(params(0.5f, 0.8f, 0.3f, 0.f, 0.3f))}};
+    }
+    static std::vector<Principled> sweep() {
+        std::vector<Principled> v;
+        for (float r : {0.f, 1e-3f, 0.5f, 1.f})
+            for (float m : {0.f, 1.f})
+                for (float c : {0.f, 1.f}) {
+                    PrincipledParams p = params(m, r, c, 1.f, 1.f);
+                    p.clearcoat_gloss = 1.f;
+                    v.emplace_back(p);
+                    p.base_color = Spectrum(0.f);
+                    p.sheen = 0.f;
+                    v.emplace_back(p);
+                }
+        return v;
+    }
+};
+}  // namespace pellucid::test

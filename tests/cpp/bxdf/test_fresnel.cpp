@@ -1,0 +1,128 @@
+// Known answers for Fresnel, Snell, mirror reflection and the named IOR tables.
+// SPDX-License-Identifier: Apache-2.0
+#include <gtest/gtest.h>
+
+#include "pellucid/bxdf/dielectric.h"
+#include "pellucid/bxdf/fresnel.h"
+#include "pellucid/bxdf/ior.h"
+#include "pellucid/util/error.h"
+
+namespace pellucid {
+namespace {
+
+TEST(Fresnel, SnellAirToWaterAt45Degrees) {
+    Vec3f wi(std::sin(radians(45.f)), 0.f, std::cos(radians(45.f))), wt;
+    float etap;
+    ASSERT_TRUE(refract(wi, Vec3f(0, 0, 1), 1.33f, &etap, &wt));
+    EXPECT_NEAR(degrees(std::acos(-wt.z)), 32.1f, 0.05f);  // asin(sin 45°/1.33) = 32.12°
+    EXPECT_FLOAT_EQ(etap, 1.33f);
+    EXPECT_NEAR(length(wt), 1.f, 1e-6f);
+}
+
+TEST(Fresnel, CriticalAngleWaterToAir) {
+    // θc = asin(1/1.33) = 48.75°: total internal reflection beyond, partial below.
+    const float eta = 1.33f, theta_c = degrees(std::asin(1.f / eta));
+    EXPECT_NEAR(theta_c, 48.8f, 0.06f);
+    EXPECT_EQ(fresnel_dielectric(-std::cos(radians(theta_c + 0.05f)), eta), 1.f);
+    EXPECT_LT(fresnel_dielectric(-std::cos(radians(theta_c - 0.05f)), eta), 1.f);
+    Vec3f wt, inside(std::sin(radians(theta_c + 0.05f)), 0.f, -std::cos(radians(theta_c + 0.05f)));
+    EXPECT_FALSE(refract(inside, Vec3f(0, 0, 1), eta, nullptr, &wt));
+}
+
+TEST(Fresnel, MirrorReflection) {
+    Vec3f r = reflect(Vec3f(1, 1, 0), Vec3f(0, 1, 0));
+    EXPECT_FLOAT_EQ(r.x, -1.f);
+    EXPECT_FLOAT_EQ(r.y, 1.f);
+    EXPECT_FLOAT_EQ(r.z, 0.f);
+}
+
+TEST(Fresnel, DielectricKnownValues) {
+    EXPECT_NEAR(fresnel_dielectric(1.f, 1.5f), 0.04f, 1e-6f);
+    EXPECT_EQ(fresnel_dielectric(0.3f, 1.f), 0.f);  // index-matched: exactly 0
+    EXPECT_NEAR(fresnel_dielectric(0.f, 1.5f), 1.f, 1e-6f);
+    // Flipping: arriving from inside with cos < 0 equals the interface seen with 1/η.
+    EXPECT_FLOAT_EQ(fresnel_dielectric(-0.7f, 1.5f), fresnel_dielectric(0.7f, 1.f / 1.5f));
+    // Mitsuba 3 test_dielectric spot check: η = 1.5 at 80°: R = 0.387704354691473, θt = 41.0364°.
+    EXPECT_NEAR(fresnel_dielectric(std::cos(radians(80.f)), 1.5f), 0.387704354691473, 2e-6);
+    EXPECT_NEAR(fresnel_dielectric_d(std::cos(80.0 * M_PI / 180.0), 1.5), 0.387704354691473, 1e-12);
+    float cos_t = 0.f;
+    fresnel_dielectric(std::cos(radians(80.f)), 1.5f, &cos_t);
+    EXPECT_NEAR(degrees(std::acos(cos_t)), 41.03641052520335, 1e-3);
+    // Fresnel symmetry across the interface: R(θi, η) = R(θt, 1/η).
+    fresnel_dielectric(0.6f, 1.5f, &cos_t);
+    EXPECT_NEAR(fresnel_dielectric(0.6f, 1.5f), fresnel_dielectric(cos_t, 1.f / 1.5f), 1e-6f);
+}
+
+TEST(Fresnel, ConductorLimits) {
+    // k = 0 reduces to the dielectric formula; huge k and grazing incidence reflect everything.
+    for (float c : {0.05f, 0.3f, 0.7f, 1.f})
+        EXPECT_NEAR(fresnel_conductor_1(c, 1.5, 0.0), fresnel_dielectric(c, 1.5f), 1e-6) << c;
+    EXPECT_NEAR(fresnel_conductor_1(0.5, 1.5, 1e4), 1.0, 1e-3);
+    EXPECT_NEAR(fresnel_conductor_1(0.0, 0.2, 3.0), 1.0, 1e-9);
+    // Normal incidence: ((n − 1)² + k²)/((n + 1)² + k²) (Born & Wolf §14.2).
+    double n = 0.2, k = 3.9;
+    EXPECT_NEAR(fresnel_conductor_1(1.0, n, k), ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k), 1e-12);
+    EXPECT_NEAR(fresnel_conductor_1(0.4, 0.0, 1.0), 1.0, 1e-12);  // "none": ideal mirror
+}
+
+TEST(Fresnel, SchlickR0AndMeasuredBound) {
+    const float n1 = 1.f, n2 = 1.5f;
+    EXPECT_NEAR(schlick_r0(n2 / n1), sqr((n1 - n2) / (n1 + n2)), 1e-7f);
+    EXPECT_NEAR(fresnel_schlick(1.f, 0.04f), 0.04f, 1e-7f);
+    EXPECT_NEAR(fresnel_schlick(0.f, 0.04f), 1.f, 1e-7f);
+    // Measured max |Schlick − exact| over cos θ ∈ [0, 1] (external incidence): 0.0357 at η = 1.5
+    // (θ ≈ 85°), ≤ 0.060 for η ∈ [1.33, 2.0]; over θ ≤ 60° ≤ 0.023 for η ∈ [1.33, 2.42].
+    auto max_err = [](float eta, float cmin) {
+        double m = 0.0;
+        for (int i = 0; i <= 20000; ++i) {
+            float c = cmin + (1.f - cmin) * i / 20000.f;
+            m = std::max(m, double(std::fabs(fresnel_schlick(c, schlick_r0(eta)) - fresnel_dielectric(c, eta))));
+        }
+        return m;
+    };
+    EXPECT_NEAR(max_err(1.5f, 0.f), 0.0357, 5e-4);
+    for (float eta : {1.333f, 1.5f, 1.7f, 2.f}) EXPECT_LE(max_err(eta, 0.f), 0.060) << eta;
+    for (float eta : {1.333f, 1.5f, 2.f, 2.42f}) EXPECT_LE(max_err(eta, 0.5f), 0.023) << eta;
+}
+
+TEST(Fresnel, HemisphericalAverages) {
+    // Independent midpoint estimate of 2∫F μ dμ.
+    for (float eta : {1.f / 1.5f, 1.333f, 1.5f, 2.42f}) {
+        double s = 0.0;
+        const int n = 200000;
+        for (int i = 0; i < n; ++i) {
+            double mu = (i + 0.5) / n;
+            s += fresnel_dielectric_d(mu, eta) * mu;
+        }
+        EXPECT_NEAR(fresnel_dielectric_average(eta), 2.0 * s / n, 2e-6) << eta;
+    }
+    // Reciprocity of the interface: η² (1 − F_avg(1/η)) = 1 − F_avg(η).
+    EXPECT_NEAR(1.5f * 1.5f * (1.f - fresnel_dielectric_average(1.f / 1.5f)), 1.f - fresnel_dielectric_average(1.5f),
+                1e-5f);
+    SchlickFresnel s{Spectrum(0.04f)};
+    EXPECT_NEAR(s.average().r, 0.04f + 0.96f / 21.f, 1e-7f);
+}
+
+TEST(Fresnel, NamedIors) {
+    ConductorIOR au = conductor_ior("Au");
+    EXPECT_GT(au.k.r, au.k.b);  // gold: red reflects most
+    EXPECT_GT(fresnel_conductor(1.f, au.eta, au.k).r, fresnel_conductor(1.f, au.eta, au.k).b);
+    for (const auto& n : conductor_names()) {
+        ConductorIOR c = conductor_ior(n);
+        Spectrum f = fresnel_conductor(1.f, c.eta, c.k);
+        EXPECT_TRUE(f.is_finite() && f.min_component() > 0.3f && f.max_component() <= 1.f) << n;
+    }
+    try {
+        conductor_ior("xyz");
+        FAIL() << "no throw";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("unknown metal 'xyz'; known: Au, Ag, Cu, Al, Cr, Fe, Ti"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_FLOAT_EQ(dielectric_ior("water"), 1.333f);
+    EXPECT_FLOAT_EQ(dielectric_ior("bk7"), 1.5046f);
+    EXPECT_FLOAT_EQ(dielectric_ior("diamond"), 2.419f);
+    EXPECT_THROW(dielectric_ior("unobtainium"), Error);
+}
+}  // namespace
+}  // namespace pellucid

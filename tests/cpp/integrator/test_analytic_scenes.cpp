@@ -1,0 +1,152 @@
+// Integrators on scenes with analytic answers (pbrt-v4 integrators_test.cpp; Nori test-furnace).
+// Every test uses a fixed seed; per-pixel z-tests use a two-sided α = 0.01 with a Šidák correction
+// over the pixels, and the image mean is tested at α = 1e-4 against its standard error.
+// SPDX-License-Identifier: Apache-2.0
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "pellucid/api.h"
+#include "pellucid/scene/json_io.h"
+#include "support/chi2.h"
+
+using namespace pellucid;
+
+namespace {
+std::shared_ptr<const Scene> scene_from(const std::string& json) {
+    SceneDesc d;
+    d.root = parse_json(json, "test");
+    d.source = "test";
+    return load_desc(d);
+}
+
+// Two-sided normal quantile for probability p (Acklam's rational approximation is overkill here:
+// bisection on erfc is exact enough for test thresholds).
+double z_for_two_sided(double alpha) {
+    double lo = 0, hi = 40;
+    for (int i = 0; i < 200; ++i) {
+        double mid = 0.5 * (lo + hi);
+        (std::erfc(mid / std::sqrt(2.0)) > alpha ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+// Per-pixel z-test as Mitsuba 3's render tests do it (../shared/REFERENCE.md §2.2): each pixel's
+// own variance, two-sided α = 0.01 Šidák-corrected over the pixels, and at least 99.75 % of pixels
+// must pass (heavy-tailed estimators, e.g. NEE near the edges of a box, make per-pixel sample
+// variances unreliable one by one). The image mean is tested separately at α = 1e-4.
+void expect_constant_image(const RenderResult& r, double expected, const char* what) {
+    const Image& img = r.image;
+    const Image& var = r.variance;
+    size_t n = size_t(img.width) * img.height;
+    double z_max = z_for_two_sided(test::sidak_alpha(0.01, int(n * 3)));
+    double sum = 0, sum_var = 0;
+    int fails = 0;
+    for (size_t i = 0; i < n * 3; ++i) {
+        sum += img.data[i];
+        sum_var += var.data[i];
+        // Float rounding of a path's sum (~1e-6 relative) bounds how exact a zero-variance
+        // estimator (NEE inside a closed sphere) can be.
+        double d = std::fabs(img.data[i] - expected), s2 = var.data[i] + std::pow(1e-6 * expected, 2);
+        if (d / std::sqrt(s2) > z_max) ++fails;
+    }
+    EXPECT_LE(fails, int(0.0025 * double(n * 3))) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")";
+    double mean = sum / double(n * 3), se = std::sqrt(sum_var) / double(n * 3);
+    EXPECT_EQ(fails, 0) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")";
+    EXPECT_LT(std::fabs(mean - expected), z_for_two_sided(1e-4) * se + 1e-6)
+        << what << ": image mean " << mean << " vs " << expected << " (standard error " << se << ")";
+    EXPECT_EQ(r.stats.invalid_samples, 0u);
+}
+
+const char* kCamera = R"("camera": {"type": "perspective", "fov": 40,
+    "to_world": [{"look_at": {"origin": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0]}}]})";
+}  // namespace
+
+class AnalyticScenes : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(AnalyticScenes, WhiteFurnaceSphereRendersOne) {
+    // A white Lambertian sphere under a constant environment of radiance 1: every pixel is 1.
+    auto scene = scene_from(std::string("{") + kCamera + R"(,
+        "film": {"width": 24, "height": 24}, "sampler": {"sample_count": 256, "seed": 7},
+        "integrator": {"type": "path", "strategy": ")" + GetParam() + R"("},
+        "materials": {"white": {"type": "lambertian", "reflectance": 1.0}},
+        "shapes": [{"type": "sphere", "radius": 1.5, "material": "white"}],
+        "lights": [{"type": "constant", "radiance": 1.0}]})");
+    RenderOptions o;
+    expect_constant_image(render(*scene, o), 1.0, "furnace");
+}
+
+TEST_P(AnalyticScenes, ClosedSphereFromInside) {
+    // Inside a closed sphere with albedo a and emission Le, radiance is Le/(1 − a) everywhere.
+    const double a = 0.5, Le = 0.8;
+    auto scene = scene_from(std::string(R"({"camera": {"type": "perspective", "fov": 60},
+        "film": {"width": 20, "height": 20}, "sampler": {"sample_count": 256, "seed": 3},
+        "integrator": {"type": "path", "rr_depth": 40, "strategy": ")") + GetParam() + R"("},
+        "materials": {"m": {"type": "lambertian", "reflectance": 0.5}},
+        "shapes": [{"type": "sphere", "radius": 2, "flip_normals": true, "material": "m",
+                    "emitter": {"type": "area", "radiance": 0.8}}]})");
+    RenderOptions o;
+    expect_constant_image(render(*scene, o), Le / (1 - a), "closed sphere");
+}
+
+TEST_P(AnalyticScenes, ClosedMeshBoxFromInside) {
+    // The same law on a closed cube built from triangles, light sampled by area on every face. A
+    // mirroring scale keeps normals outward, so the emitter is two-sided.
+    auto scene = scene_from(std::string(R"({"camera": {"type": "perspective", "fov": 60},
+        "film": {"width": 20, "height": 20}, "sampler": {"sample_count": 256, "seed": 5},
+        "integrator": {"type": "path", "rr_depth": 40, "strategy": ")") + GetParam() + R"("},
+        "materials": {"m": {"type": "lambertian", "reflectance": 0.25}},
+        "shapes": [{"type": "cube", "to_world": [{"scale": -3}], "material": "m",
+                    "emitter": {"type": "area", "radiance": 0.6, "two_sided": true}}]})");
+    RenderOptions o;
+    expect_constant_image(render(*scene, o), 0.6 / 0.75, "closed box");
+}
+
+TEST(RussianRoulette, UnbiasedInClosedSphere) {
+    // Default RR (from depth 5, q = min(max β, 0.95)): the image mean still converges to Le/(1 − a).
+    auto scene = scene_from(R"({"camera": {"type": "perspective", "fov": 60},
+        "film": {"width": 16, "height": 16}, "sampler": {"sample_count": 1024, "seed": 11},
+        "materials": {"m": {"type": "lambertian", "reflectance": 0.7}},
+        "shapes": [{"type": "sphere", "radius": 2, "flip_normals": true, "material": "m",
+                    "emitter": {"type": "area", "radiance": 0.3}}]})");
+    RenderResult r = render(*scene, RenderOptions{});
+    double sum = 0, sum_var = 0;
+    for (size_t i = 0; i < r.image.data.size(); ++i) {
+        sum += r.image.data[i];
+        sum_var += r.variance.data[i];
+    }
+    double n = double(r.image.data.size()), mean = sum / n, se = std::sqrt(sum_var) / n;
+    EXPECT_LT(std::fabs(mean - 0.3 / 0.3), z_for_two_sided(1e-4) * se) << "mean " << mean << " se " << se;
+}
+
+INSTANTIATE_TEST_SUITE_P(Strategies, AnalyticScenes, ::testing::Values("mis", "nee", "bsdf"));
+
+TEST(Determinism, BitIdenticalAcrossThreadCounts) {
+    auto scene = load_file(std::string(PELLUCID_SOURCE_DIR) + "/scenes/cornell_box.json");
+    RenderOptions o;
+    o.spp = 4;
+    o.threads = 1;
+    RenderResult a = render(*scene, o);
+    o.threads = 2;
+    RenderResult b = render(*scene, o);
+    ASSERT_EQ(a.image.data.size(), b.image.data.size());
+    EXPECT_EQ(0, std::memcmp(a.image.data.data(), b.image.data.data(), a.image.data.size() * sizeof(float)));
+    o.seed = 1;
+    RenderResult c = render(*scene, o);
+    EXPECT_NE(0, std::memcmp(a.image.data.data(), c.image.data.data(), a.image.data.size() * sizeof(float)));
+}
+
+TEST(RenderBudget, TimeBudgetAndCancellationKeepWork) {
+    auto scene = load_file(std::string(PELLUCID_SOURCE_DIR) + "/scenes/cornell_box.json");
+    RenderOptions o;
+    o.time_budget = 0.3;
+    RenderResult r = render(*scene, o);
+    EXPECT_GE(r.stats.spp, 1);
+    EXPECT_LT(r.stats.seconds, 5.0);
+    std::atomic<bool> cancel{true};
+    o = RenderOptions();
+    o.cancel = &cancel;
+    RenderResult c = render(*scene, o);
+    EXPECT_TRUE(c.stats.cancelled);
+}
