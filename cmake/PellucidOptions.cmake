@@ -8,4 +8,5 @@ endif()
 option(PELLUCID_BUILD_PYTHON "Build the pellucid._core Python extension" ${_py_default})
 option(PELLUCID_BUILD_TESTS "Build the GTest suite (ctest)" ON)
 option(PELLUCID_BUILD_APP "Build the pellucid-render executable" ON)
-option(PELLUCID_NATIVE "Compile for the build machine's CPU (-march=native)" OFF)
+# Builds run on the machine that renders (make, CI), so tuning for it is safe; turn off to package.
+option(PELLUCID_NATIVE "Compile for the build machine's CPU (-march=native)" ON)

@@ -38,7 +38,7 @@ EmbreeScene::EmbreeScene() : m_impl(std::make_unique<Impl>()) {
     rtcSetDeviceErrorFunction(m_impl->device, error_callback, &m_impl->error);
     m_impl->scene = rtcNewScene(m_impl->device);
     rtcSetSceneBuildQuality(m_impl->scene, RTC_BUILD_QUALITY_HIGH);
-    rtcSetSceneFlags(m_impl->scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(m_impl->scene, RTC_SCENE_FLAG_NONE);
 }
 
 EmbreeScene::~EmbreeScene() {

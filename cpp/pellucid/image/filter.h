@@ -9,6 +9,7 @@
 // | tent     | radius    | 1.0     | half-width in pixels                  |
 // | gaussian | stddev    | 0.5     | standard deviation in pixels; radius 4·stddev (Mitsuba 3) |
 #pragma once
+#include <cmath>
 #include <string>
 #include <variant>
 
@@ -29,9 +30,12 @@ struct TentFilter {
 struct GaussianFilter {
     float stddev = 0.5f;
     Vec2f sample(Vec2f u) const {
-        return Vec2f(sample_truncated_gaussian(u.x, stddev, 4.f * stddev),
-                     sample_truncated_gaussian(u.y, stddev, 4.f * stddev));
+        // Separable: each axis is a Gaussian truncated at 4·stddev, sampled by inverting its CDF.
+        return Vec2f(sample_truncated_gaussian(u.x, stddev, 4.f * stddev, m_erf_r),
+                     sample_truncated_gaussian(u.y, stddev, 4.f * stddev, m_erf_r));
     }
+    explicit GaussianFilter(float s = 0.5f) : stddev(s), m_erf_r(std::erf(4.f * s / (s * 1.41421356f))) {}
+    float m_erf_r;  ///< erf(radius/(σ√2)), the CDF range of the truncated Gaussian
     std::string to_string() const { return "GaussianFilter[stddev=" + std::to_string(stddev) + "]"; }
 };
 using Filter = std::variant<BoxFilter, TentFilter, GaussianFilter>;

@@ -15,7 +15,9 @@ std::unique_ptr<Integrator> make_integrator(const Scene& scene) {
 }
 
 RenderResult PathIntegrator::render(const Scene& scene, const RenderOptions& opts) const {
-    return render_loop(scene, opts, [this](const Scene& s, const Ray& r, PCG32& rng) { return Li(s, r, rng); });
+    return render_loop(scene, opts, [&](const TileJob& job, Film& film) {
+        return render_tile(scene, job, film, [&](const Ray& r, PCG32& rng) { return Li(scene, r, rng); });
+    });
 }
 
 std::string PathIntegrator::to_string() const {
@@ -34,8 +36,8 @@ float bsdf_hit_weight(bool use_mis, bool use_nee, bool specular, float bsdf_pdf,
 }  // namespace
 
 Spectrum PathIntegrator::Li(const Scene& scene, Ray ray, PCG32& rng) const {
-    const bool use_nee = m_s.strategy != "bsdf" && !scene.lights.empty();
-    const bool use_mis = m_s.strategy == "mis";
+    const bool use_nee = m_use_nee && !scene.lights.empty();
+    const bool use_mis = m_use_mis;
     Spectrum L(0.f), beta(1.f);
     bool specular = true;  // the camera ray counts as a delta "bounce"
     float prev_pdf = 0.f, eta_scale = 1.f;

@@ -15,7 +15,8 @@ namespace pellucid {
 
 class PathIntegrator final : public Integrator {
 public:
-    explicit PathIntegrator(const IntegratorSettings& s) : m_s(s) {}
+    explicit PathIntegrator(const IntegratorSettings& s)
+        : m_s(s), m_use_nee(s.strategy != "bsdf"), m_use_mis(s.strategy == "mis") {}
     RenderResult render(const Scene& scene, const RenderOptions& opts) const override;
     std::string to_string() const override;
     /// Radiance arriving along -ray.d at ray.o (one sample).
@@ -23,5 +24,6 @@ public:
 
 private:
     IntegratorSettings m_s;
+    bool m_use_nee, m_use_mis;
 };
 }  // namespace pellucid

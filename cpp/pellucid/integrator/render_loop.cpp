@@ -39,8 +39,7 @@ private:
 };
 }  // namespace
 
-RenderResult render_loop(const Scene& scene, const RenderOptions& opts,
-                         const std::function<Spectrum(const Scene&, const Ray&, PCG32&)>& Li) {
+RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const TileFn& tile_fn) {
     const int W = scene.width, H = scene.height;
     const int spp = opts.spp > 0 ? opts.spp : scene.spp;
     if (opts.spp == 0) throw Error("spp: value 0 must be >= 1");
@@ -67,22 +66,8 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts,
         parallel_for(n_tiles, opts.threads, [&](int64_t t) {
             if (cancelled()) return;
             int tx = int(t % tiles_x) * kTile, ty = int(t / tiles_x) * kTile;
-            uint64_t bad = 0;
-            for (int y = ty; y < std::min(ty + kTile, H); ++y)
-                for (int x = tx; x < std::min(tx + kTile, W); ++x) {
-                    uint64_t pixel = uint64_t(y) * W + x;
-                    for (int s = s0; s < s1; ++s) {
-                        PCG32 rng = PCG32::for_sample(pixel, uint64_t(s), seed);
-                        Vec2f off = sample_filter(scene.filter, rng.next_2d());
-                        Ray ray = scene.camera.generate_ray(x + 0.5f + off.x, y + 0.5f + off.y);
-                        Spectrum L = Li(scene, ray, rng);
-                        if (!L.is_finite() || L.has_negative()) {
-                            ++bad;
-                            continue;
-                        }
-                        film.add_sample(x, y, L);
-                    }
-                }
+            TileJob job{tx, ty, std::min(tx + kTile, W), std::min(ty + kTile, H), s0, s1, seed};
+            uint64_t bad = tile_fn(job, film);
             invalid += bad;
             int64_t k = ++tiles_done;
             double frac = opts.time_budget > 0.0

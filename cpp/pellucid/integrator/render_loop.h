@@ -10,10 +10,9 @@
 #include "pellucid/image/image.h"
 #include "pellucid/math/spectrum.h"
 #include "pellucid/sampling/rng.h"
+#include "pellucid/scene/scene.h"
 
 namespace pellucid {
-class Scene;
-struct Ray;
 
 struct RenderOptions {
     int spp = -1;                 ///< samples per pixel; -1 = the scene's sample_count
@@ -39,12 +38,41 @@ struct RenderResult {
     RenderStats stats;
 };
 
-/// Per-sample radiance estimator: L(ray, rng).
-using SampleFn = std::function<Spectrum(const Ray&, PCG32&)>;
+/// One unit of parallel work: pixels [x0, x1) × [y0, y1), sample indices [s0, s1).
+struct TileJob {
+    int x0, y0, x1, y1, s0, s1;
+    uint64_t seed;
+};
+/// Renders one tile into the film (it owns those pixels) and returns the number of invalid samples.
+using TileFn = std::function<uint64_t(const TileJob&, Film&)>;
 
-/// Render `scene` into a film with the given estimator: tiles of 16×16 pixels run in parallel,
-/// in passes of samples; every (pixel, sample index, seed) has its own PCG32 stream, so the image
-/// is bit-identical for any thread count.
-RenderResult render_loop(const Scene& scene, const RenderOptions& opts,
-                         const std::function<Spectrum(const Scene&, const Ray&, PCG32&)>& Li);
+/// Render with a per-tile function: tiles of 16×16 pixels run in parallel, in passes of samples.
+/// The std::function is called once per tile, never per sample or per ray.
+RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const TileFn& tile_fn);
+
+/// The per-sample loop every integrator instantiates with its own estimator Li(ray, rng): every
+/// (pixel, sample index, seed) has its own PCG32 stream, so images are bit-identical for any thread
+/// count. Samples that are NaN, infinite or negative are counted and kept out of the film.
+template <class LiFn>
+uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, LiFn&& Li);
+template <class LiFn>
+uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, LiFn&& Li) {
+    uint64_t bad = 0;
+    const uint64_t width = uint64_t(scene.width);
+    for (int y = job.y0; y < job.y1; ++y)
+        for (int x = job.x0; x < job.x1; ++x) {
+            const uint64_t pixel = uint64_t(y) * width + uint64_t(x);
+            for (int s = job.s0; s < job.s1; ++s) {
+                PCG32 rng = PCG32::for_sample(pixel, uint64_t(s), job.seed);
+                Vec2f off = sample_filter(scene.filter, rng.next_2d());
+                Spectrum L = Li(scene.camera.generate_ray(float(x) + 0.5f + off.x, float(y) + 0.5f + off.y), rng);
+                if (!L.is_finite() || L.has_negative()) {
+                    ++bad;
+                    continue;
+                }
+                film.add_sample(x, y, L);
+            }
+        }
+    return bad;
+}
 }  // namespace pellucid

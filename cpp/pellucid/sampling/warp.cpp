@@ -115,8 +115,10 @@ float erfinv(float x) {
 }  // namespace
 
 float sample_truncated_gaussian(float u, float sigma, float radius) {
+    return sample_truncated_gaussian(u, sigma, radius, std::erf(radius / (sigma * std::sqrt(2.f))));
+}
+float sample_truncated_gaussian(float u, float sigma, float radius, float e) {
     // Map u into the CDF range of [-radius, radius] and invert Φ(x) = (1 + erf(x/(σ√2)))/2.
-    float e = std::erf(radius / (sigma * std::sqrt(2.f)));
     float v = clamp((2.f * u - 1.f) * e, -0.9999999f, 0.9999999f);
     return clamp(sigma * std::sqrt(2.f) * erfinv(v), -radius, radius);
 }

@@ -32,5 +32,7 @@ float tent_pdf(float x, float r);
 /// Standard normal through the inverse CDF (Giles 2010 erfinv approximation), scaled by sigma and
 /// truncated to [-radius, radius].
 float sample_truncated_gaussian(float u, float sigma, float radius);
+/// The same with erf(radius/(σ√2)) precomputed by the caller.
+float sample_truncated_gaussian(float u, float sigma, float radius, float erf_radius);
 float truncated_gaussian_pdf(float x, float sigma, float radius);
 }  // namespace pellucid
