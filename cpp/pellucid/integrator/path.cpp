@@ -64,7 +64,7 @@ Spectrum PathIntegrator::Li(const Scene& scene, Ray ray, PCG32& rng) const {
                 L += beta * Le * bsdf_hit_weight(use_mis, use_nee, specular, prev_pdf, lpdf);
             }
         }
-        if (m_s.max_depth >= 0 && depth >= m_s.max_depth) break;
+        if (m_max_depth >= 0 && depth >= m_max_depth) break;
 
         BSDF bsdf = scene.bsdf(si);
         BxDFFlags flags = bsdf.flags();
@@ -72,12 +72,12 @@ Spectrum PathIntegrator::Li(const Scene& scene, Ray ray, PCG32& rng) const {
         const Vec3f wo = si.wo;
         LightSampleContext ctx{si.p, si.ng};
 
-        // Next-event estimation: one light chosen uniformly, one point on it.
+        // Next-event estimation: one light (uniformly or by power), one point on it.
         if (use_nee && is_non_specular(flags)) {
             float u_light = rng.next_float();
             Vec2f u = rng.next_2d();
-            size_t li = std::min(scene.lights.size() - 1, size_t(u_light * float(scene.lights.size())));
-            float pmf = scene.light_pmf(li);
+            float pmf;
+            size_t li = scene.sample_light(u_light, &pmf);
             auto ls = std::visit([&](const auto& l) { return l.sample_li(ctx, u); }, scene.lights[li]);
             if (ls && ls->pdf > 0.f) {
                 Spectrum f = bsdf.eval(wo, ls->wi);

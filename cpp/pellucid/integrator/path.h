@@ -5,7 +5,8 @@
 // |-----------|--------|---------|----------------------------------------------------------------------|
 // | max_depth | int    | -1      | longest path in segments (1 = emitters seen directly, 2 = direct light); -1 = unbounded |
 // | rr_depth  | int    | 5       | Russian roulette from this depth on                                  |
-// | strategy  | string | "mis"   | "mis": light + BSDF sampling, power heuristic; "nee": light sampling (BSDF sampling only through delta lobes); "bsdf": BSDF sampling only |
+// | strategy  | string | "mis"   | "mis": light + BSDF sampling, power heuristic; "nee": light sampling (BSDF sampling only through delta lobes); "bsdf": BSDF sampling only; "direct": one bounce (mis, max_depth 2) |
+// | light_selection | string | "power" | NEE picks a light with probability ∝ its power, or "uniform" |
 // JSON: "integrator": {"type": "path", "max_depth": 8}
 #pragma once
 #include "pellucid/integrator/integrator.h"
@@ -16,7 +17,8 @@ namespace pellucid {
 class PathIntegrator final : public Integrator {
 public:
     explicit PathIntegrator(const IntegratorSettings& s)
-        : m_s(s), m_use_nee(s.strategy != "bsdf"), m_use_mis(s.strategy == "mis") {}
+        : m_s(s), m_use_nee(s.strategy != "bsdf"), m_use_mis(s.strategy == "mis" || s.strategy == "direct"),
+          m_max_depth(s.strategy == "direct" ? 2 : s.max_depth) {}
     RenderResult render(const Scene& scene, const RenderOptions& opts) const override;
     std::string to_string() const override;
     /// Radiance arriving along -ray.d at ray.o (one sample).
@@ -25,5 +27,6 @@ public:
 private:
     IntegratorSettings m_s;
     bool m_use_nee, m_use_mis;
+    int m_max_depth;  ///< "direct" = MIS with paths of at most two segments
 };
 }  // namespace pellucid

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <map>
+#include <type_traits>
 
 #include "pellucid/scene/registry.h"
 #include "pellucid/util/error.h"
@@ -27,7 +28,7 @@ public:
         build_camera(root.get_node("camera"));
         build_materials(root.get_node("materials"));
         build_shapes(root.get_node("shapes"));
-        build_lights(root.get_node("lights"));
+        build_lights(root.get_node("lights"));  // after shapes: needs the scene bounds and area lights
         root.check_unqueried();
         if (m_scene.shapes.empty() && m_scene.lights.empty())
             log_warning(m_desc.source + ": the scene has no shapes and no lights; it renders black");
@@ -88,8 +89,11 @@ private:
         s.rr_depth = p.get_int("rr_depth", 5);
         if (s.rr_depth < 1) p.fail("rr_depth", "value " + std::to_string(s.rr_depth) + " must be >= 1");
         s.strategy = p.get_string("strategy", "mis");
-        if (s.strategy != "mis" && s.strategy != "nee" && s.strategy != "bsdf")
-            p.fail("strategy", "unknown strategy '" + s.strategy + "' (known: bsdf, mis, nee)");
+        if (s.strategy != "mis" && s.strategy != "nee" && s.strategy != "bsdf" && s.strategy != "direct")
+            p.fail("strategy", "unknown strategy '" + s.strategy + "' (known: bsdf, direct, mis, nee)");
+        s.light_selection = p.get_string("light_selection", "power");
+        if (s.light_selection != "power" && s.light_selection != "uniform")
+            p.fail("light_selection", "unknown light selection '" + s.light_selection + "' (known: power, uniform)");
         p.check_unqueried();
     }
 
@@ -236,24 +240,85 @@ private:
         return int32_t(m_scene.lights.size() - 1);
     }
 
-    void build_lights(const Node* n) {
-        if (!n) return;
-        if (!n->is_array()) fail("lights", std::string("expected an array, got a ") + n->kind_name());
-        for (size_t i = 0; i < n->size(); ++i) {
-            std::string path = path_index("lights", i);
-            Properties p(n->items()[i], m_desc.source, path);
-            std::string type = p.type();
-            if (type != "constant") p.fail("type", "unknown light type '" + type + "' (known: constant)");
-            Spectrum L = p.get_spectrum("radiance", Spectrum(1.f));
-            if (L.has_negative()) p.fail("radiance", "value " + L.to_string() + " must be >= 0");
-            p.check_unqueried();
-            if (L.is_black()) {
-                log_warning(format_error(m_desc.source, path, "light has zero power; skipped"));
-                continue;
+    // Bounding sphere of all geometry, for the power of lights at infinity.
+    float scene_radius() const {
+        Vec3f lo(kInfinity), hi(-kInfinity);
+        for (const auto& m : m_scene.meshes)
+            for (const auto& p : m.positions) {
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
             }
-            m_scene.infinite_lights.push_back(uint32_t(m_scene.lights.size()));
-            m_scene.lights.emplace_back(ConstantLight(L));
+        for (const auto& sh : m_scene.shapes)
+            if (sh.kind == ShapeRecord::Kind::Sphere) {
+                lo = glm::min(lo, sh.center - Vec3f(sh.radius));
+                hi = glm::max(hi, sh.center + Vec3f(sh.radius));
+            }
+        return lo.x <= hi.x ? std::max(1e-3f, 0.5f * length(hi - lo)) : 1.f;
+    }
+
+    Spectrum non_negative(Properties& p, const char* key) {
+        Spectrum v = p.get_spectrum(key, Spectrum(1.f));
+        if (v.has_negative()) p.fail(key, "value " + v.to_string() + " must be >= 0");
+        return v;
+    }
+
+    void build_lights(const Node* n) {
+        const float radius = scene_radius();
+        if (n) {
+            if (!n->is_array()) fail("lights", std::string("expected an array, got a ") + n->kind_name());
+            for (size_t i = 0; i < n->size(); ++i) build_light(n->items()[i], path_index("lights", i), radius);
         }
+        // Light selection for next-event estimation.
+        std::vector<float> weights;
+        for (const auto& l : m_scene.lights) {
+            float w = 1.f;
+            if (m_scene.integrator.light_selection == "power")
+                w = std::visit([&](const auto& x) {
+                    if constexpr (std::is_same_v<std::decay_t<decltype(x)>, ConstantLight>) return x.power(radius);
+                    else return x.power();
+                }, l);
+            weights.push_back(std::isfinite(w) && w > 0.f ? w : 0.f);
+        }
+        m_scene.light_distribution = Distribution1D(weights);
+    }
+
+    void build_light(const Node& node, const std::string& path, float radius) {
+        Properties p(node, m_desc.source, path);
+        std::string type = p.type();
+        Light light = ConstantLight(Spectrum(0.f));
+        Spectrum value;
+        if (type == "constant") {
+            value = non_negative(p, "radiance");
+            light = ConstantLight(value);
+        } else if (type == "point") {
+            value = non_negative(p, "intensity");
+            Transform t = p.get_transform("to_world");
+            Point3f pos = p.has("position") ? p.get_vec3("position") : t.point(Point3f(0.f));
+            light = PointLight(pos, value);
+        } else if (type == "spot") {
+            value = non_negative(p, "intensity");
+            float cutoff = p.get_float("cutoff_angle", 20.f);
+            p.check_range("cutoff_angle", cutoff, 1e-3f, 90.f);
+            float beam = p.get_float("beam_width", 0.75f * cutoff);
+            p.check_range("beam_width", beam, 0.f, cutoff);
+            Transform t = p.get_transform("to_world");
+            light = SpotLight(t.point(Point3f(0.f)), t.vector(Vec3f(0, 0, 1)), value, cutoff, beam);
+        } else if (type == "directional") {
+            value = non_negative(p, "irradiance");
+            Transform t = p.get_transform("to_world");
+            Vec3f dir = p.has("direction") ? p.get_vec3("direction") : t.vector(Vec3f(0, 0, 1));
+            if (!(length(dir) > 0.f)) p.fail("direction", "must be non-zero");
+            light = DirectionalLight(dir, value, radius);
+        } else {
+            p.fail("type", "unknown light type '" + type + "' (known: constant, directional, point, spot)");
+        }
+        p.check_unqueried();
+        if (value.is_black()) {
+            log_warning(format_error(m_desc.source, path, "light has zero power; skipped"));
+            return;
+        }
+        if (type == "constant") m_scene.infinite_lights.push_back(uint32_t(m_scene.lights.size()));
+        m_scene.lights.push_back(light);
     }
 
     const SceneDesc& m_desc;

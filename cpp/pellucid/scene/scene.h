@@ -13,6 +13,7 @@
 #include "pellucid/image/filter.h"
 #include "pellucid/light/light.h"
 #include "pellucid/material/material.h"
+#include "pellucid/sampling/distribution_1d.h"
 
 namespace pellucid {
 
@@ -32,7 +33,8 @@ struct IntegratorSettings {
     std::string type = "path";
     int max_depth = -1;   ///< longest path in segments (Mitsuba 3 convention), -1 = unbounded
     int rr_depth = 5;     ///< Russian roulette starts at this depth
-    std::string strategy = "mis";  ///< "mis", "nee", "bsdf"
+    std::string strategy = "mis";  ///< "mis", "nee", "bsdf", "direct"
+    std::string light_selection = "power";  ///< "power" or "uniform"
 };
 
 class Scene {
@@ -49,7 +51,10 @@ public:
     }
     /// Emitted radiance at a surface hit toward si.wo (0 if the shape is not an emitter).
     Spectrum emitted(const SurfaceInteraction& si) const;
-    float light_pmf(size_t /*light*/) const { return lights.empty() ? 0.f : 1.f / float(lights.size()); }
+    /// Probability that next-event estimation picks light i.
+    float light_pmf(size_t i) const { return lights.empty() ? 0.f : light_distribution.pmf(i); }
+    /// Pick a light for next-event estimation; pmf receives its probability.
+    size_t sample_light(float u, float* pmf) const { return light_distribution.sample_discrete(u, pmf); }
     std::string to_string() const;
 
     EmbreeScene accel;
@@ -59,6 +64,7 @@ public:
     std::vector<std::string> material_names;
     std::vector<Light> lights;
     std::vector<uint32_t> infinite_lights;  ///< indices into lights
+    Distribution1D light_distribution;      ///< light selection (uniform or by power)
     PerspectiveCamera camera;
     Filter filter = GaussianFilter{};
     int width = 256, height = 256;

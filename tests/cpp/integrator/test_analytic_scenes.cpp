@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "pellucid/api.h"
+#include "pellucid/util/error.h"
 #include "pellucid/scene/json_io.h"
 #include "support/chi2.h"
 
@@ -149,4 +150,47 @@ TEST(RenderBudget, TimeBudgetAndCancellationKeepWork) {
     o.cancel = &cancel;
     RenderResult c = render(*scene, o);
     EXPECT_TRUE(c.stats.cancelled);
+}
+
+class DeltaLights : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(DeltaLights, PointLightInsideDiffuseSphere) {
+    // A point light of intensity I at the centre of a closed diffuse sphere of radius R and albedo a:
+    // direct irradiance I/R² everywhere, so the radiance is (a/π)(I/R²)/(1 − a).
+    const double a = 0.6, I = 5.0, R = 2.0;
+    auto scene = scene_from(std::string(R"({"camera": {"type": "perspective", "fov": 60},
+        "film": {"width": 16, "height": 16}, "sampler": {"sample_count": 128, "seed": 9},
+        "integrator": {"type": "path", "rr_depth": 40, "light_selection": ")") + GetParam() + R"("},
+        "materials": {"m": {"type": "lambertian", "reflectance": 0.6}},
+        "shapes": [{"type": "sphere", "radius": 2, "material": "m"}],
+        "lights": [{"type": "point", "position": [0.0, 0.0, 0.0], "intensity": 5}]})");
+    expect_constant_image(render(*scene, RenderOptions{}), (a / M_PI) * (I / (R * R)) / (1 - a), "point light");
+}
+
+TEST_P(DeltaLights, MixedLightsAgreeAcrossSelection) {
+    // Selection by power or uniformly changes only the noise. Inside a closed sphere the constant
+    // environment and the directional light are fully occluded, so only the point light counts.
+    const double a = 0.5, I = 3.0, R = 1.5;
+    auto scene = scene_from(std::string(R"({"camera": {"type": "perspective", "fov": 50},
+        "film": {"width": 12, "height": 12}, "sampler": {"sample_count": 128, "seed": 4},
+        "integrator": {"type": "path", "rr_depth": 40, "light_selection": ")") + GetParam() + R"("},
+        "shapes": [{"type": "sphere", "radius": 1.5, "material": {"type": "lambertian", "reflectance": 0.5}}],
+        "lights": [{"type": "point", "position": [0, 0, 0], "intensity": 3},
+                   {"type": "constant", "radiance": 0.2},
+                   {"type": "directional", "direction": [0, -1, 0], "irradiance": 4}]})");
+    expect_constant_image(render(*scene, RenderOptions{}), (a / M_PI) * (I / (R * R)) / (1 - a), "mixed lights");
+}
+
+INSTANTIATE_TEST_SUITE_P(Selection, DeltaLights, ::testing::Values("power", "uniform"));
+
+TEST(SceneErrors, LightParameters) {
+    SceneDesc d;
+    d.source = "s.json";
+    d.root = parse_json(R"({"lights": [{"type": "spot", "cutoff_angle": 120}]})", "s.json");
+    try {
+        load_desc(d);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), "s.json: lights[0].cutoff_angle: value 120 is out of range [0.001, 90]");
+    }
 }
