@@ -6,6 +6,7 @@ PYBIND11_MODULE(_core, m) {
     m.doc() = "pellucid's compiled core (use the `pellucid` package, not this module)";
     pellucid::bind::bind_util(m);
     pellucid::bind::bind_image(m);
+    pellucid::bind::bind_bxdf(m);
     pellucid::bind::bind_scene(m);
     pellucid::bind::bind_render(m);
 }

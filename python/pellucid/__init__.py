@@ -17,11 +17,13 @@ import numpy as _np
 
 from . import _core
 from ._core import Error, Scene, cancel
+from .bsdf import bsdf
 
 __version__: str = _core.__version__
 __all__ = [
     "Error",
     "Scene",
+    "bsdf",
     "cancel",
     "load_dict",
     "load_file",

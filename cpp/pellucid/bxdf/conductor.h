@@ -5,12 +5,12 @@
 // SmoothConductor<Fresnel> ("conductor"):
 // | parameter            | type     | default | meaning                                        |
 // |----------------------|----------|---------|------------------------------------------------|
-// | material             | string   | "Cu"    | named metal (ior.h); overridden by eta/k       |
+// | material             | string   | "none"  | named metal (ior.h); or eta/k (not both)       |
 // | eta, k               | spectrum | —       | complex IOR per channel (ConductorFresnel)     |
 // | specular_reflectance | spectrum | 1       | multiplier on F (not physical; for artists)     |
 // JSON: {"type": "conductor", "material": "Au"}
 //
-// MicrofacetReflection<Distribution, Fresnel> ("roughconductor"); RoughConductor = <GGX, ConductorFresnel>:
+// MicrofacetReflection<Distribution, Fresnel> ("rough_conductor"); RoughConductor = <GGX, ConductorFresnel>:
 // | parameter            | type     | default | meaning                                        |
 // |----------------------|----------|---------|------------------------------------------------|
 // | distribution         | string   | "ggx"   | "ggx" or "beckmann"                            |
@@ -18,9 +18,10 @@
 // | alpha_u, alpha_v     | float    | alpha   | anisotropic α along the tangent / bitangent    |
 // | material, eta, k     |          |         | as for "conductor"                             |
 // | specular_reflectance | spectrum | 1       | multiplier on F                                |
-// | multiscatter         | bool     | false   | Kulla–Conty compensation (GGX only)            |
-// JSON: {"type": "roughconductor", "material": "Al", "distribution": "ggx", "alpha_u": 0.05,
-//        "alpha_v": 0.3, "multiscatter": true}
+// | multiple_scattering  | bool     | false   | Kulla–Conty compensation (GGX only)            |
+// JSON: {"type": "rough_conductor", "material": "Al", "distribution": "ggx", "alpha_u": 0.05,
+//        "alpha_v": 0.3, "multiple_scattering": true}
+// Scene-facing parameter rules (roughness r with α = r², clamps, errors): material/conductor.h.
 //
 // Model no more than needed (docs/materials.md):
 //  * Specular collapse: when max(αx, αy) < 1e-3 (Distribution::effectively_smooth()) the rough

@@ -7,7 +7,7 @@
 // by 1/η'² with η' = η(wi side)/η(wo side); Importance does not (Veach 1997, §5.2), so in
 // Importance mode the smooth interfaces conserve energy exactly (white furnace = 1).
 //
-// SmoothDielectric ("dielectric"), ThinDielectric ("thindielectric"):
+// SmoothDielectric ("dielectric"), ThinDielectric ("thin_dielectric"):
 // | parameter              | type          | default | meaning                                   |
 // |------------------------|---------------|---------|-------------------------------------------|
 // | int_ior                | float/string  | "bk7"   | interior IOR (number or ior.h name)       |
@@ -16,10 +16,11 @@
 // | specular_transmittance | spectrum      | 1       | multiplier on the transmitted lobe        |
 // JSON: {"type": "dielectric", "int_ior": "water", "ext_ior": "air"}
 //
-// RoughDielectric<Distribution> ("roughdielectric"): the above plus
+// RoughDielectric<Distribution> ("rough_dielectric"): the above plus
 // | distribution           | string        | "ggx"   | "ggx" or "beckmann"                       |
-// | alpha, alpha_u, alpha_v| float         | 0.1     | as for roughconductor                     |
-// JSON: {"type": "roughdielectric", "int_ior": 1.5, "distribution": "ggx", "alpha": 0.3}
+// | alpha, alpha_u, alpha_v| float         | 0.1     | as for rough_conductor                    |
+// JSON: {"type": "rough_dielectric", "int_ior": 1.5, "distribution": "ggx", "alpha": 0.3}
+// Scene-facing rules: material/dielectric.h.
 //
 // Model no more than needed: an effectively smooth distribution (max α < 1e-3) or an
 // index-matched interface (η == 1, where the refraction half vector is undefined and the lobe is a

@@ -104,14 +104,28 @@ struct DielectricFresnel {
     Spectrum average() const { return Spectrum(fresnel_dielectric_average(eta)); }
     std::string to_string() const { return "DielectricFresnel[eta=" + std::to_string(eta) + "]"; }
 };
-/// Policy: exact conductor Fresnel with complex IOR eta + i k per channel.
+/// Policy: exact conductor Fresnel with complex IOR eta + i k per channel, or (schlick = true)
+/// Schlick's approximation seeded with the exact normal-incidence reflectance r0 = F(1; η, k) —
+/// the usual "F0 from measured data" practice; build that form with schlick_from().
 struct ConductorFresnel {
     Spectrum eta{0.2f, 0.92f, 1.1f};  // gold-like default; see ior.h for named metals
     Spectrum k{3.9f, 2.45f, 2.14f};
-    Spectrum eval(float cos_theta_i) const { return fresnel_conductor(std::fabs(cos_theta_i), eta, k); }
-    Spectrum average() const { return fresnel_conductor_average(eta, k); }
+    bool schlick = false;
+    Spectrum r0{0.f};  ///< used only when schlick
+
+    static ConductorFresnel schlick_from(const Spectrum& eta, const Spectrum& k) {
+        return ConductorFresnel{eta, k, true, fresnel_conductor(1.f, eta, k)};
+    }
+    Spectrum eval(float cos_theta_i) const {
+        return schlick ? fresnel_schlick(cos_theta_i, r0) : fresnel_conductor(std::fabs(cos_theta_i), eta, k);
+    }
+    /// Schlick: closed form 2∫(R0 + (1−R0)(1−μ)^5) μ dμ = R0 + (1 − R0)/21.
+    Spectrum average() const {
+        return schlick ? r0 + (Spectrum(1.f) - r0) * (1.f / 21.f) : fresnel_conductor_average(eta, k);
+    }
     std::string to_string() const {
-        return "ConductorFresnel[eta=" + eta.to_string() + ", k=" + k.to_string() + "]";
+        return "ConductorFresnel[eta=" + eta.to_string() + ", k=" + k.to_string() +
+               (schlick ? ", schlick r0=" + r0.to_string() : std::string()) + "]";
     }
 };
 /// Policy: Schlick's approximation with normal-incidence reflectance r0 per channel.

@@ -27,7 +27,8 @@
 // | variant     | string   | "eon"    | "classic" or "eon"                                |
 // | sigma       | float    | 0.3      | classic: slope std. dev. σ in radians, ≥ 0         |
 // | roughness   | float    | 0.5      | eon: r ∈ [0, 1] (clamped)                          |
-// JSON: {"type": "roughdiffuse", "reflectance": [0.7, 0.6, 0.5], "variant": "classic", "sigma": 0.4}
+// The constructor takes σ in radians; scene files give `sigma` in DEGREES (material/diffuse.h).
+// JSON: {"type": "oren_nayar", "reflectance": [0.7, 0.6, 0.5], "variant": "classic", "sigma": 23}
 #pragma once
 #include <optional>
 #include <string>

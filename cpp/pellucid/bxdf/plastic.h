@@ -23,8 +23,8 @@
 // | diffuse_reflectance  | spectrum | 0.5      | base albedo Kd                             |
 // | specular_reflectance | spectrum | 1        | coat multiplier Ks                         |
 // | variant              | string   | coupled  | "coupled" or "sum"                         |
-// | distribution, alpha  |          | ggx, 0.1 | rough coat only ("roughplastic")           |
-// JSON: {"type": "roughplastic", "diffuse_reflectance": [0.1, 0.3, 0.6], "int_ior": "polypropylene",
+// | distribution, alpha  |          | ggx, 0.1 | rough coat only ("rough_plastic")          |
+// JSON: {"type": "rough_plastic", "diffuse_reflectance": [0.1, 0.3, 0.6], "int_ior": "polypropylene",
 //        "distribution": "ggx", "alpha": 0.2, "variant": "coupled"}
 #pragma once
 #include <optional>

@@ -1,22 +1,26 @@
-// Materials: parameters (later textures) evaluated at a hit, returning a concrete BxDF by value.
+// Materials: the scene-facing models. Each holds its parameters (a `*Params` struct of constants;
+// textures will replace fields later) and returns a concrete BxDF by value from get_bxdf().
 // SPDX-License-Identifier: Apache-2.0
+//
+// While every parameter is a constant, materials whose BxDF constructor does real work (Fresnel
+// averages, Kulla–Conty setup, EON constants) build it once at scene build and get_bxdf() copies
+// it; the cheap ones construct it per call. Type names and parameter tables: the family headers
+// (diffuse.h, conductor.h, dielectric.h, plastic.h, principled.h) and docs/scene-format.md.
 #pragma once
 #include <string>
 #include <variant>
 
-#include "pellucid/bxdf/bxdf.h"
-#include "pellucid/geometry/interaction.h"
+#include "pellucid/material/conductor.h"
+#include "pellucid/material/dielectric.h"
+#include "pellucid/material/diffuse.h"
+#include "pellucid/material/plastic.h"
+#include "pellucid/material/principled.h"
 
 namespace pellucid {
 
-/// `lambertian`: see bxdf/lambertian.h for its parameter table.
-struct DiffuseMaterial {
-    Spectrum reflectance{0.5f};
-    BxDF get_bxdf(const SurfaceInteraction&) const { return Lambertian(reflectance); }
-    std::string to_string() const { return "DiffuseMaterial[reflectance=" + reflectance.to_string() + "]"; }
-};
-
-using Material = std::variant<DiffuseMaterial>;
+using Material = std::variant<DiffuseMaterial, OrenNayarMaterial, ConductorMaterial, RoughConductorMaterial,
+                              DielectricMaterial, RoughDielectricMaterial, ThinDielectricMaterial,
+                              PlasticMaterial, RoughPlasticMaterial, PrincipledMaterial>;
 
 inline BxDF get_bxdf(const Material& m, const SurfaceInteraction& si) {
     return std::visit([&](const auto& x) { return x.get_bxdf(si); }, m);

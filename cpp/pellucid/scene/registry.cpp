@@ -1,10 +1,11 @@
-// The registry tables and the builders for shapes, materials and filters.
+// The registry tables and the builders for shapes and filters (material builders: material/builders.cpp).
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/scene/registry.h"
 
 #include <cmath>
 #include <filesystem>
 
+#include "pellucid/material/builders.h"
 #include "pellucid/util/error.h"
 
 namespace pellucid {
@@ -22,14 +23,6 @@ std::string join_names(const std::vector<std::string>& names) {
 }
 
 namespace {
-// ---- materials ----------------------------------------------------------------------------------
-Material build_lambertian(Properties& p, const BuildContext&) {
-    DiffuseMaterial m;
-    m.reflectance = p.get_spectrum("reflectance", Spectrum(0.5f));
-    p.check_spectrum_range("reflectance", m.reflectance, 0.f, 1.f);
-    return m;
-}
-
 // ---- shapes -------------------------------------------------------------------------------------
 ShapeGeometry build_mesh(Properties& p, const BuildContext&) {
     ShapeGeometry g;
@@ -94,7 +87,17 @@ Filter build_gaussian(Properties& p) {
 
 const std::map<std::string, MaterialBuilder>& material_registry() {
     static const std::map<std::string, MaterialBuilder> table = {
+        // Builders live in material/builders.cpp; parameter tables in the material headers.
         {"lambertian", build_lambertian},
+        {"oren_nayar", build_oren_nayar},
+        {"conductor", build_conductor},
+        {"rough_conductor", build_rough_conductor},
+        {"dielectric", build_dielectric},
+        {"rough_dielectric", build_rough_dielectric},
+        {"thin_dielectric", build_thin_dielectric},
+        {"plastic", build_plastic},
+        {"rough_plastic", build_rough_plastic},
+        {"principled", build_principled},
     };
     return table;
 }

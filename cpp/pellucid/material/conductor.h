@@ -1,0 +1,68 @@
+// Conductor materials: `conductor` (smooth mirror) and `rough_conductor` (microfacet).
+// SPDX-License-Identifier: Apache-2.0
+//
+// `conductor` (bxdf/conductor.h, SmoothConductor):
+// | parameter            | type     | default | meaning                                                  |
+// |----------------------|----------|---------|----------------------------------------------------------|
+// | material             | string   | "none"  | metal preset of bxdf/ior.h (Au, Ag, Cu, Al, Cr, Fe, Ti, Ni; "none" = ideal mirror, F ≡ 1) |
+// | eta, k               | colour   | —, 0    | complex IOR instead of `material` (eta > 0 required, k ≥ 0); not with `material` |
+// | specular_reflectance | colour   | 1       | multiplier on F, in [0, 1]                               |
+// | fresnel              | string   | "exact" | "exact" or "schlick" (Schlick 1994 with the exact R0 = F(0°)) |
+// JSON: {"type": "conductor", "material": "Au"}
+//
+// `rough_conductor` (MicrofacetReflection<GGX|Beckmann, ConductorFresnel>): the above plus
+// | parameter           | type   | default | meaning                                                   |
+// |---------------------|--------|---------|-----------------------------------------------------------|
+// | distribution        | string | "ggx"   | "ggx" or "beckmann"                                       |
+// | alpha               | float  | 0.1     | isotropic α ≥ 0 (> 1 clamped to 1; < 1e-3 → delta mirror) |
+// | alpha_u, alpha_v    | float  | —       | anisotropic α (alpha_v defaults to alpha_u); not with alpha |
+// | roughness           | float  | —       | perceptual r ∈ [0, 1] instead of α: α = r² (Burley 2012 §5.4) |
+// | multiple_scattering | bool   | false   | Kulla–Conty energy compensation (ggx only)                |
+// JSON: {"type": "rough_conductor", "material": "Al", "alpha_u": 0.05, "alpha_v": 0.3,
+//        "multiple_scattering": true}
+#pragma once
+#include <string>
+
+#include "pellucid/bxdf/bxdf.h"
+#include "pellucid/geometry/interaction.h"
+#include "pellucid/material/params.h"
+
+namespace pellucid {
+
+struct ConductorParams {
+    ConductorIORParams ior;
+    Spectrum specular_reflectance{1.f};
+};
+
+class ConductorMaterial {
+public:
+    explicit ConductorMaterial(const ConductorParams& p);
+    BxDF get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+    const ConductorParams& params() const { return m_p; }
+    std::string to_string() const;
+
+private:
+    ConductorParams m_p;
+    BxDF m_bxdf;
+};
+
+struct RoughConductorParams {
+    MicrofacetParams microfacet;
+    ConductorIORParams ior;
+    Spectrum specular_reflectance{1.f};
+    bool multiple_scattering = false;
+};
+
+class RoughConductorMaterial {
+public:
+    explicit RoughConductorMaterial(const RoughConductorParams& p);
+    /// Constant parameters: the BxDF (with its Fresnel average for Kulla–Conty) is built once.
+    BxDF get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+    const RoughConductorParams& params() const { return m_p; }
+    std::string to_string() const;
+
+private:
+    RoughConductorParams m_p;
+    BxDF m_bxdf;
+};
+}  // namespace pellucid

@@ -1,0 +1,114 @@
+// Material constructors (BxDFs built once from constant parameters) and to_string.
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/material/material.h"
+
+#include <sstream>
+
+#include "pellucid/bxdf/ior.h"
+#include "pellucid/math/constants.h"
+
+namespace pellucid {
+
+std::string format_float(float v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+}
+std::string format_spectrum(const Spectrum& s) {
+    if (s.r == s.g && s.g == s.b) return format_float(s.r);
+    return "[" + format_float(s.r) + ", " + format_float(s.g) + ", " + format_float(s.b) + "]";
+}
+std::string to_string(MicrofacetType t) { return t == MicrofacetType::GGX ? "ggx" : "beckmann"; }
+
+std::string MicrofacetParams::to_string() const {
+    std::string s = "distribution=" + pellucid::to_string(distribution);
+    if (alpha_u == alpha_v) return s + ", alpha=" + format_float(alpha_u);
+    return s + ", alpha_u=" + format_float(alpha_u) + ", alpha_v=" + format_float(alpha_v);
+}
+std::string ConductorIORParams::to_string() const {
+    std::string s = preset < 0 ? "eta=" + format_spectrum(eta) + ", k=" + format_spectrum(k)
+                               : "material=" + conductor_names().at(size_t(preset));
+    return s + ", fresnel=" + (schlick ? "schlick" : "exact");
+}
+std::string DielectricParams::to_string() const {
+    return "int_ior=" + format_float(int_ior) + ", ext_ior=" + format_float(ext_ior) +
+           ", specular_reflectance=" + format_spectrum(specular_reflectance) +
+           ", specular_transmittance=" + format_spectrum(specular_transmittance);
+}
+std::string PlasticParams::to_string() const {
+    return "diffuse_reflectance=" + format_spectrum(diffuse_reflectance) +
+           ", specular_reflectance=" + format_spectrum(specular_reflectance) + ", int_ior=" + format_float(int_ior) +
+           ", ext_ior=" + format_float(ext_ior) + ", variant=" + pellucid::to_string(variant);
+}
+
+namespace {
+ConductorFresnel make_fresnel(const ConductorIORParams& p) {
+    return p.schlick ? ConductorFresnel::schlick_from(p.eta, p.k) : ConductorFresnel{p.eta, p.k};
+}
+BxDF make_oren_nayar(const OrenNayarParams& p) {
+    float rough = p.variant == OrenNayarVariant::Classic ? radians(p.sigma_degrees) : p.roughness;
+    return OrenNayar(p.reflectance, rough, p.variant);
+}
+BxDF make_rough_conductor(const RoughConductorParams& p) {
+    ConductorFresnel fr = make_fresnel(p.ior);
+    if (p.microfacet.distribution == MicrofacetType::Beckmann)
+        return RoughConductorBeckmann(Beckmann(p.microfacet.alpha_u, p.microfacet.alpha_v), fr, p.specular_reflectance);
+    return RoughConductor(GGX(p.microfacet.alpha_u, p.microfacet.alpha_v), fr, p.specular_reflectance,
+                          p.multiple_scattering);
+}
+}  // namespace
+
+OrenNayarMaterial::OrenNayarMaterial(const OrenNayarParams& p) : m_p(p), m_bxdf(make_oren_nayar(p)) {}
+std::string OrenNayarMaterial::to_string() const {
+    bool classic = m_p.variant == OrenNayarVariant::Classic;
+    return "OrenNayarMaterial[reflectance=" + format_spectrum(m_p.reflectance) +
+           (classic ? ", variant=classic, sigma=" + format_float(m_p.sigma_degrees) + " deg"
+                    : ", variant=eon, roughness=" + format_float(m_p.roughness)) + "]";
+}
+
+ConductorMaterial::ConductorMaterial(const ConductorParams& p)
+    : m_p(p), m_bxdf(SmoothConductor<ConductorFresnel>(make_fresnel(p.ior), p.specular_reflectance)) {}
+std::string ConductorMaterial::to_string() const {
+    return "ConductorMaterial[" + m_p.ior.to_string() +
+           ", specular_reflectance=" + format_spectrum(m_p.specular_reflectance) + "]";
+}
+
+RoughConductorMaterial::RoughConductorMaterial(const RoughConductorParams& p)
+    : m_p(p), m_bxdf(make_rough_conductor(p)) {}
+std::string RoughConductorMaterial::to_string() const {
+    return "RoughConductorMaterial[" + m_p.microfacet.to_string() + ", " + m_p.ior.to_string() +
+           ", specular_reflectance=" + format_spectrum(m_p.specular_reflectance) +
+           ", multiple_scattering=" + (m_p.multiple_scattering ? "true" : "false") + "]";
+}
+
+RoughDielectricMaterial::RoughDielectricMaterial(const RoughDielectricParams& p)
+    : m_p(p),
+      m_bxdf(RoughDielectric<GGX>(GGX(p.microfacet.alpha_u, p.microfacet.alpha_v), p.dielectric.eta(),
+                                  p.dielectric.specular_reflectance, p.dielectric.specular_transmittance)) {}
+std::string RoughDielectricMaterial::to_string() const {
+    return "RoughDielectricMaterial[" + m_p.microfacet.to_string() + ", " + m_p.dielectric.to_string() + "]";
+}
+
+PlasticMaterial::PlasticMaterial(const PlasticParams& p)
+    : m_p(p),
+      m_bxdf(SmoothPlastic(p.int_ior / p.ext_ior, p.diffuse_reflectance, p.specular_reflectance, p.variant)) {}
+std::string PlasticMaterial::to_string() const { return "PlasticMaterial[" + m_p.to_string() + "]"; }
+
+RoughPlasticMaterial::RoughPlasticMaterial(const RoughPlasticParams& p)
+    : m_p(p),
+      m_bxdf(RoughPlastic<GGX>(GGX(p.microfacet.alpha_u, p.microfacet.alpha_v), p.plastic.int_ior / p.plastic.ext_ior,
+                               p.plastic.diffuse_reflectance, p.plastic.specular_reflectance, p.plastic.variant)) {}
+std::string RoughPlasticMaterial::to_string() const {
+    return "RoughPlasticMaterial[" + m_p.microfacet.to_string() + ", " + m_p.plastic.to_string() + "]";
+}
+
+std::string PrincipledMaterial::to_string() const {
+    const PrincipledParams& p = m_p;
+    return "PrincipledMaterial[base_color=" + format_spectrum(p.base_color) + ", metallic=" + format_float(p.metallic) +
+           ", roughness=" + format_float(p.roughness) + ", specular=" + format_float(p.specular) +
+           ", specular_tint=" + format_float(p.specular_tint) + ", sheen=" + format_float(p.sheen) +
+           ", sheen_tint=" + format_float(p.sheen_tint) + ", clearcoat=" + format_float(p.clearcoat) +
+           ", clearcoat_gloss=" + format_float(p.clearcoat_gloss) + ", anisotropic=" + format_float(p.anisotropic) +
+           "]";
+}
+}  // namespace pellucid

@@ -1,0 +1,59 @@
+// Plastic materials: `plastic` (smooth coat) and `rough_plastic` (GGX coat) over a Lambertian base.
+// SPDX-License-Identifier: Apache-2.0
+//
+// bxdf/plastic.h explains both variants.
+// | parameter            | type         | default         | meaning                                   |
+// |----------------------|--------------|-----------------|-------------------------------------------|
+// | diffuse_reflectance  | colour       | 0.5             | base albedo Kd, in [0, 1]                 |
+// | specular_reflectance | colour       | 1               | coat multiplier Ks, in [0, 1]             |
+// | int_ior, ext_ior     | float/string | "polypropylene", "air" | coat IOR (η = int_ior/ext_ior), as for `dielectric` |
+// | variant              | string       | "coupled"       | "coupled" (energy-conserving, Weidlich & Wilkie 2007) or "sum" (Kd/π + coat) |
+// `rough_plastic` adds `distribution` ("ggx" only), `alpha` (default 0.1), `alpha_u`/`alpha_v`,
+// `roughness`, as for `rough_conductor`.
+// JSON: {"type": "rough_plastic", "diffuse_reflectance": [0.1, 0.3, 0.6], "alpha": 0.2}
+#pragma once
+#include <string>
+
+#include "pellucid/bxdf/bxdf.h"
+#include "pellucid/geometry/interaction.h"
+#include "pellucid/material/params.h"
+
+namespace pellucid {
+
+struct PlasticParams {
+    Spectrum diffuse_reflectance{0.5f}, specular_reflectance{1.f};
+    float int_ior = 1.49f, ext_ior = 1.000277f;
+    PlasticVariant variant = PlasticVariant::Coupled;
+    std::string to_string() const;
+};
+
+class PlasticMaterial {
+public:
+    explicit PlasticMaterial(const PlasticParams& p);
+    /// Constant parameters: the BxDF (with its Fresnel-average quadrature) is built once.
+    BxDF get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+    const PlasticParams& params() const { return m_p; }
+    std::string to_string() const;
+
+private:
+    PlasticParams m_p;
+    BxDF m_bxdf;
+};
+
+struct RoughPlasticParams {
+    MicrofacetParams microfacet;
+    PlasticParams plastic;
+};
+
+class RoughPlasticMaterial {
+public:
+    explicit RoughPlasticMaterial(const RoughPlasticParams& p);
+    BxDF get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+    const RoughPlasticParams& params() const { return m_p; }
+    std::string to_string() const;
+
+private:
+    RoughPlasticParams m_p;
+    BxDF m_bxdf;
+};
+}  // namespace pellucid

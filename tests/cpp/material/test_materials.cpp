@@ -1,0 +1,226 @@
+// Every material type builds from JSON; errors carry the key path, parameter and value; the
+// documented special cases (σ = 0 → Lambertian, α < 1e-3 → delta lobe, clamps) hold.
+// SPDX-License-Identifier: Apache-2.0
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "pellucid/bxdf/batch.h"
+#include "pellucid/material/bsdf_probe.h"
+#include "pellucid/material/builders.h"
+#include "pellucid/scene/build.h"
+#include "pellucid/scene/json_io.h"
+#include "pellucid/scene/registry.h"
+#include "pellucid/util/error.h"
+
+using namespace pellucid;
+
+namespace {
+Material material_from(const std::string& json) {
+    return build_material(parse_json(json, "m.json"), "scene.json", "materials.m");
+}
+BxDF bxdf_from(const std::string& json) { return get_bxdf(material_from(json), SurfaceInteraction{}); }
+
+std::string material_error(const std::string& json) {
+    try {
+        material_from(json);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+Vec3f dir(float cos_theta, float phi) {
+    float s = std::sqrt(1.f - cos_theta * cos_theta);
+    return Vec3f(s * std::cos(phi), s * std::sin(phi), cos_theta);
+}
+}  // namespace
+
+// One JSON object per registered type; the test fails if a type is registered but not listed.
+TEST(Materials, EveryTypeBuildsFromJson) {
+    const std::map<std::string, std::string> examples = {
+        {"lambertian", R"({"type": "lambertian", "reflectance": [0.8, 0.2, 0.2]})"},
+        {"oren_nayar", R"({"type": "oren_nayar", "reflectance": 0.7, "variant": "classic", "sigma": 30})"},
+        {"conductor", R"({"type": "conductor", "material": "Au", "fresnel": "schlick"})"},
+        {"rough_conductor", R"({"type": "rough_conductor", "material": "Al", "alpha_u": 0.05, "alpha_v": 0.3,
+                              "multiple_scattering": true, "specular_reflectance": 0.9})"},
+        {"dielectric", R"({"type": "dielectric", "int_ior": "water", "ext_ior": 1.0})"},
+        {"rough_dielectric", R"({"type": "rough_dielectric", "int_ior": 1.5, "roughness": 0.5})"},
+        {"thin_dielectric", R"({"type": "thin_dielectric", "int_ior": "bk7", "specular_transmittance": 0.9})"},
+        {"plastic", R"({"type": "plastic", "diffuse_reflectance": [0.1, 0.3, 0.6], "variant": "sum"})"},
+        {"rough_plastic", R"({"type": "rough_plastic", "int_ior": "polypropylene", "alpha": 0.2})"},
+        {"principled", R"({"type": "principled", "base_color": [0.8, 0.2, 0.1], "roughness": 0.4,
+                         "clearcoat": 1, "clearcoat_gloss": 0.9, "anisotropic": 0.5})"},
+    };
+    for (const auto& [type, fn] : material_registry()) {
+        auto it = examples.find(type);
+        ASSERT_NE(it, examples.end()) << "no example for registered material type '" << type << "'";
+        Material m = material_from(it->second);
+        BxDF b = get_bxdf(m, SurfaceInteraction{});
+        EXPECT_NE(flags(b), BxDFFlags::None) << type;
+        EXPECT_FALSE(to_string(m).empty());
+        // The BxDF reflects something for a front-facing direction.
+        float a[3];
+        Vec3f wo = dir(0.7f, 0.3f);
+        albedo_batch(b, BxDFContext{}, &wo.x, 1, 2000, 3, a, 1);
+        EXPECT_GT(a[0] + a[1] + a[2], 0.f) << type;
+        EXPECT_LE(a[1], 1.05f) << type;
+    }
+    EXPECT_EQ(examples.size(), material_registry().size());
+}
+
+TEST(Materials, ErrorsNameKeyPathParameterAndValue) {
+    EXPECT_EQ(material_error(R"({"type": "rough_conductor", "alpha": -0.1})"),
+              "scene.json: materials.m.alpha: value -0.1 must be >= 0");
+    EXPECT_EQ(material_error(R"({"type": "dielectric", "int_ior": 0})"),
+              "scene.json: materials.m.int_ior: value 0 must be > 0");
+    EXPECT_EQ(material_error(R"({"type": "rough_plastic", "ext_ior": -1.5})"),
+              "scene.json: materials.m.ext_ior: value -1.5 must be > 0");
+    EXPECT_EQ(material_error(R"({"type": "conductor", "eta": [1, 0, 1], "k": 2})"),
+              "scene.json: materials.m.eta: value 0 must be > 0");
+    EXPECT_EQ(material_error(R"({"type": "conductor", "material": "unobtainium"})").rfind(
+                  "scene.json: materials.m.material: unknown metal 'unobtainium' (known: Au, Ag", 0),
+              0u);
+    EXPECT_EQ(material_error(R"({"type": "rough_conductor", "distribution": "phong"})"),
+              "scene.json: materials.m.distribution: unknown distribution 'phong' (known: ggx, beckmann)");
+    EXPECT_EQ(material_error(R"({"type": "oren_nayar", "variant": "fancy"})"),
+              "scene.json: materials.m.variant: unknown variant 'fancy' (known: eon, classic)");
+    EXPECT_EQ(material_error(R"({"type": "plastic", "variant": "layered"})"),
+              "scene.json: materials.m.variant: unknown variant 'layered' (known: coupled, sum)");
+    EXPECT_EQ(material_error(R"({"type": "rough_conductor", "fresnel": "approx"})"),
+              "scene.json: materials.m.fresnel: unknown fresnel mode 'approx' (known: exact, schlick)");
+    EXPECT_EQ(material_error(R"({"type": "dielectric", "int_ior": "glas"})").rfind(
+                  "scene.json: materials.m.int_ior: unknown IOR name 'glas' (known: vacuum", 0),
+              0u);
+    EXPECT_EQ(material_error(R"({"type": "rough_dielectric", "distribution": "beckmann"})"),
+              "scene.json: materials.m.distribution: distribution 'beckmann' is not available for this material "
+              "(known: ggx)");
+    EXPECT_EQ(material_error(R"({"type": "rough_conductor", "distribution": "beckmann", "multiple_scattering": true})"),
+              "scene.json: materials.m.multiple_scattering: requires distribution 'ggx' (the Kulla-Conty table is "
+              "GGX only)");
+    EXPECT_EQ(material_error(R"({"type": "rough_conductor", "alpha": 0.1, "roughness": 0.3})"),
+              "scene.json: materials.m.roughness: give only one of alpha, alpha_u/alpha_v, roughness");
+    EXPECT_EQ(material_error(R"({"type": "conductor", "material": "Au", "eta": 1.2})"),
+              "scene.json: materials.m.material: give either material or eta/k, not both");
+    EXPECT_EQ(material_error(R"({"type": "oren_nayar", "variant": "classic", "roughness": 0.3})"),
+              "scene.json: materials.m.roughness: not used by variant 'classic' (classic takes sigma in degrees, eon "
+              "roughness)");
+    EXPECT_EQ(material_error(R"({"type": "principled", "metallic": 1.5})"),
+              "scene.json: materials.m.metallic: value 1.5 is out of range [0, 1]");
+    EXPECT_EQ(material_error(R"({"type": "rough_conductor", "alpah": 0.1})"),
+              "scene.json: materials.m.alpah: unknown parameter");
+    EXPECT_EQ(material_error(R"({"type": "plastic", "diffuse_reflectance": 1.2})"),
+              "scene.json: materials.m.diffuse_reflectance: value [1.200000, 1.200000, 1.200000] is out of range "
+              "[0, 1]");
+}
+
+TEST(Materials, ErrorsInsideAScene) {
+    SceneDesc d;
+    d.source = "scene.json";
+    d.root = parse_json(R"({"materials": {"gold": {"type": "rough_conductor", "material": "Au", "alpha": -0.1}}})",
+                        "scene.json");
+    try {
+        build_scene(d);
+        FAIL() << "expected an error";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "scene.json: materials.gold.alpha: value -0.1 must be >= 0");
+    }
+}
+
+TEST(Materials, OrenNayarAtZeroRoughnessIsLambertian) {
+    BxDF lam = bxdf_from(R"({"type": "lambertian", "reflectance": 0.6})");
+    for (const char* json : {R"({"type": "oren_nayar", "reflectance": 0.6, "variant": "classic", "sigma": 0})",
+                             R"({"type": "oren_nayar", "reflectance": 0.6, "variant": "eon", "roughness": 0})"}) {
+        BxDF on = bxdf_from(json);
+        for (float co : {0.9f, 0.4f, 0.05f})
+            for (float ci : {0.95f, 0.5f, 0.1f}) {
+                Vec3f wo = dir(co, 0.2f), wi = dir(ci, 2.5f);
+                EXPECT_EQ(eval(on, BxDFContext{}, wo, wi), eval(lam, BxDFContext{}, wo, wi)) << json;
+                EXPECT_EQ(pdf(on, BxDFContext{}, wo, wi), pdf(lam, BxDFContext{}, wo, wi)) << json;
+            }
+    }
+}
+
+TEST(Materials, TinyAlphaCollapsesToTheDeltaLobe) {
+    for (const char* json : {R"({"type": "rough_conductor", "material": "Cu", "alpha": 5e-4})",
+                             R"({"type": "rough_conductor", "distribution": "beckmann", "alpha": 1e-4})",
+                             R"({"type": "rough_conductor", "roughness": 0.03})",  // α = 9e-4
+                             R"({"type": "rough_dielectric", "alpha": 0})"}) {
+        BxDF b = bxdf_from(json);
+        Vec3f wo = dir(0.6f, 1.f);
+        auto s = sample(b, BxDFContext{}, wo, 0.01f, Vec2f(0.3f, 0.7f));
+        ASSERT_TRUE(s) << json;
+        EXPECT_TRUE(s->is_specular()) << json;
+        EXPECT_TRUE(is_specular(flags(b))) << json;
+        EXPECT_EQ(eval(b, BxDFContext{}, wo, s->wi), Spectrum(0.f)) << json;
+    }
+    // The plastic coat becomes a delta lobe; the diffuse base stays.
+    BxDF plastic = bxdf_from(R"({"type": "rough_plastic", "alpha": 9e-4})");
+    EXPECT_EQ(flags(plastic), BxDFFlags::SpecularReflection | BxDFFlags::DiffuseReflection);
+    // Just above the threshold the lobe is glossy.
+    EXPECT_EQ(flags(bxdf_from(R"({"type": "rough_conductor", "alpha": 2e-3})")), BxDFFlags::GlossyReflection);
+}
+
+TEST(Materials, ClampsAndMappings) {
+    // α > 1 is clamped to 1; roughness r maps to α = r².
+    auto rc = std::get<RoughConductorMaterial>(material_from(R"({"type": "rough_conductor", "alpha": 3})"));
+    EXPECT_EQ(rc.params().microfacet.alpha_u, 1.f);
+    rc = std::get<RoughConductorMaterial>(material_from(R"({"type": "rough_conductor", "roughness": 0.5})"));
+    EXPECT_FLOAT_EQ(rc.params().microfacet.alpha_u, 0.25f);
+    rc = std::get<RoughConductorMaterial>(material_from(R"({"type": "rough_conductor", "alpha_u": 0.2})"));
+    EXPECT_EQ(rc.params().microfacet.alpha_v, 0.2f);
+    auto on = std::get<OrenNayarMaterial>(material_from(R"({"type": "oren_nayar", "variant": "classic", "sigma": 120})"));
+    EXPECT_EQ(on.params().sigma_degrees, 90.f);
+    // Named IORs: η = int_ior/ext_ior.
+    auto d = std::get<DielectricMaterial>(material_from(R"({"type": "dielectric", "int_ior": "water", "ext_ior": "air"})"));
+    EXPECT_FLOAT_EQ(d.params().eta(), 1.333f / 1.000277f);
+    // Default conductor is Mitsuba 3's "none": a perfect mirror.
+    BxDF mirror = bxdf_from(R"({"type": "conductor"})");
+    auto s = sample(mirror, BxDFContext{}, dir(0.3f, 0.1f), 0.5f, Vec2f(0.5f));
+    ASSERT_TRUE(s);
+    EXPECT_NEAR(s->weight.g, 1.f, 1e-6f);
+}
+
+TEST(Materials, SchlickUsesTheExactNormalIncidenceReflectance) {
+    BxDF exact = bxdf_from(R"({"type": "conductor", "material": "Au"})");
+    BxDF schlick = bxdf_from(R"({"type": "conductor", "material": "Au", "fresnel": "schlick"})");
+    auto a = sample(exact, BxDFContext{}, Vec3f(0, 0, 1), 0.5f, Vec2f(0.5f));
+    auto b = sample(schlick, BxDFContext{}, Vec3f(0, 0, 1), 0.5f, Vec2f(0.5f));
+    ASSERT_TRUE(a && b);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(a->weight[c], b->weight[c], 1e-5f);
+    a = sample(exact, BxDFContext{}, dir(0.2f, 0.f), 0.5f, Vec2f(0.5f));
+    b = sample(schlick, BxDFContext{}, dir(0.2f, 0.f), 0.5f, Vec2f(0.5f));
+    EXPECT_GT(std::fabs(a->weight.b - b->weight.b), 1e-3f);  // they differ at grazing angles
+}
+
+TEST(Materials, ProbeBatchesAgreeWithSingleCalls) {
+    BSDFProbe p = BSDFProbe::from_desc(parse_json(R"({"type": "rough_plastic", "alpha": 0.3})", "p.json"));
+    EXPECT_NE(p.to_string().find("RoughPlasticMaterial"), std::string::npos);
+    const float wo[6] = {0.f, 0.6f, 0.8f, 0.3f, 0.f, 0.5f};  // second row not normalised
+    const float u[6] = {0.9f, 0.2f, 0.7f, 0.1f, 0.5f, 0.5f};
+    float wi[6], w[6], pd[2], f[6], pe[2];
+    uint32_t lobe[2];
+    sample_batch(p.bxdf, p.ctx, wo, u, 2, wi, w, pd, lobe);
+    eval_batch(p.bxdf, p.ctx, wo, wi, 2, f);
+    pdf_batch(p.bxdf, p.ctx, wo, wi, 2, pe);
+    for (int i = 0; i < 2; ++i) {
+        ASSERT_GT(pd[i], 0.f);
+        EXPECT_NEAR(pe[i], pd[i], 1e-3f * pd[i]);
+        EXPECT_NEAR(f[3 * i] / pe[i], w[3 * i], 1e-3f * w[3 * i]);
+        EXPECT_NE(lobe[i], 0u);
+    }
+    BxDFTiming t = benchmark_bxdf(p.bxdf, p.ctx, 1000);
+    EXPECT_GT(t.ns_eval, 0.0);
+    EXPECT_GT(t.ns_sample, 0.0);
+}
+
+TEST(Materials, LambertianAlbedoMatchesReflectance) {
+    BSDFProbe p = BSDFProbe::from_desc(parse_json(R"({"type": "lambertian", "reflectance": [0.2, 0.5, 0.9]})", "p"));
+    const float wo[6] = {0.f, 0.f, 1.f, 0.9f, 0.f, 0.1f};
+    float a[6], b[6];
+    albedo_batch(p.bxdf, p.ctx, wo, 2, 100, 1, a, 0);
+    albedo_batch(p.bxdf, p.ctx, wo, 2, 100, 1, b, 1);
+    for (int i = 0; i < 6; ++i) EXPECT_EQ(a[i], b[i]);  // independent of the thread count
+    EXPECT_NEAR(a[0], 0.2f, 1e-6f);
+    EXPECT_NEAR(a[5], 0.9f, 1e-6f);
+}
