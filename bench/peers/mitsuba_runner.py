@@ -1,0 +1,395 @@
+#!/usr/bin/env python3
+"""Render a pellucid JSON scene with Mitsuba 3 (peer renderer for benchmarks).
+
+Run with the dedicated venv (see setup_mitsuba.sh); this script never imports pellucid:
+
+    bench/.venv-mitsuba/bin/python bench/peers/mitsuba_runner.py SCENE.json \
+        --variant {scalar_rgb,llvm_ad_rgb} --spp N --seed S --out OUT.exr \
+        [--threads T] [--passes K] [--max-depth D] [--json-report REPORT.json]
+
+`to_mitsuba_dict(scene_json)` converts a parsed pellucid scene into a Mitsuba scene
+dict; a Mitsuba variant must be set before calling it (it builds ScalarTransform4f
+objects and, for meshes, mi.Mesh objects).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+
+# Mitsuba's llvm_* variants need LLVM >= 16-ish (LLVM 15 aborts); Debian 12's libllvm19
+# installs /usr/lib/x86_64-linux-gnu/libLLVM.so.19.1. Point Dr.Jit at it explicitly
+# (must happen before drjit is imported) unless the caller chose a library already.
+_LLVM_CANDIDATES = (
+    "/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1",
+    "/usr/lib/x86_64-linux-gnu/libLLVM-19.so.1",
+    "/usr/lib/x86_64-linux-gnu/libLLVM-19.so",
+    "/usr/lib/llvm-19/lib/libLLVM.so.1",
+)
+if "DRJIT_LIBLLVM_PATH" not in os.environ:
+    for _p in _LLVM_CANDIDATES:
+        if os.path.exists(_p):
+            os.environ["DRJIT_LIBLLVM_PATH"] = _p
+            break
+
+import numpy as np  # noqa: E402
+import drjit as dr  # noqa: E402
+import mitsuba as mi  # noqa: E402
+
+
+# --------------------------------------------------------------------------- helpers
+def _rgb3(v, what):
+    if isinstance(v, (int, float)):
+        return [float(v)] * 3
+    v = [float(x) for x in v]
+    if len(v) == 1:
+        return v * 3
+    if len(v) != 3:
+        raise ValueError(f"{what}: expected a scalar or a 3-vector, got {v!r}")
+    return v
+
+
+def _rgb(v, what):
+    return {"type": "rgb", "value": _rgb3(v, what)}
+
+
+def _vec3(v, what):
+    if isinstance(v, (int, float)):
+        return [float(v)] * 3
+    v = [float(x) for x in v]
+    if len(v) != 3:
+        raise ValueError(f"{what}: expected a 3-vector, got {v!r}")
+    return v
+
+
+def _transform(ops, what="to_world"):
+    """List of ops, first applied first: M = op_n @ ... @ op_1 (like nested XML tags)."""
+    T = mi.ScalarTransform4f
+    if ops is None:
+        return T()
+    if isinstance(ops, dict):
+        ops = [ops]
+    m = T()
+    for op in ops:
+        if len(op) != 1:
+            raise ValueError(f"{what}: each op must have exactly one key, got {op!r}")
+        (k, v), = op.items()
+        if k == "scale":
+            t = T().scale(_vec3(v, f"{what}.scale"))
+        elif k == "translate":
+            t = T().translate(_vec3(v, f"{what}.translate"))
+        elif k == "rotate":
+            t = T().rotate(_vec3(v["axis"], f"{what}.rotate.axis"), float(v["angle"]))
+        elif k == "look_at":
+            t = T().look_at(origin=_vec3(v["origin"], "origin"),
+                            target=_vec3(v["target"], "target"),
+                            up=_vec3(v["up"], "up"))
+        elif k == "matrix":
+            a = np.asarray(v, dtype=np.float64).reshape(4, 4)  # row-major
+            t = T(a)
+        else:
+            raise ValueError(f"{what}: unknown transform op {k!r}")
+        m = t @ m
+    return m
+
+
+def _bsdf(mat, what):
+    t = mat.get("type")
+    if t in ("lambertian", "diffuse"):
+        return {"type": "diffuse", "reflectance": _rgb(mat.get("reflectance", 0.5), f"{what}.reflectance")}
+    raise NotImplementedError(f"{what}: material type {t!r} is not mapped to Mitsuba")
+
+
+def _emitter(em, what):
+    t = em.get("type", "area")
+    if t != "area":
+        raise NotImplementedError(f"{what}: shape emitter type {t!r} is not mapped")
+    if em.get("two_sided", False):
+        raise NotImplementedError(f"{what}: two_sided area emitters have no Mitsuba equivalent")
+    return {"type": "area", "radiance": _rgb(em["radiance"], f"{what}.radiance")}
+
+
+def _filter(f):
+    if f is None:
+        return {"type": "gaussian"}  # Mitsuba default (stddev 0.5)
+    t = f.get("type", "gaussian")
+    if t == "box":
+        return {"type": "box"}
+    if t == "tent":
+        d = {"type": "tent"}
+        if "radius" in f:
+            d["radius"] = float(f["radius"])
+        return d
+    if t == "gaussian":
+        d = {"type": "gaussian"}
+        if "stddev" in f:
+            d["stddev"] = float(f["stddev"])
+        return d
+    raise NotImplementedError(f"film.filter type {t!r} is not mapped")
+
+
+def _mesh(shape, to_world, name, bsdf, emitter):
+    pos = np.asarray(shape["positions"], dtype=np.float64).reshape(-1, 3)
+    idx = np.asarray(shape["indices"], dtype=np.uint32).reshape(-1, 3)
+    nrm = shape.get("normals")
+    uvs = shape.get("uvs")
+    nrm = None if nrm is None or len(nrm) == 0 else np.asarray(nrm, np.float64).reshape(-1, 3)
+    uvs = None if uvs is None or len(uvs) == 0 else np.asarray(uvs, np.float64).reshape(-1, 2)
+    # Bake to_world into the vertex data (normals with the inverse transpose).
+    M = np.array(to_world.matrix, dtype=np.float64).reshape(4, 4)
+    p4 = np.c_[pos, np.ones(len(pos))] @ M.T
+    pos = p4[:, :3] / p4[:, 3:4]
+    if nrm is not None:
+        nrm = nrm @ np.linalg.inv(M[:3, :3])  # == (inv(M)^T @ n^T)^T
+        nrm /= np.maximum(np.linalg.norm(nrm, axis=1, keepdims=True), 1e-30)
+    props = mi.Properties()
+    if shape.get("flip_normals", False):
+        props["flip_normals"] = True
+    props["bsdf"] = mi.load_dict(bsdf)
+    if emitter is not None:
+        props["emitter"] = mi.load_dict(emitter)
+    mesh = mi.Mesh(name, len(pos), len(idx), props,
+                   has_vertex_normals=nrm is not None,
+                   has_vertex_texcoords=uvs is not None)
+    params = mi.traverse(mesh)
+    params["vertex_positions"] = dr.ravel(mi.TensorXf(pos.astype(np.float32).ravel()))
+    params["faces"] = dr.ravel(mi.TensorXu(idx.ravel()))
+    if nrm is not None:
+        params["vertex_normals"] = dr.ravel(mi.TensorXf(nrm.astype(np.float32).ravel()))
+    if uvs is not None:
+        params["vertex_texcoords"] = dr.ravel(mi.TensorXf(uvs.astype(np.float32).ravel()))
+    params.update()
+    return mesh
+
+
+# --------------------------------------------------------------------------- conversion
+def to_mitsuba_dict(scene_json: dict) -> dict:
+    """Convert a pellucid JSON scene (parsed) into a Mitsuba 3 scene dict.
+
+    Requires a Mitsuba variant to be set (mi.set_variant) beforehand.
+    """
+    if mi.variant() is None:
+        raise RuntimeError("call mi.set_variant(...) before to_mitsuba_dict()")
+    sj = scene_json
+    cam = sj.get("camera", {})
+    film = sj.get("film", {})
+    samp = sj.get("sampler", {})
+    integ = sj.get("integrator", {})
+
+    if cam.get("type", "perspective") != "perspective":
+        raise NotImplementedError(f"camera type {cam.get('type')!r} is not mapped")
+    sensor = {
+        "type": "perspective",
+        "fov": float(cam.get("fov", 45.0)),
+        "fov_axis": cam.get("fov_axis", "x"),
+        "to_world": _transform(cam.get("to_world"), "camera.to_world"),
+        "sampler": {"type": "independent",
+                    "sample_count": int(samp.get("sample_count", 16)),
+                    "seed": int(samp.get("seed", 0))},
+        "film": {"type": "hdrfilm",
+                 "width": int(film.get("width", 256)),
+                 "height": int(film.get("height", 256)),
+                 "rfilter": _filter(film.get("filter")),
+                 "pixel_format": "rgb",
+                 "component_format": "float32"},
+    }
+    for k in ("near_clip", "far_clip"):
+        if k in cam:
+            sensor[k] = float(cam[k])
+
+    if integ.get("type", "path") != "path":
+        raise NotImplementedError(f"integrator type {integ.get('type')!r} is not mapped")
+    if integ.get("strategy", "mis") != "mis":
+        raise NotImplementedError("integrator.strategy: Mitsuba's path tracer is MIS only")
+    out = {
+        "type": "scene",
+        "integrator": {"type": "path",
+                       "max_depth": int(integ.get("max_depth", -1)),
+                       "rr_depth": int(integ.get("rr_depth", 5))},
+        "sensor": sensor,
+    }
+    if "hide_emitters" in integ:
+        out["integrator"]["hide_emitters"] = bool(integ["hide_emitters"])
+
+    mats = sj.get("materials", {})
+    mat_ids = {}
+    for i, (name, m) in enumerate(mats.items()):
+        key = f"mat_{i}_{name}"
+        out[key] = _bsdf(m, f"materials.{name}")
+        mat_ids[name] = key
+
+    for i, s in enumerate(sj.get("shapes", [])):
+        what = f"shapes[{i}]"
+        m = s.get("material")
+        if isinstance(m, str):
+            if m not in mat_ids:
+                raise KeyError(f"{what}: unknown material {m!r}")
+            bsdf = {"type": "ref", "id": mat_ids[m]}
+            bsdf_full = out[mat_ids[m]]
+        elif isinstance(m, dict):
+            bsdf = bsdf_full = _bsdf(m, f"{what}.material")
+        elif m is None:
+            bsdf = bsdf_full = {"type": "diffuse"}
+        else:
+            raise ValueError(f"{what}: bad material {m!r}")
+        em = _emitter(s["emitter"], f"{what}.emitter") if s.get("emitter") else None
+        tw = _transform(s.get("to_world"), f"{what}.to_world")
+        t = s.get("type")
+        if t in ("rectangle", "cube", "sphere"):
+            d = {"type": t, "to_world": tw, "bsdf": bsdf}
+            if t == "sphere":
+                # Mitsuba: to_world @ translate(center) @ scale(radius)
+                d["center"] = _vec3(s.get("center", [0, 0, 0]), f"{what}.center")
+                d["radius"] = float(s.get("radius", 1.0))
+            elif "center" in s or "radius" in s:
+                raise ValueError(f"{what}: center/radius only supported on spheres")
+            if s.get("flip_normals", False):
+                d["flip_normals"] = True
+            if em is not None:
+                d["emitter"] = em
+            out[f"shape_{i}"] = d
+        elif t == "mesh":
+            out[f"shape_{i}"] = _mesh(s, tw, f"shape_{i}", bsdf_full, em)
+        else:
+            raise NotImplementedError(f"{what}: shape type {t!r} is not mapped")
+
+    for i, l in enumerate(sj.get("lights", [])):
+        t = l.get("type")
+        if t == "constant":
+            out[f"light_{i}"] = {"type": "constant", "radiance": _rgb(l["radiance"], f"lights[{i}].radiance")}
+        else:
+            raise NotImplementedError(f"lights[{i}]: light type {t!r} is not mapped")
+    return out
+
+
+# --------------------------------------------------------------------------- rendering
+def _write_exr(path, arr):
+    arr = np.ascontiguousarray(arr, dtype=np.float32)
+    mi.Bitmap(arr, mi.Bitmap.PixelFormat.RGB).write(path)
+
+
+def _render(scene, spp, seed):
+    img = mi.render(scene, spp=spp, seed=seed)
+    dr.eval(img)
+    dr.sync_thread()
+    return img
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("scene")
+    ap.add_argument("--variant", choices=["scalar_rgb", "llvm_ad_rgb"], required=True)
+    ap.add_argument("--spp", type=int, required=True)
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--out", required=True, help="output EXR (mean image)")
+    ap.add_argument("--threads", type=int, default=None, help="default: all cores")
+    ap.add_argument("--passes", type=int, default=1)
+    ap.add_argument("--max-depth", type=int, default=None)
+    ap.add_argument("--json-report", default=None)
+    ap.add_argument("--warmup", choices=["auto", "full", "tiny", "none"], default="auto",
+                    help="auto: 'full' for llvm (same spp/pass + film, untimed), 'none' for scalar; "
+                         "'tiny' = spp=1 (does not avoid recompiling the timed kernel)")
+    ap.add_argument("--quiet", action="store_true")
+    a = ap.parse_args(argv)
+
+    K = a.passes
+    if K < 1 or a.spp < 1 or a.spp % K:
+        ap.error("--spp must be a positive multiple of --passes")
+    spp_pass = a.spp // K
+
+    mi.set_variant(a.variant)
+    mi.set_log_level(mi.LogLevel.Warn)
+    if a.threads is not None:
+        dr.set_thread_count(a.threads)
+
+    with open(a.scene) as f:
+        sj = json.load(f)
+    if a.max_depth is not None:
+        sj.setdefault("integrator", {"type": "path"})["max_depth"] = a.max_depth
+
+    t0 = time.perf_counter()
+    scene = mi.load_dict(to_mitsuba_dict(sj))
+    load_s = time.perf_counter() - t0
+    film_size = scene.sensors()[0].film().size()
+    W, H = int(film_size[0]), int(film_size[1])
+
+    # JIT warm-up (llvm only). Dr.Jit bakes spp and the film size into the kernel as
+    # literals, so a spp=1 warm-up does NOT compile the kernel used by the timed render
+    # (measured: ~0.11 s of LLVM compile lands in the timed render on a cold kernel cache).
+    # Hence the default "full" warm-up renders once with the exact timed configuration.
+    is_llvm = a.variant.startswith("llvm")
+    warmup = a.warmup if a.warmup != "auto" else ("full" if is_llvm else "none")
+    warm_s = 0.0
+    if warmup != "none":
+        t0 = time.perf_counter()
+        _render(scene, 1 if warmup == "tiny" else spp_pass, a.seed + 1_000_003)
+        warm_s = time.perf_counter() - t0
+    if is_llvm:
+        dr.set_flag(dr.JitFlag.KernelHistory, True)
+        dr.kernel_history()  # clear
+
+    seeds = [a.seed] if K == 1 else [a.seed * K + k for k in range(K)]
+    imgs, secs = [], []
+    for s in seeds:
+        t0 = time.perf_counter()
+        img = _render(scene, spp_pass, s)
+        secs.append(time.perf_counter() - t0)
+        imgs.append(np.array(img, dtype=np.float64))
+    seconds = float(sum(secs))
+    jit_compile_s = None
+    if is_llvm:
+        hist = dr.kernel_history()
+        dr.set_flag(dr.JitFlag.KernelHistory, False)
+        jit_compile_s = sum(k.get("codegen_time", 0.0) + k.get("backend_time", 0.0)
+                            for k in hist if k.get("type") == dr.KernelType.JIT) / 1000.0
+
+    n_threads = int(dr.thread_count())
+    # Mitsuba 3.9's EXR writer (OpenEXR/IlmThread on Dr.Jit's pool) deadlocks when the
+    # pool has a single thread, so widen the pool again for the (untimed) file output.
+    if n_threads < 2:
+        dr.set_thread_count(2)
+
+    stack = np.stack(imgs)
+    mean = stack.mean(axis=0)
+    out_dir = os.path.dirname(os.path.abspath(a.out))
+    os.makedirs(out_dir, exist_ok=True)
+    _write_exr(a.out, mean)
+    var_path = None
+    if K > 1:
+        var_path = (a.out[:-4] if a.out.lower().endswith(".exr") else a.out) + ".var.exr"
+        _write_exr(var_path, stack.var(axis=0, ddof=1) / K)  # variance of the mean
+
+    report = {
+        "renderer": "mitsuba",
+        "mitsuba_version": mi.__version__,
+        "variant": a.variant,
+        "spp": a.spp,
+        "passes": K,
+        "seed": a.seed,
+        "pass_seeds": seeds,
+        "width": W,
+        "height": H,
+        "seconds": seconds,
+        "pass_seconds": secs,
+        "samples_per_second": W * H * a.spp / seconds if seconds > 0 else None,
+        "threads": n_threads,
+        "warmup": warmup,
+        "warmup_seconds": warm_s,
+        "jit_compile_seconds_in_timed": jit_compile_s,
+        "load_seconds": load_s,
+        "max_depth": int(sj.get("integrator", {}).get("max_depth", -1)),
+        "out": a.out,
+        "var_out": var_path,
+    }
+    if a.json_report:
+        with open(a.json_report, "w") as f:
+            json.dump(report, f, indent=2)
+    if not a.quiet:
+        print(json.dumps(report))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
