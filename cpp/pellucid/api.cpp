@@ -9,6 +9,7 @@
 #include "pellucid/pellucid.h"
 #include "pellucid/scene/build.h"
 #include "pellucid/scene/json_io.h"
+#include "pellucid/scene/mitsuba_xml.h"
 #include "pellucid/util/error.h"
 
 namespace pellucid {
@@ -16,7 +17,8 @@ namespace pellucid {
 SceneDesc load_desc_file(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     if (ext == ".json") return read_json_file(path);
-    throw Error(path + ": unsupported scene format '" + ext + "' (expected .json)");
+    if (ext == ".xml") return read_mitsuba_xml_file(path, /*lenient=*/false);
+    throw Error(path + ": unsupported scene format '" + ext + "' (expected .json or Mitsuba 3 .xml)");
 }
 
 std::shared_ptr<const Scene> load_file(const std::string& path) { return load_desc(load_desc_file(path)); }

@@ -11,7 +11,7 @@
 #include "pellucid/scene/scene_desc.h"
 
 namespace pellucid {
-/// Parse a scene file (by extension: .json; .xml once Mitsuba import lands) into the IR.
+/// Parse a scene file (by extension: .json, or Mitsuba 3 .xml) into the IR.
 SceneDesc load_desc_file(const std::string& path);
 /// Parse and build a scene file.
 std::shared_ptr<const Scene> load_file(const std::string& path);

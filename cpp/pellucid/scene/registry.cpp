@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "pellucid/geometry/mesh_io.h"
 #include "pellucid/material/builders.h"
 #include "pellucid/util/error.h"
 
@@ -47,6 +48,24 @@ ShapeGeometry build_mesh(Properties& p, const BuildContext&) {
     if (p.get_bool("smooth_normals", false)) g.mesh.compute_smooth_normals();
     return g;
 }
+// Meshes from files (geometry/mesh_io.h). Per-face OBJ materials are not mapped yet: the shape's
+// `material` applies to every face.
+ShapeGeometry build_mesh_file(Properties& p, const BuildContext& ctx, bool obj) {
+    ShapeGeometry g;
+    MeshLoadOptions o;
+    std::string file = ctx.resolve(p.get_string("filename"));
+    o.face_normals = p.get_bool("face_normals", false);
+    o.smooth_normals = p.get_bool("smooth_normals", false);
+    if (obj) o.flip_tex_coords = p.get_bool("flip_tex_coords", false);
+    try {
+        g.mesh = obj ? load_obj(file, o).mesh : load_ply(file, o);
+    } catch (const Error& e) {
+        p.fail("filename", e.what());
+    }
+    return g;
+}
+ShapeGeometry build_obj(Properties& p, const BuildContext& ctx) { return build_mesh_file(p, ctx, true); }
+ShapeGeometry build_ply(Properties& p, const BuildContext& ctx) { return build_mesh_file(p, ctx, false); }
 ShapeGeometry build_rectangle(Properties&, const BuildContext&) {
     ShapeGeometry g;
     g.mesh = TriangleMesh::rectangle();
@@ -105,6 +124,8 @@ const std::map<std::string, MaterialBuilder>& material_registry() {
 const std::map<std::string, ShapeBuilder>& shape_registry() {
     static const std::map<std::string, ShapeBuilder> table = {
         {"mesh", build_mesh},
+        {"obj", build_obj},
+        {"ply", build_ply},
         {"rectangle", build_rectangle},
         {"cube", build_cube},
         {"sphere", build_sphere},

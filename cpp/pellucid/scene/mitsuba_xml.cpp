@@ -1,0 +1,881 @@
+// Mitsuba 3 XML -> SceneDesc. The only pugixml user. The converter emits exactly the JSON-shaped
+// tree of docs/scene-format.md, so the builder, its validation and its error messages are shared
+// with JSON scenes. Every mapping and difference is listed in docs/mitsuba-import.md.
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/scene/mitsuba_xml.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <pugixml.hpp>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "pellucid/util/error.h"
+#include "pellucid/util/log.h"
+
+namespace pellucid {
+namespace {
+namespace fs = std::filesystem;
+
+constexpr int kMaxIncludeDepth = 16;
+constexpr double kPiD = 3.14159265358979323846;
+
+/// One parsed XML file (the scene or an include) with what is needed for "file:line" messages.
+struct XmlFile {
+    std::string name;  ///< as shown in messages
+    fs::path dir;      ///< directory relative names in this file resolve against
+    std::string text;
+    std::vector<size_t> line_starts;
+    pugi::xml_document doc;
+
+    int line_of(ptrdiff_t offset) const {
+        if (offset < 0) return 0;
+        auto it = std::upper_bound(line_starts.begin(), line_starts.end(), size_t(offset));
+        return int(it - line_starts.begin());
+    }
+};
+
+/// A named parameter of a plugin: a property tag, a named nested texture or a named texture ref.
+struct Prop {
+    std::string name;
+    Node value;
+    pugi::xml_node node;
+    bool used = false;
+};
+
+struct Collected {
+    std::vector<Prop> props;
+    std::vector<pugi::xml_node> objects;  ///< unnamed nested plugins and refs to them
+};
+
+/// An object with an id, for <ref id=...>.
+struct IdEntry {
+    std::string kind;  ///< "bsdf", "texture", or another tag (not referencable here)
+    Node value;        ///< textures: the node to inline; bsdfs: the material name
+    int line = 0;
+};
+
+bool is_property_tag(const std::string& t) {
+    return t == "float" || t == "integer" || t == "boolean" || t == "string" || t == "rgb" ||
+           t == "spectrum" || t == "point" || t == "vector" || t == "transform";
+}
+
+bool is_object_tag(const std::string& t) {
+    return t == "bsdf" || t == "shape" || t == "emitter" || t == "sensor" || t == "film" ||
+           t == "sampler" || t == "rfilter" || t == "integrator" || t == "texture" || t == "medium" ||
+           t == "phase" || t == "volume" || t == "ref";
+}
+
+Node num(double v) { return Node::number(v, false); }
+
+Node vec_node(const std::vector<double>& v) {
+    Node a = Node::array();
+    for (double x : v) a.push_back(num(x));
+    return a;
+}
+
+using NameMap = std::vector<std::pair<const char*, const char*>>;  // Mitsuba name -> our name
+
+class Converter {
+public:
+    Converter(bool lenient, const std::map<std::string, std::string>& params, fs::path base_dir)
+        : m_lenient(lenient), m_params(params), m_base_dir(std::move(base_dir)) {}
+
+    SceneDesc run(const std::string& text, const std::string& source) {
+        XmlFile& f = load(text, source, m_base_dir, pugi::xml_node());
+        pugi::xml_node root = scene_root(f);
+        m_file = &f;
+        check_version(root);
+        parse_scene_children(root, 0);
+
+        SceneDesc d;
+        d.source = source;
+        d.base_dir = m_base_dir.string();
+        d.root = Node::object();
+        d.root.line = line(root);
+        if (m_camera) d.root.set("camera", *m_camera);
+        if (m_film) d.root.set("film", *m_film);
+        if (m_sampler) d.root.set("sampler", *m_sampler);
+        if (m_integrator) d.root.set("integrator", *m_integrator);
+        if (m_materials.size()) d.root.set("materials", m_materials);
+        if (m_shapes.size()) d.root.set("shapes", m_shapes);
+        if (m_lights.size()) d.root.set("lights", m_lights);
+        return d;
+    }
+
+private:
+    // ---- files, lines, errors ------------------------------------------------------------------
+    XmlFile& load(const std::string& text, const std::string& name, const fs::path& dir,
+                  pugi::xml_node from) {
+        auto f = std::make_unique<XmlFile>();
+        f->name = name;
+        f->dir = dir;
+        f->text = text;
+        f->line_starts.push_back(0);
+        for (size_t i = 0; i < f->text.size(); ++i)
+            if (f->text[i] == '\n') f->line_starts.push_back(i + 1);
+        pugi::xml_parse_result r =
+            f->doc.load_buffer(f->text.data(), f->text.size(), pugi::parse_default, pugi::encoding_utf8);
+        if (!r)
+            throw Error(name + ":" + std::to_string(f->line_of(r.offset)) + ": malformed XML: " +
+                        r.description());
+        m_files.push_back(std::move(f));
+        return *m_files.back();
+    }
+
+    pugi::xml_node scene_root(const XmlFile& f) {
+        pugi::xml_node root = f.doc.document_element();
+        if (!root || std::string(root.name()) != "scene") {
+            std::string got = root ? "<" + std::string(root.name()) + ">" : "nothing";
+            throw Error(f.name + ":" + std::to_string(root ? f.line_of(root.offset_debug()) : 1) +
+                        ": expected a <scene> root element, got " + got);
+        }
+        return root;
+    }
+
+    void check_version(pugi::xml_node root) {
+        pugi::xml_attribute v = root.attribute("version");
+        if (!v) return;
+        int major = std::atoi(v.value());
+        if (major < 2)
+            unsupported(root, "Mitsuba scene version " + std::string(v.value()) +
+                                  " is not supported (only 3.x; parameter names changed in 2.0)");
+    }
+
+    int line(pugi::xml_node n) const { return n ? m_file->line_of(n.offset_debug()) : 0; }
+    std::string where(pugi::xml_node n) const { return m_file->name + ":" + std::to_string(line(n)); }
+
+    [[noreturn]] void fail(pugi::xml_node n, const std::string& msg) const {
+        throw Error(where(n) + ": " + msg);
+    }
+
+    /// Unsupported input: an error, or in lenient mode a warning (the caller skips the element).
+    void unsupported(pugi::xml_node n, const std::string& msg) const {
+        if (!m_lenient) fail(n, msg);
+        log_warning(where(n) + ": " + msg + " (skipped)");
+    }
+
+    // ---- attributes and values ------------------------------------------------------------------
+    std::string substitute(const std::string& s, pugi::xml_node n) const {
+        if (s.find('$') == std::string::npos) return s;
+        std::string out;
+        for (size_t i = 0; i < s.size();) {
+            if (s[i] != '$') {
+                out += s[i++];
+                continue;
+            }
+            size_t j = i + 1;
+            while (j < s.size() && (std::isalnum(static_cast<unsigned char>(s[j])) || s[j] == '_')) ++j;
+            std::string key = s.substr(i + 1, j - i - 1);
+            if (key.empty()) fail(n, "stray '$' in attribute value '" + s + "'");
+            auto p = m_params.find(key);
+            if (p != m_params.end()) out += p->second;
+            else {
+                auto d = m_defaults.find(key);
+                if (d == m_defaults.end())
+                    fail(n, "undefined parameter '$" + key +
+                                "' (declare it with <default name=\"" + key + "\" value=...> or pass it)");
+                out += d->second;
+            }
+            i = j;
+        }
+        return out;
+    }
+
+    std::optional<std::string> opt_attr(pugi::xml_node n, const char* name) const {
+        pugi::xml_attribute a = n.attribute(name);
+        if (!a) return std::nullopt;
+        return substitute(a.value(), n);
+    }
+
+    std::string attr(pugi::xml_node n, const char* name) const {
+        auto v = opt_attr(n, name);
+        if (!v) fail(n, "<" + std::string(n.name()) + "> needs a '" + name + "' attribute");
+        return *v;
+    }
+
+    double parse_double(const std::string& s, pugi::xml_node n) const {
+        const char* b = s.c_str();
+        while (std::isspace(static_cast<unsigned char>(*b))) ++b;
+        char* e = nullptr;
+        double v = std::strtod(b, &e);
+        while (e && std::isspace(static_cast<unsigned char>(*e))) ++e;
+        if (e == b || !e || *e != '\0' || !std::isfinite(v)) fail(n, "expected a number, got '" + s + "'");
+        return v;
+    }
+
+    std::vector<double> parse_doubles(const std::string& s, pugi::xml_node n) const {
+        std::vector<double> out;
+        std::string tok;
+        auto flush = [&] {
+            if (!tok.empty()) out.push_back(parse_double(tok, n));
+            tok.clear();
+        };
+        for (char c : s) {
+            if (c == ',' || std::isspace(static_cast<unsigned char>(c))) flush();
+            else tok += c;
+        }
+        flush();
+        return out;
+    }
+
+    std::vector<double> vec3_attr(pugi::xml_node n, const char* name) const {
+        std::vector<double> v = parse_doubles(attr(n, name), n);
+        if (v.size() != 3) fail(n, "'" + std::string(name) + "' needs 3 numbers, got " + std::to_string(v.size()));
+        return v;
+    }
+
+    /// A 3-vector from value="x, y, z" or from x= y= z= attributes (missing ones = def).
+    std::vector<double> xyz(pugi::xml_node n, double def) const {
+        if (n.attribute("value")) return vec3_attr(n, "value");
+        std::vector<double> v(3, def);
+        const char* names[3] = {"x", "y", "z"};
+        for (int i = 0; i < 3; ++i)
+            if (auto a = opt_attr(n, names[i])) v[size_t(i)] = parse_double(*a, n);
+        return v;
+    }
+
+    std::string resolve_filename(const std::string& name) const {
+        fs::path p(name);
+        if (p.is_absolute() || m_file->dir == m_base_dir) return name;
+        fs::path full = fs::absolute(m_file->dir / p).lexically_normal();
+        fs::path rel = full.lexically_relative(fs::absolute(m_base_dir).lexically_normal());
+        return rel.empty() ? full.string() : rel.string();
+    }
+
+    Node parse_transform(pugi::xml_node t) const {
+        Node ops = Node::array();
+        for (pugi::xml_node c : t.children()) {
+            if (c.type() != pugi::node_element) continue;
+            std::string tag = c.name();
+            Node op = Node::object();
+            op.line = line(c);
+            if (tag == "translate") {
+                op.set("translate", vec_node(xyz(c, 0.0)));
+            } else if (tag == "scale") {
+                if (c.attribute("value")) {
+                    std::vector<double> v = parse_doubles(attr(c, "value"), c);
+                    if (v.size() == 1) op.set("scale", num(v[0]));
+                    else if (v.size() == 3) op.set("scale", vec_node(v));
+                    else fail(c, "<scale value> needs 1 or 3 numbers");
+                } else {
+                    op.set("scale", vec_node(xyz(c, 1.0)));
+                }
+            } else if (tag == "rotate") {
+                Node r = Node::object();
+                r.set("axis", vec_node(xyz(c, 0.0)));
+                r.set("angle", num(parse_double(attr(c, "angle"), c)));
+                op.set("rotate", r);
+            } else if (tag == "lookat") {
+                Node r = Node::object();
+                r.set("origin", vec_node(vec3_attr(c, "origin")));
+                r.set("target", vec_node(vec3_attr(c, "target")));
+                if (c.attribute("up")) r.set("up", vec_node(vec3_attr(c, "up")));
+                op.set("look_at", r);
+            } else if (tag == "matrix") {
+                std::vector<double> v = parse_doubles(attr(c, "value"), c);
+                if (v.size() != 16) fail(c, "<matrix> needs 16 numbers (row-major 4x4), got " + std::to_string(v.size()));
+                op.set("matrix", vec_node(v));
+            } else {
+                fail(c, "unknown transform operation <" + tag +
+                            "> (known: translate, rotate, scale, lookat, matrix)");
+            }
+            ops.push_back(op);
+        }
+        return ops;
+    }
+
+    /// The value of a property tag; nullopt when skipped in lenient mode.
+    std::optional<Node> parse_property(pugi::xml_node n) const {
+        std::string tag = n.name();
+        std::string name = attr(n, "name");
+        Node v;
+        if (tag == "float") {
+            v = num(parse_double(attr(n, "value"), n));
+        } else if (tag == "integer") {
+            std::string s = attr(n, "value");
+            char* e = nullptr;
+            long long i = std::strtoll(s.c_str(), &e, 10);
+            if (s.empty() || *e != '\0') fail(n, "expected an integer, got '" + s + "'");
+            v = Node::number(double(i), true);
+        } else if (tag == "boolean") {
+            std::string s = attr(n, "value");
+            std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+            if (s != "true" && s != "false") fail(n, "expected true or false, got '" + s + "'");
+            v = Node::boolean(s == "true");
+        } else if (tag == "string") {
+            std::string s = attr(n, "value");
+            v = Node::string(name == "filename" ? resolve_filename(s) : s);
+        } else if (tag == "rgb") {
+            std::vector<double> c = parse_doubles(attr(n, "value"), n);
+            if (c.size() == 1) v = num(c[0]);
+            else if (c.size() == 3) v = vec_node(c);
+            else fail(n, "<rgb> needs 1 or 3 numbers, got " + std::to_string(c.size()));
+        } else if (tag == "spectrum") {
+            if (n.attribute("filename")) {
+                unsupported(n, "spectrum files are not supported; use <rgb>");
+                return std::nullopt;
+            }
+            std::string s = attr(n, "value");
+            if (s.find(':') != std::string::npos) {
+                unsupported(n, "spectra given as wavelength:value pairs are not supported; use <rgb>");
+                return std::nullopt;
+            }
+            std::vector<double> c = parse_doubles(s, n);
+            if (c.size() != 1) fail(n, "<spectrum value> needs one number (grey), got " + std::to_string(c.size()));
+            v = num(c[0]);
+        } else if (tag == "point" || tag == "vector") {
+            v = vec_node(xyz(n, 0.0));
+        } else if (tag == "transform") {
+            v = parse_transform(n);
+        }
+        v.line = line(n);
+        return v;
+    }
+
+    // ---- ids and refs ---------------------------------------------------------------------------
+    const IdEntry& lookup_ref(pugi::xml_node ref) const {
+        std::string id = attr(ref, "id");
+        auto it = m_ids.find(id);
+        if (it == m_ids.end()) fail(ref, "unknown reference id '" + id + "'");
+        return it->second;
+    }
+
+    void register_id(pugi::xml_node n, const std::string& id, IdEntry e) {
+        auto it = m_ids.find(id);
+        if (it != m_ids.end())
+            fail(n, "duplicate id '" + id + "' (first defined on line " + std::to_string(it->second.line) + ")");
+        e.line = line(n);
+        m_ids.emplace(id, std::move(e));
+    }
+
+    // ---- collecting a plugin's children ---------------------------------------------------------
+    Collected collect(pugi::xml_node n) {
+        Collected c;
+        for (pugi::xml_node ch : n.children()) {
+            if (ch.type() != pugi::node_element) continue;
+            std::string tag = ch.name();
+            if (is_property_tag(tag)) {
+                std::string name = attr(ch, "name");
+                if (auto v = parse_property(ch)) c.props.push_back({name, *v, ch});
+            } else if (tag == "texture" && ch.attribute("name")) {
+                if (auto v = texture_value(ch)) c.props.push_back({attr(ch, "name"), *v, ch});
+            } else if (tag == "ref") {
+                const IdEntry& e = lookup_ref(ch);
+                if (e.kind == "texture") {
+                    if (ch.attribute("name")) {
+                        Node v = e.value;
+                        v.line = line(ch);
+                        c.props.push_back({attr(ch, "name"), v, ch});
+                    } else {
+                        c.objects.push_back(ch);
+                    }
+                } else {
+                    c.objects.push_back(ch);
+                }
+            } else if (is_object_tag(tag)) {
+                c.objects.push_back(ch);
+            } else {
+                unsupported(ch, "unknown element <" + tag + ">");
+            }
+        }
+        return c;
+    }
+
+    Prop* take(Collected& c, const std::string& name) {
+        for (Prop& p : c.props)
+            if (!p.used && p.name == name) {
+                p.used = true;
+                return &p;
+            }
+        return nullptr;
+    }
+
+    /// Copy the remaining parameters under their new names; the rest is unsupported.
+    void map_params(Node& out, Collected& c, const std::string& what, const NameMap& names,
+                    const std::vector<const char*>& ignored = {}) {
+        for (Prop& p : c.props) {
+            if (p.used) continue;
+            p.used = true;
+            auto it = std::find_if(names.begin(), names.end(), [&](const auto& m) { return p.name == m.first; });
+            if (it != names.end()) {
+                if (out.find(it->second)) fail(p.node, "parameter '" + p.name + "' given twice");
+                out.set(it->second, p.value);
+                continue;
+            }
+            if (std::find_if(ignored.begin(), ignored.end(), [&](const char* s) { return p.name == s; }) != ignored.end()) {
+                log_info(where(p.node) + ": parameter '" + p.name + "' of " + what + " is ignored");
+                continue;
+            }
+            unsupported(p.node, "unsupported parameter '" + p.name + "' of " + what);
+        }
+    }
+
+    static void set_default(Node& out, const std::string& key, Node v) {
+        if (!out.find(key)) out.set(key, std::move(v));
+    }
+
+    Node make(const std::string& type, pugi::xml_node n) const {
+        Node o = Node::object();
+        o.line = line(n);
+        o.set("type", Node::string(type));
+        return o;
+    }
+
+    void no_objects(const Collected& c, const std::string& what) {
+        for (pugi::xml_node o : c.objects) unsupported(o, "unexpected <" + std::string(o.name()) + "> inside " + what);
+    }
+
+    // ---- textures -------------------------------------------------------------------------------
+    std::optional<Node> texture_value(pugi::xml_node n) {
+        if (std::string(n.name()) == "ref") {
+            const IdEntry& e = lookup_ref(n);
+            if (e.kind != "texture") fail(n, "reference '" + attr(n, "id") + "' is a " + e.kind + ", expected a texture");
+            return e.value;
+        }
+        std::string type = attr(n, "type");
+        std::string what = "texture plugin '" + type + "'";
+        Collected c = collect(n);
+        Node out;
+        if (type == "bitmap") {
+            out = make("image", n);
+            map_params(out, c, what,
+                       {{"filename", "filename"}, {"filter_type", "filter_type"}, {"wrap_mode", "wrap_mode"},
+                        {"raw", "raw"}, {"to_uv", "to_uv"}},
+                       {"format"});
+            if (!out.find("filename")) fail(n, "bitmap texture needs a 'filename'");
+        } else if (type == "checkerboard") {
+            out = make("checkerboard", n);
+            map_params(out, c, what, {{"color0", "color0"}, {"color1", "color1"}, {"to_uv", "to_uv"}});
+        } else {
+            unsupported(n, "unsupported " + what);
+            return std::nullopt;
+        }
+        no_objects(c, what);
+        if (auto id = opt_attr(n, "id")) register_id(n, *id, {"texture", out, 0});
+        return out;
+    }
+
+    // ---- bsdfs ----------------------------------------------------------------------------------
+    /// A shape's (or wrapper's) material: a name (for bsdfs with an id, or refs) or an inline object.
+    std::optional<Node> bsdf_value(pugi::xml_node n) {
+        if (std::string(n.name()) == "ref") {
+            const IdEntry& e = lookup_ref(n);
+            if (e.kind != "bsdf") fail(n, "reference '" + attr(n, "id") + "' is a " + e.kind + ", expected a bsdf");
+            return e.value;
+        }
+        std::optional<Node> b = convert_bsdf(n);
+        if (!b) return std::nullopt;
+        auto id = opt_attr(n, "id");
+        if (!id) return b;
+        // Named bsdfs become entries of "materials"; a wrapper that resolved to a name aliases it.
+        Node mat = *b;
+        if (mat.is_string()) mat = *m_materials.find(mat.as_string());
+        register_id(n, *id, {"bsdf", Node::string(*id), 0});
+        m_materials.set(*id, mat);
+        return Node::string(*id);
+    }
+
+    std::optional<Node> convert_bsdf(pugi::xml_node n) {
+        std::string type = attr(n, "type");
+        std::string what = "bsdf plugin '" + type + "'";
+        if (type == "twosided") {
+            // Our materials reflect on both sides already; twosided only unwraps.
+            Collected c = collect(n);
+            Node none = Node::object();
+            map_params(none, c, what, {});
+            std::vector<pugi::xml_node> inner;
+            for (pugi::xml_node o : c.objects) {
+                std::string t = o.name();
+                if (t == "bsdf" || (t == "ref" && lookup_ref(o).kind == "bsdf")) inner.push_back(o);
+                else unsupported(o, "unexpected <" + t + "> inside " + what);
+            }
+            if (inner.size() == 2) {
+                unsupported(n, "twosided with different front and back bsdfs is not supported");
+                return std::nullopt;
+            }
+            if (inner.size() != 1) fail(n, "twosided needs exactly one nested bsdf");
+            return bsdf_value(inner[0]);
+        }
+        if (type == "bumpmap" || type == "normalmap") {
+            Collected c = collect(n);
+            Node out = make(type == "bumpmap" ? "bump_map" : "normal_map", n);
+            std::optional<Node> inner;
+            for (pugi::xml_node o : c.objects) {
+                std::string t = o.name();
+                bool is_ref = t == "ref";
+                std::string kind = is_ref ? lookup_ref(o).kind : t;
+                if (kind == "bsdf") {
+                    if (inner) fail(o, what + " takes one nested bsdf");
+                    inner = bsdf_value(o);
+                    if (!inner) return std::nullopt;
+                } else if (kind == "texture" && type == "bumpmap") {
+                    if (auto tex = texture_value(o)) out.set("texture", *tex);
+                    else return std::nullopt;
+                } else {
+                    unsupported(o, "unexpected <" + t + "> inside " + what);
+                }
+            }
+            if (type == "bumpmap") map_params(out, c, what, {{"scale", "scale"}});
+            else map_params(out, c, what, {{"normalmap", "normalmap"}});
+            if (!inner) fail(n, what + " needs a nested bsdf");
+            if (type == "bumpmap" && !out.find("texture")) fail(n, "bumpmap needs a nested texture");
+            if (type == "normalmap" && !out.find("normalmap")) fail(n, "normalmap needs a texture named 'normalmap'");
+            out.set("material", *inner);
+            return out;
+        }
+
+        Collected c = collect(n);
+        Node out;
+        const NameMap ior = {{"int_ior", "int_ior"}, {"ext_ior", "ext_ior"}};
+        const NameMap rough = {{"distribution", "distribution"}, {"alpha", "alpha"},
+                               {"alpha_u", "alpha_u"}, {"alpha_v", "alpha_v"}};
+        auto cat = [](NameMap a, const NameMap& b) {
+            a.insert(a.end(), b.begin(), b.end());
+            return a;
+        };
+        const NameMap metal = {{"material", "material"}, {"eta", "eta"}, {"k", "k"},
+                               {"specular_reflectance", "specular_reflectance"}};
+        const NameMap glass = cat(ior, {{"specular_reflectance", "specular_reflectance"},
+                                        {"specular_transmittance", "specular_transmittance"}});
+        const NameMap plastic = cat(ior, {{"diffuse_reflectance", "diffuse_reflectance"},
+                                          {"specular_reflectance", "specular_reflectance"}});
+        if (type == "diffuse") {
+            out = make("lambertian", n);
+            map_params(out, c, what, {{"reflectance", "reflectance"}});
+        } else if (type == "roughdiffuse") {
+            // Mitsuba's alpha is an RMS slope; its Oren-Nayar sigma (radians) is alpha / sqrt(2).
+            out = make("oren_nayar", n);
+            out.set("variant", Node::string("classic"));
+            double alpha = 0.2;
+            if (Prop* a = take(c, "alpha")) {
+                if (!a->value.is_number()) {
+                    unsupported(a->node, "roughdiffuse 'alpha' must be a number (textures are not supported)");
+                    return std::nullopt;
+                }
+                alpha = a->value.as_number();
+            }
+            out.set("sigma", num(alpha / std::sqrt(2.0) * 180.0 / kPiD));
+            map_params(out, c, what, {{"reflectance", "reflectance"}}, {"use_fast_approx"});
+        } else if (type == "conductor") {
+            out = make("conductor", n);
+            map_params(out, c, what, metal);
+        } else if (type == "roughconductor") {
+            out = make("rough_conductor", n);
+            map_params(out, c, what, cat(metal, rough), {"sample_visible"});
+            set_default(out, "distribution", Node::string("beckmann"));
+        } else if (type == "dielectric") {
+            out = make("dielectric", n);
+            map_params(out, c, what, glass);
+        } else if (type == "roughdielectric") {
+            out = make("rough_dielectric", n);
+            map_params(out, c, what, cat(glass, rough), {"sample_visible"});
+            set_default(out, "distribution", Node::string("beckmann"));
+        } else if (type == "thindielectric") {
+            out = make("thin_dielectric", n);
+            map_params(out, c, what, glass);
+        } else if (type == "plastic" || type == "roughplastic") {
+            bool is_rough = type == "roughplastic";
+            out = make(is_rough ? "rough_plastic" : "plastic", n);
+            if (Prop* nl = take(c, "nonlinear"))
+                if (nl->value.is_bool() && nl->value.as_bool())
+                    log_warning(where(nl->node) + ": 'nonlinear' of " + what +
+                                " is ignored (pellucid's plastic has one internal-scattering model)");
+            map_params(out, c, what,
+                       is_rough ? cat(plastic, {{"distribution", "distribution"}, {"alpha", "alpha"}}) : plastic,
+                       {"sample_visible"});
+            if (is_rough) set_default(out, "distribution", Node::string("beckmann"));
+        } else if (type == "principled") {
+            out = make("principled", n);
+            map_params(out, c, what,
+                       {{"base_color", "base_color"}, {"metallic", "metallic"}, {"roughness", "roughness"},
+                        {"specular", "specular"}, {"spec_tint", "specular_tint"}, {"sheen", "sheen"},
+                        {"sheen_tint", "sheen_tint"}, {"clearcoat", "clearcoat"},
+                        {"clearcoat_gloss", "clearcoat_gloss"}, {"anisotropic", "anisotropic"}});
+            // Mitsuba 3's defaults where they differ from ours.
+            set_default(out, "base_color", num(0.5));
+            set_default(out, "sheen_tint", num(0.0));
+            set_default(out, "clearcoat_gloss", num(0.0));
+        } else {
+            unsupported(n, "unsupported " + what);
+            return std::nullopt;
+        }
+        no_objects(c, what);
+        return out;
+    }
+
+    // ---- shapes and emitters --------------------------------------------------------------------
+    std::optional<Node> convert_shape(pugi::xml_node n) {
+        std::string type = attr(n, "type");
+        std::string what = "shape plugin '" + type + "'";
+        Node out;
+        NameMap names = {{"to_world", "to_world"}, {"flip_normals", "flip_normals"}};
+        if (type == "obj" || type == "ply") {
+            names.push_back({"filename", "filename"});
+            names.push_back({"face_normals", "face_normals"});
+            if (type == "obj") names.push_back({"flip_tex_coords", "flip_tex_coords"});
+        } else if (type == "sphere") {
+            names.push_back({"center", "center"});
+            names.push_back({"radius", "radius"});
+        } else if (type != "rectangle" && type != "cube" && type != "disk") {
+            unsupported(n, "unsupported " + what);
+            return std::nullopt;
+        }
+        out = make(type, n);
+        Collected c = collect(n);
+        map_params(out, c, what, names);
+        if (type == "obj" || type == "ply") {
+            if (!out.find("filename")) fail(n, type + " shape needs a 'filename'");
+            set_default(out, "face_normals", Node::boolean(false));
+            // Mitsuba flips OBJ texture v by default (OBJ's v points up, image rows go down).
+            if (type == "obj") set_default(out, "flip_tex_coords", Node::boolean(true));
+        }
+        std::optional<Node> material, emitter;
+        for (pugi::xml_node o : c.objects) {
+            std::string t = o.name();
+            std::string kind = t == "ref" ? lookup_ref(o).kind : t;
+            if (kind == "bsdf") {
+                if (material) fail(o, "a shape takes one bsdf");
+                material = bsdf_value(o);
+            } else if (t == "emitter") {
+                if (emitter) fail(o, "a shape takes one emitter");
+                emitter = convert_area(o);
+            } else if (kind == "medium") {
+                unsupported(o, "participating media are not supported yet");
+            } else {
+                unsupported(o, "unexpected <" + t + "> inside " + what);
+            }
+        }
+        if (material) out.set("material", *material);
+        if (emitter) out.set("emitter", *emitter);
+        return out;
+    }
+
+    std::optional<Node> convert_area(pugi::xml_node n) {
+        std::string type = attr(n, "type");
+        if (type != "area") {
+            unsupported(n, "emitter '" + type + "' cannot be attached to a shape (only 'area')");
+            return std::nullopt;
+        }
+        Collected c = collect(n);
+        Node out = make("area", n);
+        map_params(out, c, "emitter plugin 'area'", {{"radiance", "radiance"}});
+        no_objects(c, "emitter plugin 'area'");
+        return out;
+    }
+
+    std::optional<Node> convert_light(pugi::xml_node n) {
+        std::string type = attr(n, "type");
+        std::string what = "emitter plugin '" + type + "'";
+        NameMap names;
+        if (type == "point") names = {{"position", "position"}, {"intensity", "intensity"}, {"to_world", "to_world"}};
+        else if (type == "spot")
+            names = {{"intensity", "intensity"}, {"cutoff_angle", "cutoff_angle"},
+                     {"beam_width", "beam_width"}, {"to_world", "to_world"}};
+        else if (type == "directional")
+            names = {{"irradiance", "irradiance"}, {"direction", "direction"}, {"to_world", "to_world"}};
+        else if (type == "constant") names = {{"radiance", "radiance"}};
+        else if (type == "envmap") names = {{"filename", "filename"}, {"scale", "scale"}, {"to_world", "to_world"}};
+        else if (type == "area") fail(n, "an 'area' emitter must be nested in a <shape>");
+        else {
+            unsupported(n, "unsupported " + what);
+            return std::nullopt;
+        }
+        Collected c = collect(n);
+        Node out = make(type, n);
+        map_params(out, c, what, names, type == "envmap" ? std::vector<const char*>{"mis_compensation"}
+                                                         : std::vector<const char*>{});
+        no_objects(c, what);
+        if (type == "envmap" && !out.find("filename")) fail(n, "envmap needs a 'filename'");
+        return out;
+    }
+
+    // ---- sensor, film, sampler, integrator ------------------------------------------------------
+    void convert_sensor(pugi::xml_node n) {
+        std::string type = attr(n, "type");
+        if (type != "perspective") {
+            unsupported(n, "unsupported sensor plugin '" + type + "' (known: perspective)");
+            return;
+        }
+        if (m_camera) fail(n, "more than one <sensor>");
+        Collected c = collect(n);
+        Node cam = make("perspective", n);
+        map_params(cam, c, "sensor plugin 'perspective'",
+                   {{"fov", "fov"}, {"fov_axis", "fov_axis"}, {"to_world", "to_world"}},
+                   {"near_clip", "far_clip"});
+        for (pugi::xml_node o : c.objects) {
+            std::string t = o.name();
+            if (t == "film") convert_film(o);
+            else if (t == "sampler") convert_sampler(o);
+            else unsupported(o, "unexpected <" + t + "> inside a sensor");
+        }
+        m_camera = cam;
+    }
+
+    void convert_film(pugi::xml_node n) {
+        std::string type = attr(n, "type");
+        if (type != "hdrfilm") {
+            unsupported(n, "unsupported film plugin '" + type + "' (known: hdrfilm)");
+            return;
+        }
+        Collected c = collect(n);
+        Node film = Node::object();
+        film.line = line(n);
+        map_params(film, c, "film plugin 'hdrfilm'", {{"width", "width"}, {"height", "height"}},
+                   {"pixel_format", "component_format", "file_format", "banner", "sample_border"});
+        set_default(film, "width", Node::number(768, true));  // Mitsuba's defaults
+        set_default(film, "height", Node::number(576, true));
+        for (pugi::xml_node o : c.objects) {
+            if (std::string(o.name()) != "rfilter") {
+                unsupported(o, "unexpected <" + std::string(o.name()) + "> inside a film");
+                continue;
+            }
+            std::string ft = attr(o, "type");
+            std::string what = "rfilter plugin '" + ft + "'";
+            NameMap names;
+            if (ft == "box" || ft == "tent") names = {{"radius", "radius"}};
+            else if (ft == "gaussian") names = {{"stddev", "stddev"}};
+            else {
+                unsupported(o, "unsupported " + what + " (known: box, tent, gaussian)");
+                continue;
+            }
+            Collected fc = collect(o);
+            Node f = make(ft, o);
+            map_params(f, fc, what, names);
+            no_objects(fc, what);
+            film.set("filter", f);
+        }
+        m_film = film;
+    }
+
+    void convert_sampler(pugi::xml_node n) {
+        std::string type = attr(n, "type");
+        static const char* kKnown[] = {"independent", "stratified", "multijitter", "orthogonal",
+                                       "ldsampler", "low_discrepancy"};
+        if (std::find(std::begin(kKnown), std::end(kKnown), type) == std::end(kKnown)) {
+            unsupported(n, "unsupported sampler plugin '" + type + "'");
+            return;
+        }
+        if (type != "independent")
+            log_warning(where(n) + ": sampler '" + type + "' is read as 'independent' (same sample_count)");
+        Collected c = collect(n);
+        Node s = make("independent", n);
+        map_params(s, c, "sampler plugin '" + type + "'", {{"sample_count", "sample_count"}, {"seed", "seed"}},
+                   {"jitter", "dimension"});
+        set_default(s, "sample_count", Node::number(4, true));  // Mitsuba's default
+        no_objects(c, "a sampler");
+        m_sampler = s;
+    }
+
+    void convert_integrator(pugi::xml_node n) {
+        std::string type = attr(n, "type");
+        if (type != "path" && type != "volpath") {
+            unsupported(n, "unsupported integrator plugin '" + type + "' (known: path, volpath)");
+            return;
+        }
+        Collected c = collect(n);
+        Node it = make("path", n);
+        map_params(it, c, "integrator plugin '" + type + "'", {{"max_depth", "max_depth"}, {"rr_depth", "rr_depth"}});
+        no_objects(c, "an integrator");
+        m_integrator = it;
+    }
+
+    // ---- the scene ------------------------------------------------------------------------------
+    void include(pugi::xml_node n, int depth) {
+        std::string name = attr(n, "filename");
+        if (depth >= kMaxIncludeDepth) fail(n, "includes nested deeper than 16 (a cycle?) at '" + name + "'");
+        fs::path p(name);
+        if (p.is_relative()) p = m_file->dir / p;
+        std::ifstream in(p, std::ios::binary);
+        if (!in) fail(n, "cannot open include file '" + p.string() + "'");
+        std::stringstream ss;
+        ss << in.rdbuf();
+        const XmlFile* parent = m_file;
+        XmlFile& f = load(ss.str(), p.string(), fs::absolute(p).parent_path(), n);
+        pugi::xml_node root = scene_root(f);
+        m_file = &f;
+        check_version(root);
+        parse_scene_children(root, depth + 1);
+        m_file = parent;
+    }
+
+    void parse_scene_children(pugi::xml_node scene, int depth) {
+        for (pugi::xml_node ch : scene.children()) {
+            if (ch.type() != pugi::node_element) continue;
+            std::string tag = ch.name();
+            if (tag == "default") {
+                std::string name = attr(ch, "name");
+                pugi::xml_attribute v = ch.attribute("value");
+                if (!v) fail(ch, "<default> needs a 'value' attribute");
+                if (!m_params.count(name) && !m_defaults.count(name)) m_defaults[name] = v.value();
+            } else if (tag == "include") {
+                include(ch, depth);
+            } else if (tag == "bsdf") {
+                if (!ch.attribute("id")) {
+                    log_warning(where(ch) + ": a top-level bsdf without an id cannot be used; ignored");
+                    continue;
+                }
+                bsdf_value(ch);
+            } else if (tag == "texture") {
+                if (!ch.attribute("id")) {
+                    log_warning(where(ch) + ": a top-level texture without an id cannot be used; ignored");
+                    continue;
+                }
+                texture_value(ch);
+            } else if (tag == "shape") {
+                if (auto s = convert_shape(ch)) m_shapes.push_back(*s);
+            } else if (tag == "emitter") {
+                if (auto l = convert_light(ch)) m_lights.push_back(*l);
+            } else if (tag == "sensor") {
+                convert_sensor(ch);
+            } else if (tag == "integrator") {
+                if (m_integrator) fail(ch, "more than one <integrator>");
+                convert_integrator(ch);
+            } else if (tag == "medium" || tag == "phase" || tag == "volume") {
+                std::string type = ch.attribute("type").value();
+                unsupported(ch, "participating media (" + tag + " '" + type + "') are not supported yet");
+            } else if (is_object_tag(tag) || is_property_tag(tag)) {
+                unsupported(ch, "<" + tag + "> is not allowed at the top level of a scene");
+            } else {
+                unsupported(ch, "unknown element <" + tag + ">");
+            }
+        }
+    }
+
+    bool m_lenient;
+    std::map<std::string, std::string> m_params, m_defaults;
+    fs::path m_base_dir;
+    std::deque<std::unique_ptr<XmlFile>> m_files;
+    const XmlFile* m_file = nullptr;
+    std::map<std::string, IdEntry> m_ids;
+
+    std::optional<Node> m_camera, m_film, m_sampler, m_integrator;
+    Node m_materials = Node::object();
+    Node m_shapes = Node::array();
+    Node m_lights = Node::array();
+};
+}  // namespace
+
+SceneDesc parse_mitsuba_xml(const std::string& text, const std::string& source, const std::string& base_dir,
+                            bool lenient, const std::map<std::string, std::string>& params) {
+    fs::path dir = base_dir.empty() ? fs::path(".") : fs::path(base_dir);
+    return Converter(lenient, params, dir).run(text, source);
+}
+
+SceneDesc read_mitsuba_xml_file(const std::string& path, bool lenient,
+                                const std::map<std::string, std::string>& params) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open scene file (does it exist?)");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return parse_mitsuba_xml(ss.str(), path, fs::absolute(path).parent_path().string(), lenient, params);
+}
+}  // namespace pellucid
