@@ -209,7 +209,11 @@ Material build_principled(Properties& p, const BuildContext&) {
 }
 
 Material build_material(const Node& node, const std::string& source, const std::string& path) {
-    Properties p(node, source, path);
+    return build_material(node, BuildContext{source, "."}, path);
+}
+
+Material build_material(const Node& node, const BuildContext& ctx, const std::string& path) {
+    Properties p(node, ctx.source, path);
     std::string type = p.type();
     auto it = material_registry().find(type);
     if (it == material_registry().end()) {
@@ -217,7 +221,7 @@ Material build_material(const Node& node, const std::string& source, const std::
         for (const auto& [k, v] : material_registry()) names.push_back(k);
         p.fail("type", "unknown material type '" + type + "' (known: " + join_names(names) + ")");
     }
-    Material m = it->second(p, BuildContext{source, "."});
+    Material m = it->second(p, ctx);
     p.check_unqueried();
     return m;
 }

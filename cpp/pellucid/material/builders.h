@@ -27,4 +27,6 @@ Material build_principled(Properties& p, const BuildContext& ctx);
 /// Build one material object (`{"type": ..., params}`) through the registry, with the same checks
 /// as a scene's `materials` entry (unknown type or key → Error "source: path.key: ...").
 Material build_material(const Node& node, const std::string& source, const std::string& path);
+/// The same, resolving files against ctx.base_dir (used by scene building).
+Material build_material(const Node& node, const BuildContext& ctx, const std::string& path);
 }  // namespace pellucid

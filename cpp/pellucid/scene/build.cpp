@@ -6,6 +6,7 @@
 #include <map>
 #include <type_traits>
 
+#include "pellucid/material/builders.h"
 #include "pellucid/scene/registry.h"
 #include "pellucid/util/error.h"
 #include "pellucid/util/log.h"
@@ -121,17 +122,8 @@ private:
     }
 
     uint32_t add_material(const Node& n, const std::string& path, const std::string& name) {
-        Properties p(n, m_desc.source, path);
-        std::string type = p.type();
-        auto it = material_registry().find(type);
-        if (it == material_registry().end()) {
-            std::vector<std::string> names;
-            for (const auto& [k, v] : material_registry()) names.push_back(k);
-            p.fail("type", "unknown material type '" + type + "' (known: " + join_names(names) + ")");
-        }
-        m_scene.materials.push_back(it->second(p, m_ctx));
+        m_scene.materials.push_back(build_material(n, m_ctx, path));
         m_scene.material_names.push_back(name);
-        p.check_unqueried();
         return uint32_t(m_scene.materials.size() - 1);
     }
 
