@@ -17,20 +17,27 @@
 
 namespace pellucid {
 
+/// The light sample of a point emitter at p_light with radiant intensity I seen from ctx
+/// (radiance arriving = I/d², a delta in direction): shared by point and spot lights.
+inline std::optional<LightLiSample> delta_point_sample(const LightSampleContext& ctx, const Point3f& p_light,
+                                                       const Spectrum& I) {
+    Vec3f d = p_light - ctx.p;
+    float d2 = length2(d);
+    if (!(d2 > 0.f)) return std::nullopt;
+    LightLiSample s;
+    s.wi = d / std::sqrt(d2);
+    s.L = I / d2;
+    s.pdf = 1.f;
+    s.p_light = p_light;
+    s.delta = true;
+    return s;
+}
+
 class PointLight {
 public:
     PointLight(const Point3f& p, const Spectrum& intensity) : m_p(p), m_I(intensity) {}
     std::optional<LightLiSample> sample_li(const LightSampleContext& ctx, Vec2f) const {
-        Vec3f d = m_p - ctx.p;
-        float d2 = length2(d);
-        if (!(d2 > 0.f)) return std::nullopt;
-        LightLiSample s;
-        s.wi = d / std::sqrt(d2);
-        s.L = m_I / d2;  // radiant intensity / distance²
-        s.pdf = 1.f;
-        s.p_light = m_p;
-        s.delta = true;
-        return s;
+        return delta_point_sample(ctx, m_p, m_I);
     }
     float power() const { return 4.f * kPi * m_I.average(); }
     std::string to_string() const { return "PointLight[position=" + pellucid::to_string(m_p) + ", intensity=" + m_I.to_string() + "]"; }
@@ -54,17 +61,11 @@ public:
         return (m_cutoff - angle) / (m_cutoff - m_beam);
     }
     std::optional<LightLiSample> sample_li(const LightSampleContext& ctx, Vec2f) const {
-        Vec3f d = m_p - ctx.p;
-        float d2 = length2(d);
-        if (!(d2 > 0.f)) return std::nullopt;
-        LightLiSample s;
-        s.wi = d / std::sqrt(d2);
-        float f = falloff(m_frame.to_local(-s.wi));
+        auto s = delta_point_sample(ctx, m_p, m_I);
+        if (!s) return s;
+        float f = falloff(m_frame.to_local(-s->wi));
         if (f <= 0.f) return std::nullopt;
-        s.L = m_I * (f / d2);
-        s.pdf = 1.f;
-        s.p_light = m_p;
-        s.delta = true;
+        s->L *= f;
         return s;
     }
     /// Power of the cone with the linear ramp approximated by its mean half-angle.
