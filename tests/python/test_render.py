@@ -57,7 +57,9 @@ def test_render_releases_the_gil(tiny_scene_dict) -> None:
     t.join()
     elapsed = time.perf_counter() - start
     assert elapsed > 0.05, "render too short to observe the GIL"
-    assert ticks >= 0.3 * elapsed / 0.001 * 0.5
+    # Had the GIL been held, the main thread would have ticked about once; a free main thread
+    # ticks once per ~1 ms sleep. Require at least 15 % of that rate (sleep overshoot, load).
+    assert ticks >= 0.15 * elapsed / 0.001
 
 
 def test_bad_scene_raises_error_with_key_path(tiny_scene_dict) -> None:

@@ -32,8 +32,10 @@ public:
     /// Per-pixel variance of the mean estimate (sample variance / n), float RGB.
     Image variance() const;
     uint64_t samples(int x, int y) const { return m_pixels[size_t(y) * m_width + x].n; }
-    /// Mean over pixels of the relative variance of each pixel's estimate, Var/(mean²+1e-4)
-    /// (luminance); the quantity target_rel_error drives to e².
+    /// Mean over pixels of the relative variance of each pixel's estimate, Var/(mean²+1e-4), on
+    /// luminance; the quantity target_rel_error drives to e². The luminance variance is the weighted
+    /// sum of channel variances, ignoring cross-channel covariance: a stopping estimate, not a
+    /// statistic tests rely on.
     double mean_relative_variance() const;
 
 private:

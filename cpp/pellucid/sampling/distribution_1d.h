@@ -52,12 +52,11 @@ public:
 
 private:
     size_t find(float u) const {
-        // Largest i with cdf[i] <= u, skipping empty cells.
+        // Largest i with cdf[i] <= u: cdf[i] <= u < cdf[i+1] makes cell i non-empty, except when u
+        // is clamped past the last cell (u rounds to ≥ cdf[n]); then step back over empty cells.
         size_t i = size_t(std::upper_bound(m_cdf.begin(), m_cdf.end(), double(u)) - m_cdf.begin());
-        i = i == 0 ? 0 : i - 1;
-        i = std::min(i, size() - 1);
+        i = std::min(i == 0 ? 0 : i - 1, size() - 1);
         while (i > 0 && m_cdf[i + 1] == m_cdf[i]) --i;
-        while (i + 1 < size() && m_cdf[i + 1] == m_cdf[i]) ++i;
         return i;
     }
     std::vector<float> m_func;

@@ -86,7 +86,7 @@ Spectrum Properties::get_spectrum(const std::string& key, const Spectrum& def) {
     if (n->is_number()) return Spectrum(number_of(*n, key));
     if (n->is_array() && n->size() == 3) {
         Spectrum s;
-        for (int i = 0; i < 3; ++i) s[i] = number_of(n->items()[i], key_path(key) == "" ? key : key);
+        for (int i = 0; i < 3; ++i) s[i] = number_of(n->items()[i], key);
         return s;
     }
     fail(key, std::string("expected a number or an array of 3 numbers, got a ") + n->kind_name() +
