@@ -2,6 +2,7 @@
 // between world and local directions; integrators never see local coordinates.
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -15,6 +16,16 @@ public:
     BSDF(const BxDF& bxdf, const Frame& shading, const Normal3f& ng)
         : m_bxdf(bxdf), m_frame(shading), m_ng(ng) {}
 
+    /// Soften the shadow terminator of a perturbed (bumped or normal-mapped) shading normal:
+    /// reflection is scaled by Chiang et al. 2019 ("Taming the Shadow Terminator", eq. 4),
+    /// G = min(1, |n0·wi| / (|ns·wi|·|n0·ns|)), factor −G³ + G² + G, with n0 the unperturbed normal.
+    /// It is 1 where the two normals agree and falls smoothly to 0 where light grazes the
+    /// unperturbed surface. (Not energy-preserving by design; the property suite runs without it.)
+    void soften_terminator(const Normal3f& n0) {
+        m_soften = true;
+        m_n0 = n0;
+    }
+
     BxDFFlags flags() const { return pellucid::flags(m_bxdf); }
     const BxDF& bxdf() const { return m_bxdf; }
 
@@ -25,6 +36,7 @@ public:
         if (wo.z == 0.f || leaks(wo_w, wi_w, wo, wi)) return Spectrum(0.f);
         Spectrum f = pellucid::eval(m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, wi);
         if (mode == TransportMode::Importance) f *= shading_correction(wo_w, wi_w, wo, wi);
+        if (m_soften) f *= terminator(wo, wi, wi_w);
         return f;
     }
     float pdf(const Vec3f& wo_w, const Vec3f& wi_w, TransportMode mode = TransportMode::Radiance) const {
@@ -44,6 +56,7 @@ public:
         s->wi = m_frame.to_world(wi_local);
         if (leaks(wo_w, s->wi, wo, wi_local)) return std::nullopt;
         if (mode == TransportMode::Importance) s->weight *= shading_correction(wo_w, s->wi, wo, wi_local);
+        if (m_soften) s->weight *= terminator(wo, wi_local, s->wi);
         return s;
     }
     Vec3f to_local(const Vec3f& v) const { return m_frame.to_local(v); }
@@ -61,8 +74,18 @@ private:
         return den > 0.f ? num / den : 0.f;
     }
 
+    float terminator(const Vec3f& wo, const Vec3f& wi, const Vec3f& wi_w) const {
+        if (wo.z * wi.z <= 0.f) return 1.f;  // transmission: no terminator
+        float cos_s = std::fabs(wi.z), cos_0 = std::fabs(dot(m_n0, wi_w)), n0_ns = std::fabs(dot(m_n0, m_frame.n));
+        if (!(cos_s * n0_ns > 0.f)) return 1.f;
+        float g = std::min(1.f, cos_0 / (cos_s * n0_ns));
+        return g * (1.f + g * (1.f - g));  // −g³ + g² + g
+    }
+
     BxDF m_bxdf;
     Frame m_frame;
     Normal3f m_ng;
+    Normal3f m_n0{0.f};
+    bool m_soften = false;
 };
 }  // namespace pellucid

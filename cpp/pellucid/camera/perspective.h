@@ -27,6 +27,23 @@ public:
         Vec3f d(m_tan_x * (1.f - 2.f * x * m_inv_w), m_tan_y * (1.f - 2.f * y * m_inv_h), 1.f);
         return Ray{m_origin, normalize(m_to_world.vector(d)), kInfinity};
     }
+    /// The same ray with its differentials toward the neighbouring pixels (x+1, y) and (x, y+1).
+    RayDifferential generate_ray_differential(float x, float y) const {
+        RayDifferential r(generate_ray(x, y));
+        r.has_differentials = true;
+        r.rx_o = r.ry_o = m_origin;
+        r.rx_d = normalize(m_to_world.vector(Vec3f(m_tan_x * (1.f - 2.f * (x + 1.f) * m_inv_w),
+                                                   m_tan_y * (1.f - 2.f * y * m_inv_h), 1.f)));
+        r.ry_d = normalize(m_to_world.vector(Vec3f(m_tan_x * (1.f - 2.f * x * m_inv_w),
+                                                   m_tan_y * (1.f - 2.f * (y + 1.f) * m_inv_h), 1.f)));
+        return r;
+    }
+    /// Approximate footprint of one pixel at a point seen along an arbitrary path (after a diffuse
+    /// or glossy bounce, where ray differentials are not tracked): the footprint the camera would
+    /// have there if it looked at p directly — the angle of one pixel at the image centre, at p's
+    /// distance from the camera, projected onto the tangent plane of normal n (the idea of pbrt-v4's
+    /// Approximate_dp_dxy). Stretching at grazing angles is capped at 64 pixel widths.
+    void approximate_dp_dxy(const Point3f& p, const Normal3f& n, Vec3f* dpdx, Vec3f* dpdy) const;
     std::string to_string() const;
 
 private:

@@ -16,7 +16,7 @@ std::unique_ptr<Integrator> make_integrator(const Scene& scene) {
 
 RenderResult PathIntegrator::render(const Scene& scene, const RenderOptions& opts) const {
     return render_loop(scene, opts, [&](const TileJob& job, Film& film) {
-        return render_tile(scene, job, film, [&](const Ray& r, PCG32& rng) { return Li(scene, r, rng); });
+        return render_tile(scene, job, film, [&](const RayDifferential& r, PCG32& rng) { return Li(scene, r, rng); });
     });
 }
 
@@ -35,7 +35,7 @@ float bsdf_hit_weight(bool use_mis, bool use_nee, bool specular, float bsdf_pdf,
 }
 }  // namespace
 
-Spectrum PathIntegrator::Li(const Scene& scene, Ray ray, PCG32& rng) const {
+Spectrum PathIntegrator::Li(const Scene& scene, RayDifferential ray, PCG32& rng) const {
     const bool use_nee = m_use_nee && !scene.lights.empty();
     const bool use_mis = m_use_mis;
     Spectrum L(0.f), beta(1.f);
@@ -66,6 +66,8 @@ Spectrum PathIntegrator::Li(const Scene& scene, Ray ray, PCG32& rng) const {
         }
         if (m_max_depth >= 0 && depth >= m_max_depth) break;
 
+        // The pixel footprint, for texture filtering and bump steps (and to carry differentials on).
+        if (scene.has_textures) scene.compute_footprint(si, ray);
         BSDF bsdf = scene.bsdf(si);
         BxDFFlags flags = bsdf.flags();
         if (flags == BxDFFlags::None) break;
@@ -102,7 +104,11 @@ Spectrum PathIntegrator::Li(const Scene& scene, Ray ray, PCG32& rng) const {
         specular = bs->is_specular();
         if (has_flag(bs->lobe, BxDFFlags::Transmission)) eta_scale *= sqr(bs->eta);
         prev_ctx = ctx;
-        ray = si.spawn_ray(bs->wi);
+        if (scene.has_textures && specular && ray.has_differentials)
+            ray = scene.specular_differentials(si, ray, si.spawn_ray(bs->wi), has_flag(bs->lobe, BxDFFlags::Transmission),
+                                               bs->eta);
+        else
+            ray = RayDifferential(si.spawn_ray(bs->wi));
 
         // Russian roulette on the throughput with the η² factor removed (pbrt-v4 §13.4.1 / Mitsuba 3
         // path.cpp): survive with q = min(max β·η², 0.95) from rr_depth on.

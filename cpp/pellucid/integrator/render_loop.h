@@ -65,7 +65,7 @@ uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, LiFn&& 
             for (int s = job.s0; s < job.s1; ++s) {
                 PCG32 rng = PCG32::for_sample(pixel, uint64_t(s), job.seed);
                 Vec2f off = sample_filter(scene.filter, rng.next_2d());
-                Spectrum L = Li(scene.camera.generate_ray(float(x) + 0.5f + off.x, float(y) + 0.5f + off.y), rng);
+                Spectrum L = Li(scene.camera.generate_ray_differential(float(x) + 0.5f + off.x, float(y) + 0.5f + off.y), rng);
                 if (!L.is_finite() || L.has_negative()) {
                     ++bad;
                     continue;

@@ -12,6 +12,9 @@
 #include "pellucid/scene/registry.h"
 #include "pellucid/util/error.h"
 #include "pellucid/util/log.h"
+#include "pellucid/material/textured.h"
+#include "pellucid/scene/texture_builder.h"
+#include <type_traits>
 
 namespace pellucid {
 namespace {
@@ -32,12 +35,6 @@ float read_nonneg(Properties& p, const std::string& key, float def, float hi) {
     return v;
 }
 
-Spectrum read_colour(Properties& p, const std::string& key, const Spectrum& def) {
-    Spectrum s = p.get_spectrum(key, def);
-    p.check_spectrum_range(key, s, 0.f, 1.f);
-    return s;
-}
-
 std::string read_choice(Properties& p, const std::string& key, const std::string& def, const char* what,
                         std::initializer_list<const char*> known) {
     std::string v = p.get_string(key, def);
@@ -49,25 +46,99 @@ std::string read_choice(Properties& p, const std::string& key, const std::string
     p.fail(key, std::string("unknown ") + what + " '" + v + "' (known: " + list + ")");
 }
 
-/// An IOR: a number > 0 or a name of bxdf/ior.h.
-float read_ior(Properties& p, const std::string& key, const char* def_name) {
-    const Node* n = p.get_node(key);
-    if (!n) return dielectric_ior(def_name);
+/// Reads a material's parameters into its Params struct `q`; a parameter given as a texture (an
+/// object with a "type", or the name of one of the scene's textures) is recorded as a binding to
+/// its field in q (material/textured.h), and the field keeps its default as the constant value.
+class Binder {
+public:
+    template <class P>
+    Binder(Properties& p, const BuildContext& ctx, P& q)
+        : m_p(p), m_ctx(ctx), m_base(reinterpret_cast<char*>(&q)), m_size(sizeof(P)) {
+        static_assert(std::is_standard_layout_v<P>, "texture bindings address Params fields by byte offset");
+    }
+    Properties& props() { return m_p; }
+
+    /// A colour with channels in [lo, hi] (error outside).
+    void colour(const std::string& key, Spectrum& field, float lo = 0.f, float hi = 1.f) {
+        if (bind(key, &field, TextureBinding::Kind::Spectrum, TextureBinding::Op::Identity, lo, hi, true)) return;
+        field = m_p.get_spectrum(key, field);
+        m_p.check_spectrum_range(key, field, lo, hi);
+    }
+    /// A float ≥ 0 (error below 0), clamped to `hi` with a warning; op maps the value (r → r²).
+    bool nonneg(const std::string& key, float& field, float hi, TextureBinding::Op op = TextureBinding::Op::Identity) {
+        if (bind(key, &field, TextureBinding::Kind::Float, op, 0.f, hi, true)) return true;
+        float v = read_nonneg(m_p, key, field, hi);
+        field = op == TextureBinding::Op::Square ? v * v : v;
+        return false;
+    }
+    /// A float in [lo, hi] (error outside).
+    void range(const std::string& key, float& field, float lo, float hi) {
+        if (bind(key, &field, TextureBinding::Kind::Float, TextureBinding::Op::Identity, lo, hi, true)) return;
+        field = m_p.check_range(key, m_p.get_float(key, field), lo, hi);
+    }
+    /// Bind `key` to `field` if its value is a texture; true if it was.
+    bool bind(const std::string& key, void* field, TextureBinding::Kind kind, TextureBinding::Op op, float lo,
+              float hi, bool names_ok) {
+        if (!m_p.has(key)) return false;
+        const Node* n = m_p.get_node(key);
+        bool is_tex = n->is_object() || (names_ok && m_ctx.textures && m_ctx.textures->is_texture(*n, true));
+        if (!is_tex) return false;
+        if (!m_ctx.textures || !m_ctx.material_textures)
+            m_p.fail(key, "a texture is only allowed in a scene (this interface takes constant parameters)");
+        MaterialTextures& mt = *m_ctx.material_textures;
+        if (mt.count >= MaterialTextures::kMaxBindings)
+            m_p.fail(key, "too many textured parameters (at most " + std::to_string(MaterialTextures::kMaxBindings) + ")");
+        uint32_t id = m_ctx.textures->texture(*n, m_p.key_path(key));
+        ptrdiff_t off = static_cast<char*>(field) - m_base;
+        PELLUCID_CHECK(off >= 0 && size_t(off) < m_size, "texture binding outside its Params struct");
+        mt.bindings[mt.count++] = TextureBinding{id, uint16_t(off), kind, op, lo, hi};
+        last_bound = mt.count - 1;
+        return true;
+    }
+    /// The same texture bound to a second field (alpha → alpha_u and alpha_v).
+    void duplicate_last(void* field) {
+        MaterialTextures& mt = *m_ctx.material_textures;
+        PELLUCID_CHECK(mt.count < MaterialTextures::kMaxBindings, "too many texture bindings");
+        TextureBinding b = mt.bindings[last_bound];
+        b.offset = uint16_t(static_cast<char*>(field) - m_base);
+        mt.bindings[mt.count++] = b;
+    }
+    int last_bound = -1;
+
+private:
+    Properties& m_p;
+    const BuildContext& m_ctx;
+    char* m_base;
+    size_t m_size;
+};
+
+/// An IOR: a number > 0, a name of bxdf/ior.h, or a texture (values clamped to [1e-3, 10]).
+void read_ior(Binder& b, const std::string& key, const char* def_name, float& field) {
+    Properties& p = b.props();
+    const Node* n = p.has(key) ? p.get_node(key) : nullptr;
+    if (!n) {
+        field = dielectric_ior(def_name);
+        return;
+    }
     if (n->is_string()) {
         std::vector<std::string> names = dielectric_names();
-        if (std::find(names.begin(), names.end(), n->as_string()) == names.end())
-            p.fail(key, "unknown IOR name '" + n->as_string() + "' (known: " + join_names(names) + ")");
-        return dielectric_ior(n->as_string());
+        if (std::find(names.begin(), names.end(), n->as_string()) != names.end()) {
+            field = dielectric_ior(n->as_string());
+            return;
+        }
+        if (b.bind(key, &field, TextureBinding::Kind::Float, TextureBinding::Op::Identity, 1e-3f, 10.f, true)) return;
+        p.fail(key, "unknown IOR name '" + n->as_string() + "' (known: " + join_names(names) + ")");
     }
+    if (b.bind(key, &field, TextureBinding::Kind::Float, TextureBinding::Op::Identity, 1e-3f, 10.f, false)) return;
     if (!n->is_number()) p.fail(key, std::string("expected a number or an IOR name, got a ") + n->kind_name());
     float v = float(n->as_number());
     if (!(v > 0.f) || !std::isfinite(v)) p.fail(key, "value " + format_float(v) + " must be > 0");
-    return v;
+    field = v;
 }
 
-/// distribution + one of alpha | alpha_u/alpha_v | roughness (α = r²).
-MicrofacetParams read_microfacet(Properties& p, bool beckmann_ok) {
-    MicrofacetParams m;
+/// distribution + one of alpha | alpha_u/alpha_v | roughness (α = r²), each constant or textured.
+void read_microfacet(Binder& b, MicrofacetParams& m, bool beckmann_ok) {
+    Properties& p = b.props();
     std::string d = read_choice(p, "distribution", "ggx", "distribution", {"ggx", "beckmann"});
     if (d == "beckmann" && !beckmann_ok)
         p.fail("distribution", "distribution 'beckmann' is not available for this material (known: ggx)");
@@ -75,34 +146,55 @@ MicrofacetParams read_microfacet(Properties& p, bool beckmann_ok) {
     bool has_alpha = p.has("alpha"), has_uv = p.has("alpha_u") || p.has("alpha_v"), has_r = p.has("roughness");
     if (int(has_alpha) + int(has_uv) + int(has_r) > 1)
         p.fail(has_r ? "roughness" : "alpha_u", "give only one of alpha, alpha_u/alpha_v, roughness");
-    if (has_r) {
-        float r = read_nonneg(p, "roughness", 0.f, 1.f);
-        m.alpha_u = m.alpha_v = r * r;  // Burley 2012 §5.4 (microfacet.h alpha_from_roughness)
-    } else if (has_uv) {
-        if (!p.has("alpha_u")) p.fail("", "missing required key 'alpha_u' (alpha_v given)");
-        m.alpha_u = read_nonneg(p, "alpha_u", 0.1f, 1.f);
-        m.alpha_v = read_nonneg(p, "alpha_v", m.alpha_u, 1.f);
-    } else {
-        m.alpha_u = m.alpha_v = read_nonneg(p, "alpha", 0.1f, 1.f);
+    using Op = TextureBinding::Op;
+    if (has_r || has_alpha) {
+        // roughness: α = r² (Burley 2012 §5.4, microfacet.h alpha_from_roughness).
+        const char* key = has_r ? "roughness" : "alpha";
+        Op op = has_r ? Op::Square : Op::Identity;
+        if (b.bind(key, &m.alpha_u, TextureBinding::Kind::Float, op, 0.f, 1.f, true)) {
+            b.duplicate_last(&m.alpha_v);
+            return;
+        }
+        float v = read_nonneg(p, key, has_r ? 0.f : 0.1f, 1.f);
+        m.alpha_u = m.alpha_v = has_r ? v * v : v;
+        return;
     }
-    return m;
+    if (has_uv) {
+        if (!p.has("alpha_u")) p.fail("", "missing required key 'alpha_u' (alpha_v given)");
+        bool u_bound = b.nonneg("alpha_u", m.alpha_u, 1.f);
+        if (p.has("alpha_v")) {
+            b.nonneg("alpha_v", m.alpha_v, 1.f);
+        } else {
+            m.alpha_v = m.alpha_u;
+            if (u_bound) b.duplicate_last(&m.alpha_v);
+        }
+        return;
+    }
+    m.alpha_u = m.alpha_v = 0.1f;
 }
 
-ConductorIORParams read_conductor_ior(Properties& p) {
-    ConductorIORParams c;
+void read_conductor_ior(Binder& b, ConductorIORParams& c) {
+    Properties& p = b.props();
     std::string fresnel = read_choice(p, "fresnel", "exact", "fresnel mode", {"exact", "schlick"});
     c.schlick = fresnel == "schlick";
     bool has_ek = p.has("eta") || p.has("k");
     if (has_ek) {
         if (p.has("material")) p.fail("material", "give either material or eta/k, not both");
         if (!p.has("eta")) p.fail("", "missing required key 'eta' (k given)");
-        c.eta = p.get_spectrum("eta", Spectrum(1.f));
-        c.k = p.get_spectrum("k", Spectrum(0.f));
-        for (int i = 0; i < 3; ++i) {
-            if (!(c.eta[i] > 0.f)) p.fail("eta", "value " + format_float(c.eta[i]) + " must be > 0");
-            if (c.k[i] < 0.f) p.fail("k", "value " + format_float(c.k[i]) + " must be >= 0");
+        c.eta = Spectrum(1.f);
+        c.k = Spectrum(0.f);
+        // Textured eta is clamped to [1e-3, 100], k to [0, 100].
+        if (!b.bind("eta", &c.eta, TextureBinding::Kind::Spectrum, TextureBinding::Op::Identity, 1e-3f, 100.f, true)) {
+            c.eta = p.get_spectrum("eta", Spectrum(1.f));
+            for (int i = 0; i < 3; ++i)
+                if (!(c.eta[i] > 0.f)) p.fail("eta", "value " + format_float(c.eta[i]) + " must be > 0");
         }
-        return c;
+        if (!b.bind("k", &c.k, TextureBinding::Kind::Spectrum, TextureBinding::Op::Identity, 0.f, 100.f, true)) {
+            c.k = p.get_spectrum("k", Spectrum(0.f));
+            for (int i = 0; i < 3; ++i)
+                if (c.k[i] < 0.f) p.fail("k", "value " + format_float(c.k[i]) + " must be >= 0");
+        }
+        return;
     }
     std::string name = p.get_string("material", "none");
     std::vector<std::string> names = conductor_names();
@@ -112,101 +204,151 @@ ConductorIORParams read_conductor_ior(Properties& p) {
     ConductorIOR ior = conductor_ior(name);
     c.eta = ior.eta;
     c.k = ior.k;
-    return c;
 }
 
-DielectricParams read_dielectric(Properties& p) {
-    DielectricParams d;
-    d.int_ior = read_ior(p, "int_ior", "bk7");
-    d.ext_ior = read_ior(p, "ext_ior", "air");
-    d.specular_reflectance = read_colour(p, "specular_reflectance", Spectrum(1.f));
-    d.specular_transmittance = read_colour(p, "specular_transmittance", Spectrum(1.f));
-    return d;
+void read_dielectric(Binder& b, DielectricParams& d) {
+    read_ior(b, "int_ior", "bk7", d.int_ior);
+    read_ior(b, "ext_ior", "air", d.ext_ior);
+    d.specular_reflectance = Spectrum(1.f);
+    d.specular_transmittance = Spectrum(1.f);
+    b.colour("specular_reflectance", d.specular_reflectance);
+    b.colour("specular_transmittance", d.specular_transmittance);
 }
 
-PlasticParams read_plastic(Properties& p) {
-    PlasticParams q;
-    q.diffuse_reflectance = read_colour(p, "diffuse_reflectance", Spectrum(0.5f));
-    q.specular_reflectance = read_colour(p, "specular_reflectance", Spectrum(1.f));
-    q.int_ior = read_ior(p, "int_ior", "polypropylene");
-    q.ext_ior = read_ior(p, "ext_ior", "air");
+void read_plastic(Binder& b, PlasticParams& q) {
+    Properties& p = b.props();
+    q.diffuse_reflectance = Spectrum(0.5f);
+    q.specular_reflectance = Spectrum(1.f);
+    b.colour("diffuse_reflectance", q.diffuse_reflectance);
+    b.colour("specular_reflectance", q.specular_reflectance);
+    read_ior(b, "int_ior", "polypropylene", q.int_ior);
+    read_ior(b, "ext_ior", "air", q.ext_ior);
     std::string v = read_choice(p, "variant", "coupled", "variant", {"coupled", "sum"});
     q.variant = v == "coupled" ? PlasticVariant::Coupled : PlasticVariant::Sum;
-    return q;
 }
 }  // namespace
 
-Material build_lambertian(Properties& p, const BuildContext&) {
+Material build_lambertian(Properties& p, const BuildContext& ctx) {
     DiffuseMaterial m;
-    m.reflectance = read_colour(p, "reflectance", Spectrum(0.5f));
+    Binder b(p, ctx, m);
+    m.reflectance = Spectrum(0.5f);
+    b.colour("reflectance", m.reflectance);
     return m;
 }
 
-Material build_oren_nayar(Properties& p, const BuildContext&) {
+Material build_oren_nayar(Properties& p, const BuildContext& ctx) {
     OrenNayarParams q;
-    q.reflectance = read_colour(p, "reflectance", Spectrum(0.5f));
+    Binder b(p, ctx, q);
+    q.reflectance = Spectrum(0.5f);
+    b.colour("reflectance", q.reflectance);
     std::string v = read_choice(p, "variant", "eon", "variant", {"eon", "classic"});
     q.variant = v == "eon" ? OrenNayarVariant::EON : OrenNayarVariant::Classic;
     const char* other = q.variant == OrenNayarVariant::EON ? "sigma" : "roughness";
     if (p.has(other))
         p.fail(other, std::string("not used by variant '") + v + "' (classic takes sigma in degrees, eon roughness)");
-    if (q.variant == OrenNayarVariant::Classic) q.sigma_degrees = read_nonneg(p, "sigma", 20.f, 90.f);
-    else q.roughness = read_nonneg(p, "roughness", 0.5f, 1.f);
+    if (q.variant == OrenNayarVariant::Classic) {
+        q.sigma_degrees = 20.f;
+        b.nonneg("sigma", q.sigma_degrees, 90.f);
+    } else {
+        q.roughness = 0.5f;
+        b.nonneg("roughness", q.roughness, 1.f);
+    }
     return OrenNayarMaterial(q);
 }
 
-Material build_conductor(Properties& p, const BuildContext&) {
+Material build_conductor(Properties& p, const BuildContext& ctx) {
     ConductorParams q;
-    q.ior = read_conductor_ior(p);
-    q.specular_reflectance = read_colour(p, "specular_reflectance", Spectrum(1.f));
+    Binder b(p, ctx, q);
+    read_conductor_ior(b, q.ior);
+    q.specular_reflectance = Spectrum(1.f);
+    b.colour("specular_reflectance", q.specular_reflectance);
     return ConductorMaterial(q);
 }
 
-Material build_rough_conductor(Properties& p, const BuildContext&) {
+Material build_rough_conductor(Properties& p, const BuildContext& ctx) {
     RoughConductorParams q;
-    q.microfacet = read_microfacet(p, true);
-    q.ior = read_conductor_ior(p);
-    q.specular_reflectance = read_colour(p, "specular_reflectance", Spectrum(1.f));
+    Binder b(p, ctx, q);
+    read_microfacet(b, q.microfacet, true);
+    read_conductor_ior(b, q.ior);
+    q.specular_reflectance = Spectrum(1.f);
+    b.colour("specular_reflectance", q.specular_reflectance);
     q.multiple_scattering = p.get_bool("multiple_scattering", false);
     if (q.multiple_scattering && q.microfacet.distribution != MicrofacetType::GGX)
         p.fail("multiple_scattering", "requires distribution 'ggx' (the Kulla-Conty table is GGX only)");
     return RoughConductorMaterial(q);
 }
 
-Material build_dielectric(Properties& p, const BuildContext&) { return DielectricMaterial(read_dielectric(p)); }
-Material build_thin_dielectric(Properties& p, const BuildContext&) {
-    return ThinDielectricMaterial(read_dielectric(p));
+Material build_dielectric(Properties& p, const BuildContext& ctx) {
+    DielectricParams q;
+    Binder b(p, ctx, q);
+    read_dielectric(b, q);
+    return DielectricMaterial(q);
 }
-Material build_rough_dielectric(Properties& p, const BuildContext&) {
+Material build_thin_dielectric(Properties& p, const BuildContext& ctx) {
+    DielectricParams q;
+    Binder b(p, ctx, q);
+    read_dielectric(b, q);
+    return ThinDielectricMaterial(q);
+}
+Material build_rough_dielectric(Properties& p, const BuildContext& ctx) {
     RoughDielectricParams q;
-    q.microfacet = read_microfacet(p, false);
-    q.dielectric = read_dielectric(p);
+    Binder b(p, ctx, q);
+    read_microfacet(b, q.microfacet, false);
+    read_dielectric(b, q.dielectric);
     return RoughDielectricMaterial(q);
 }
 
-Material build_plastic(Properties& p, const BuildContext&) { return PlasticMaterial(read_plastic(p)); }
-Material build_rough_plastic(Properties& p, const BuildContext&) {
+Material build_plastic(Properties& p, const BuildContext& ctx) {
+    PlasticParams q;
+    Binder b(p, ctx, q);
+    read_plastic(b, q);
+    return PlasticMaterial(q);
+}
+Material build_rough_plastic(Properties& p, const BuildContext& ctx) {
     RoughPlasticParams q;
-    q.microfacet = read_microfacet(p, false);
-    q.plastic = read_plastic(p);
+    Binder b(p, ctx, q);
+    read_microfacet(b, q.microfacet, false);
+    read_plastic(b, q.plastic);
     return RoughPlasticMaterial(q);
 }
 
-Material build_principled(Properties& p, const BuildContext&) {
+Material build_principled(Properties& p, const BuildContext& ctx) {
     PrincipledParams q;
-    q.base_color = read_colour(p, "base_color", q.base_color);
-    auto unit = [&](const char* key, float& v) { v = p.check_range(key, p.get_float(key, v), 0.f, 1.f); };
-    unit("metallic", q.metallic);
-    unit("roughness", q.roughness);
-    unit("specular", q.specular);
-    unit("specular_tint", q.specular_tint);
-    unit("sheen", q.sheen);
-    unit("sheen_tint", q.sheen_tint);
-    unit("clearcoat", q.clearcoat);
-    unit("clearcoat_gloss", q.clearcoat_gloss);
-    unit("anisotropic", q.anisotropic);
+    Binder b(p, ctx, q);
+    b.colour("base_color", q.base_color);
+    b.range("metallic", q.metallic, 0.f, 1.f);
+    b.range("roughness", q.roughness, 0.f, 1.f);
+    b.range("specular", q.specular, 0.f, 1.f);
+    b.range("specular_tint", q.specular_tint, 0.f, 1.f);
+    b.range("sheen", q.sheen, 0.f, 1.f);
+    b.range("sheen_tint", q.sheen_tint, 0.f, 1.f);
+    b.range("clearcoat", q.clearcoat, 0.f, 1.f);
+    b.range("clearcoat_gloss", q.clearcoat_gloss, 0.f, 1.f);
+    b.range("anisotropic", q.anisotropic, 0.f, 1.f);
     return PrincipledMaterial(q);
 }
+
+namespace {
+// Keys every material takes: bump_map / bump_scale, normal_map / normal_map_convention, and
+// terminator_softening (material/textured.h).
+void read_normal_perturbation(Properties& p, const BuildContext& ctx) {
+    static const char* keys[] = {"bump_map", "bump_scale", "normal_map", "normal_map_convention", "terminator_softening"};
+    bool any = false;
+    for (const char* k : keys) any = any || p.has(k);
+    if (!any) return;
+    if (!ctx.textures || !ctx.material_textures)
+        p.fail(p.has("bump_map") ? "bump_map" : "normal_map",
+               "bump and normal maps are only allowed in a scene (this interface takes constant parameters)");
+    MaterialTextures& mt = *ctx.material_textures;
+    if (p.has("bump_map")) mt.bump = int32_t(ctx.textures->texture(*p.get_node("bump_map"), p.key_path("bump_map"), true));
+    mt.bump_scale = p.get_float("bump_scale", 1.f);
+    if (p.has("normal_map"))
+        mt.normal_map = int32_t(ctx.textures->texture(*p.get_node("normal_map"), p.key_path("normal_map"), true));
+    mt.normal_map_directx =
+        read_choice(p, "normal_map_convention", "opengl", "normal map convention", {"opengl", "directx"}) == "directx";
+    mt.terminator_softening = p.get_bool("terminator_softening", true);
+}
+}  // namespace
 
 Material build_material(const Node& node, const std::string& source, const std::string& path) {
     return build_material(node, BuildContext{source, "."}, path);
@@ -222,6 +364,7 @@ Material build_material(const Node& node, const BuildContext& ctx, const std::st
         p.fail("type", "unknown material type '" + type + "' (known: " + join_names(names) + ")");
     }
     Material m = it->second(p, ctx);
+    read_normal_perturbation(p, ctx);
     p.check_unqueried();
     return m;
 }

@@ -12,6 +12,16 @@ struct Ray {
     float tmax = kInfinity;
 };
 
+/// A ray with the two neighbouring rays of the next pixel in x and in y (Igehy 1999, "Tracing Ray
+/// Differentials"): they start at the camera and are carried through specular bounces only.
+struct RayDifferential : Ray {
+    bool has_differentials = false;
+    Point3f rx_o{0.f}, ry_o{0.f};
+    Vec3f rx_d{0.f}, ry_d{0.f};
+    RayDifferential() = default;
+    RayDifferential(const Ray& r) : Ray(r) {}  // NOLINT: a plain ray has no differentials
+};
+
 /// Offset a surface point along its geometric normal n, far enough that a ray leaving in direction w
 /// cannot re-hit the surface: the offset is the projection of the point's conservative error box
 /// p_error onto n, rounded away from p (pbrt-v4 §6.8.6, "Robust Spawned Ray Origins").

@@ -8,6 +8,7 @@
 
 #include "pellucid/material/builders.h"
 #include "pellucid/scene/registry.h"
+#include "pellucid/scene/texture_builder.h"
 #include "pellucid/util/error.h"
 #include "pellucid/util/log.h"
 
@@ -19,7 +20,10 @@ constexpr int64_t kMaxPixels = int64_t(1) << 28;
 
 class Builder {
 public:
-    Builder(const SceneDesc& d, Scene& s) : m_desc(d), m_scene(s), m_ctx{d.source, d.base_dir} {}
+    Builder(const SceneDesc& d, Scene& s)
+        : m_desc(d), m_scene(s), m_ctx{d.source, d.base_dir}, m_textures(s.textures, m_ctx) {
+        m_ctx.textures = &m_textures;
+    }
 
     void build() {
         Properties root(m_desc.root, m_desc.source, "");
@@ -27,10 +31,14 @@ public:
         build_sampler(root.get_node("sampler"));
         build_integrator(root.get_node("integrator"));
         build_camera(root.get_node("camera"));
+        if (const Node* t = root.get_node("textures")) m_textures.build_named(*t, "textures");
         build_materials(root.get_node("materials"));
         build_shapes(root.get_node("shapes"));
         build_lights(root.get_node("lights"));  // after shapes: needs the scene bounds and area lights
         root.check_unqueried();
+        m_scene.material_textures.resize(m_scene.materials.size());
+        for (const auto& mt : m_scene.material_textures)
+            m_scene.has_textures = m_scene.has_textures || mt.has_bindings() || mt.perturbs_normal();
         if (m_scene.shapes.empty() && m_scene.lights.empty())
             log_warning(m_desc.source + ": the scene has no shapes and no lights; it renders black");
         m_scene.accel.commit();
@@ -122,7 +130,13 @@ private:
     }
 
     uint32_t add_material(const Node& n, const std::string& path, const std::string& name) {
-        m_scene.materials.push_back(build_material(n, m_ctx, path));
+        MaterialTextures mt;
+        m_ctx.material_textures = &mt;
+        Material m = build_material(n, m_ctx, path);
+        m_ctx.material_textures = nullptr;
+        m_scene.material_textures.resize(m_scene.materials.size());
+        m_scene.material_textures.push_back(mt);
+        m_scene.materials.push_back(std::move(m));
         m_scene.material_names.push_back(name);
         return uint32_t(m_scene.materials.size() - 1);
     }
@@ -316,6 +330,7 @@ private:
     const SceneDesc& m_desc;
     Scene& m_scene;
     BuildContext m_ctx;
+    TextureBuilder m_textures;
     std::map<std::string, uint32_t> m_materials;
     int m_default_material = -1;
 };

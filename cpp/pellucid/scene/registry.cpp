@@ -7,6 +7,7 @@
 
 #include "pellucid/geometry/mesh_io.h"
 #include "pellucid/material/builders.h"
+#include "pellucid/scene/texture_builder.h"
 #include "pellucid/util/error.h"
 
 namespace pellucid {
@@ -139,11 +140,24 @@ const std::map<std::string, FilterBuilder>& filter_registry() {
     return table;
 }
 
+const std::map<std::string, TextureBuilderFn>& texture_registry() {
+    static const std::map<std::string, TextureBuilderFn> table = {
+        // Builders live in scene/texture_builder.cpp; parameter tables in texture/texture.h.
+        {"image", build_image_texture},
+        {"checkerboard", build_checkerboard_texture},
+        {"noise", build_noise_texture},
+        {"scale", build_scale_texture},
+        {"mix", build_mix_texture},
+    };
+    return table;
+}
+
 std::map<std::string, std::vector<std::string>> registry_types() {
     std::map<std::string, std::vector<std::string>> out;
     for (const auto& [k, v] : material_registry()) out["materials"].push_back(k);
     for (const auto& [k, v] : shape_registry()) out["shapes"].push_back(k);
     for (const auto& [k, v] : filter_registry()) out["filters"].push_back(k);
+    for (const auto& [k, v] : texture_registry()) out["textures"].push_back(k);
     out["lights"] = {"constant"};
     out["emitters"] = {"area"};
     out["cameras"] = {"perspective"};

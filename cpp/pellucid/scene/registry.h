@@ -10,6 +10,7 @@
 #include "pellucid/image/filter.h"
 #include "pellucid/material/material.h"
 #include "pellucid/scene/properties.h"
+#include "pellucid/texture/texture.h"
 
 namespace pellucid {
 
@@ -22,10 +23,17 @@ struct ShapeGeometry {
     bool flip_normals = false;
 };
 
-/// Read-only context for builders that resolve files.
+class TextureBuilder;
+struct MaterialTextures;
+
+/// Context for builders: file resolution, and (during scene building) where textured material
+/// parameters go. `textures`/`material_textures` are null where no scene is being built
+/// (pellucid.bsdf): a textured parameter is then an error.
 struct BuildContext {
     std::string source;
     std::string base_dir;
+    TextureBuilder* textures = nullptr;
+    MaterialTextures* material_textures = nullptr;
     /// Resolve a path relative to the scene file's directory.
     std::string resolve(const std::string& path) const;
 };
@@ -33,10 +41,12 @@ struct BuildContext {
 using MaterialBuilder = Material (*)(Properties&, const BuildContext&);
 using ShapeBuilder = ShapeGeometry (*)(Properties&, const BuildContext&);
 using FilterBuilder = Filter (*)(Properties&);
+using TextureBuilderFn = Texture (*)(Properties&, TextureBuilder&);
 
 const std::map<std::string, MaterialBuilder>& material_registry();
 const std::map<std::string, ShapeBuilder>& shape_registry();
 const std::map<std::string, FilterBuilder>& filter_registry();
+const std::map<std::string, TextureBuilderFn>& texture_registry();
 /// Every registered type per family ("materials", "shapes", "lights", "emitters", "filters",
 /// "cameras", "integrators"), for documentation checks and error messages.
 std::map<std::string, std::vector<std::string>> registry_types();

@@ -39,11 +39,19 @@ void fill_triangle(const TriangleMesh& m, const RayHit& h, SurfaceInteraction& s
         si.dpdv = f.t;
     }
     Normal3f ns = si.ng;
+    si.dndu = si.dndv = Vec3f(0.f);
     if (!m.normals.empty()) {
         Normal3f n = b0 * m.normals[i0] + b1 * m.normals[i1] + b2 * m.normals[i2];
         if (length2(n) > 0.f) {
             ns = normalize(n);
             if (dot(ns, si.ng) < 0.f) si.ng = -si.ng;  // geometric normal follows the shading side
+            // ∂n/∂u, ∂n/∂v of the interpolated normal, by the same uv solve as dp/du (pbrt-v4 §6.5.3).
+            if (!degenerate_uv) {
+                float inv = 1.f / det;
+                Vec3f dn02 = m.normals[i0] - m.normals[i2], dn12 = m.normals[i1] - m.normals[i2];
+                si.dndu = (duv12.y * dn02 - duv02.y * dn12) * inv;
+                si.dndv = (duv02.x * dn12 - duv12.x * dn02) * inv;
+            }
         }
     }
     si.shading = Frame::from_xz(si.dpdu, ns);
@@ -71,6 +79,10 @@ void fill_sphere(const ShapeRecord& s, const Ray& ray, const RayHit& h, SurfaceI
         si.dpdu = f.s;
         si.dpdv = f.t;
     }
+    // n = (p − c)/r, so ∂n/∂u = (∂p/∂u)/r (negated with the normal when it is flipped).
+    float sgn = s.flip_normals ? -1.f : 1.f;
+    si.dndu = (sgn / s.radius) * si.dpdu;
+    si.dndv = (sgn / s.radius) * si.dpdv;
     si.shading = Frame::from_xz(si.dpdu, si.ng);
 }
 }  // namespace
@@ -94,6 +106,66 @@ bool Scene::intersect(const Ray& ray, SurfaceInteraction& si) const {
 Spectrum Scene::emitted(const SurfaceInteraction& si) const {
     if (si.light_id < 0) return Spectrum(0.f);
     return std::get<AreaLight>(lights[size_t(si.light_id)]).L(si.ng, si.wo);
+}
+
+void Scene::compute_footprint(SurfaceInteraction& si, const RayDifferential& ray) const {
+    if (si.differentials_from_ray(ray)) return;
+    camera.approximate_dp_dxy(si.p, si.ng, &si.dpdx, &si.dpdy);
+    si.uv_differentials_from_dp();
+}
+
+RayDifferential Scene::specular_differentials(const SurfaceInteraction& si, const RayDifferential& in, const Ray& out,
+                                              bool transmission, float eta) const {
+    RayDifferential r(out);
+    if (!in.has_differentials) return r;
+    // Igehy 1999 §3.3; in pbrt-v3's form (§10.1.3): with n the shading normal on wo's side,
+    // ∂n/∂x = ∂n/∂u·∂u/∂x + ∂n/∂v·∂v/∂x and ∂(wo·n)/∂x = ∂wo/∂x·n + wo·∂n/∂x,
+    //   reflection: ∂wi/∂x = −∂wo/∂x + 2[(wo·n)∂n/∂x + ∂(wo·n)/∂x·n]
+    //   refraction: ∂wi/∂x = −η∂wo/∂x + [μ∂n/∂x + ∂μ/∂x·n], μ = η(wo·n) − |wi·n|,
+    //               ∂μ/∂x = (η − η²(wo·n)/|wi·n|)·∂(wo·n)/∂x, with η = η_i/η_t = 1/eta.
+    const Vec3f wo = si.wo, wi = out.d;
+    Vec3f n = si.shading.n, dndx = si.dndu * si.dudx + si.dndv * si.dvdx, dndy = si.dndu * si.dudy + si.dndv * si.dvdy;
+    Vec3f dwodx = -in.rx_d - wo, dwody = -in.ry_d - wo;
+    if (dot(wo, n) < 0.f) {
+        n = -n;
+        dndx = -dndx;
+        dndy = -dndy;
+    }
+    float won = dot(wo, n);
+    float ddndx = dot(dwodx, n) + dot(wo, dndx), ddndy = dot(dwody, n) + dot(wo, dndy);
+    if (!transmission) {
+        r.rx_d = wi - dwodx + 2.f * (won * dndx + ddndx * n);
+        r.ry_d = wi - dwody + 2.f * (won * dndy + ddndy * n);
+    } else {
+        float e = 1.f / eta, win = std::fabs(dot(wi, n));
+        if (!(win > 0.f)) return r;
+        float mu = e * won - win;
+        float k = e - e * e * won / win;
+        r.rx_d = wi - e * dwodx + (mu * dndx + k * ddndx * n);
+        r.ry_d = wi - e * dwody + (mu * dndy + k * ddndy * n);
+    }
+    r.rx_o = si.p + si.dpdx;
+    r.ry_o = si.p + si.dpdy;
+    r.has_differentials = std::isfinite(r.rx_d.x + r.rx_d.y + r.rx_d.z + r.ry_d.x + r.ry_d.y + r.ry_d.z);
+    return r;
+}
+
+BSDF Scene::textured_bsdf(const SurfaceInteraction& si) const {
+    const MaterialTextures& mt = material_textures[si.material_id];
+    TextureEvalContext ctx;
+    ctx.p = si.p;
+    ctx.dpdx = si.dpdx;
+    ctx.dpdy = si.dpdy;
+    ctx.uv = si.uv;
+    ctx.dudx = si.dudx;
+    ctx.dudy = si.dudy;
+    ctx.dvdx = si.dvdx;
+    ctx.dvdy = si.dvdy;
+    BxDF bxdf = get_textured_bxdf(materials[si.material_id], mt, textures, ctx, si);
+    if (!mt.perturbs_normal()) return BSDF(bxdf, si.shading, si.ng);
+    BSDF b(bxdf, perturbed_shading_frame(mt, textures, ctx, si), si.ng);
+    if (mt.terminator_softening) b.soften_terminator(si.shading.n);
+    return b;
 }
 
 std::string Scene::to_string() const {

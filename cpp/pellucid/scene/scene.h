@@ -13,6 +13,8 @@
 #include "pellucid/image/filter.h"
 #include "pellucid/light/light.h"
 #include "pellucid/material/material.h"
+#include "pellucid/material/textured.h"
+#include "pellucid/texture/texture.h"
 #include "pellucid/sampling/distribution_1d.h"
 
 namespace pellucid {
@@ -46,9 +48,23 @@ public:
     /// Closest hit, filled into si. Thread-safe.
     bool intersect(const Ray& ray, SurfaceInteraction& si) const;
     bool occluded(const Ray& ray) const { return accel.occluded(ray); }
+    /// The BSDF at a hit: textures evaluated over the hit's footprint, bump/normal maps applied.
     BSDF bsdf(const SurfaceInteraction& si) const {
-        return BSDF(get_bxdf(materials[si.material_id], si), si.shading, si.ng);
+        if (!has_textures || !needs_textures(si)) return BSDF(get_bxdf(materials[si.material_id], si), si.shading, si.ng);
+        return textured_bsdf(si);
     }
+    /// Does the hit's material read textures (so that its footprint is needed)?
+    bool needs_textures(const SurfaceInteraction& si) const {
+        const MaterialTextures& mt = material_textures[si.material_id];
+        return mt.has_bindings() || mt.perturbs_normal();
+    }
+    /// Set the hit's pixel footprint (dpdx, dpdy, du/dx …): from the ray's differentials when it
+    /// carries them, else the camera's approximation (perspective.h approximate_dp_dxy).
+    void compute_footprint(SurfaceInteraction& si, const RayDifferential& ray) const;
+    /// The differentials of the ray leaving a delta (specular) bounce at si in direction wi, with
+    /// relative IOR eta crossed (1 for reflection); pbrt-v3 §10.1.3 (reflection and refraction).
+    RayDifferential specular_differentials(const SurfaceInteraction& si, const RayDifferential& in, const Ray& out,
+                                           bool transmission, float eta) const;
     /// Emitted radiance at a surface hit toward si.wo (0 if the shape is not an emitter).
     Spectrum emitted(const SurfaceInteraction& si) const;
     /// Probability that next-event estimation picks light i.
@@ -62,6 +78,9 @@ public:
     std::vector<ShapeRecord> shapes;
     std::vector<Material> materials;
     std::vector<std::string> material_names;
+    std::vector<MaterialTextures> material_textures;  ///< parallel to materials
+    TextureList textures;
+    bool has_textures = false;  ///< any material reads textures or perturbs normals
     std::vector<Light> lights;
     std::vector<uint32_t> infinite_lights;  ///< indices into lights
     Distribution1D light_distribution;      ///< light selection (uniform or by power)
@@ -73,5 +92,8 @@ public:
     IntegratorSettings integrator;
     std::string source;
     uint64_t triangle_count = 0;
+
+private:
+    BSDF textured_bsdf(const SurfaceInteraction& si) const;
 };
 }  // namespace pellucid

@@ -1,0 +1,125 @@
+// Textured parameters, bump mapping (as the seeds define it) and normal mapping.
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/material/textured.h"
+
+#include <cmath>
+#include <cstring>
+
+namespace pellucid {
+namespace {
+
+template <class P>
+void apply_bindings(P& params, const MaterialTextures& mt, const TextureList& textures, const TextureEvalContext& ctx) {
+    static_assert(std::is_standard_layout_v<P> || std::is_trivially_copyable_v<P>,
+                  "texture bindings address Params fields by byte offset");
+    char* base = reinterpret_cast<char*>(&params);
+    for (int i = 0; i < mt.count; ++i) {
+        const TextureBinding& b = mt.bindings[i];
+        Spectrum v = eval_texture(textures, b.texture, ctx);
+        if (b.kind == TextureBinding::Kind::Float) {
+            float f = clamp(v.average(), b.lo, b.hi);
+            if (b.op == TextureBinding::Op::Square) f *= f;
+            std::memcpy(base + b.offset, &f, sizeof f);
+        } else {
+            for (int c = 0; c < 3; ++c) v[c] = clamp(v[c], b.lo, b.hi);
+            std::memcpy(base + b.offset, &v, sizeof v);
+        }
+    }
+}
+
+// Height B (already scaled) at the hit shifted by (du, dv) in uv, and by the matching first-order
+// move of the position for solid textures.
+float height_at(const TextureList& textures, uint32_t id, float scale, TextureEvalContext ctx,
+                const SurfaceInteraction& si, float du, float dv) {
+    ctx.uv += Vec2f(du, dv);
+    ctx.p += du * si.dpdu + dv * si.dpdv;
+    return scale * eval_texture(textures, id, ctx).average();
+}
+}  // namespace
+
+BxDF get_textured_bxdf(const Material& m, const MaterialTextures& mt, const TextureList& textures,
+                       const TextureEvalContext& ctx, const SurfaceInteraction& si) {
+    if (!mt.has_bindings()) return get_bxdf(m, si);
+    return std::visit([&](const auto& mat) -> BxDF {
+        using M = std::decay_t<decltype(mat)>;
+        if constexpr (std::is_same_v<M, DiffuseMaterial>) {
+            M copy = mat;  // DiffuseMaterial is its own Params struct
+            apply_bindings(copy, mt, textures, ctx);
+            return copy.get_bxdf(si);
+        } else {
+            auto p = mat.params();
+            apply_bindings(p, mt, textures, ctx);
+            return M(p).get_bxdf(si);
+        }
+    }, m);
+}
+
+Vec2f bump_steps(const TextureEvalContext& ctx) {
+    // One pixel footprint in u and in v: the mean extent of the footprint's two screen axes
+    // (pbrt-v4 §10.5.1 uses the same measure). Without ray differentials there is no footprint,
+    // and a fixed 5e-4 in uv (about one texel of a 2k map) is used instead.
+    float du = 0.5f * (std::fabs(ctx.dudx) + std::fabs(ctx.dudy));
+    float dv = 0.5f * (std::fabs(ctx.dvdx) + std::fabs(ctx.dvdy));
+    if (!(du > 0.f) || !std::isfinite(du)) du = kBumpFallbackStep;
+    if (!(dv > 0.f) || !std::isfinite(dv)) dv = kBumpFallbackStep;
+    return Vec2f(du, dv);
+}
+
+Normal3f bump_normal(const TextureList& textures, uint32_t height, float scale, const TextureEvalContext& ctx,
+                     const SurfaceInteraction& si, float du, float dv, bool allow_analytic) {
+    // The bumped surface F' = F + B·n has tangents
+    //   ∂F'/∂u = ∂F/∂u + (∂B/∂u)·n + B·∂n/∂u   (and likewise in v),
+    // and normal n' = normalize(∂F'/∂u × ∂F'/∂v) (Blinn 1978, eq. 4; the seeds' definition).
+    // ∂B/∂u: the texture's analytic gradient where it has one, else a forward difference of step
+    // Δu (first order: error O(Δu)).
+    const Normal3f n = si.shading.n;
+    float B = height_at(textures, height, scale, ctx, si, 0.f, 0.f);
+    float dBdu, dBdv;
+    if (!(allow_analytic && texture_gradient_uv(textures, height, ctx, si.dpdu, si.dpdv, &dBdu, &dBdv))) {
+        dBdu = (height_at(textures, height, scale, ctx, si, du, 0.f) - B) / du;
+        dBdv = (height_at(textures, height, scale, ctx, si, 0.f, dv) - B) / dv;
+    } else {
+        dBdu *= scale;
+        dBdv *= scale;
+    }
+    Vec3f dpdu = si.dpdu + dBdu * n + B * si.dndu;
+    Vec3f dpdv = si.dpdv + dBdv * n + B * si.dndv;
+    Vec3f np = cross(dpdu, dpdv);
+    float len = length(np);
+    if (!(len > 0.f) || !std::isfinite(len)) return n;
+    np /= len;
+    return dot(np, n) < 0.f ? -np : np;  // keep the side of the unbumped shading normal
+}
+
+Frame perturbed_shading_frame(const MaterialTextures& mt, const TextureList& textures, const TextureEvalContext& ctx,
+                              const SurfaceInteraction& si) {
+    Normal3f n = si.shading.n;
+    if (mt.normal_map >= 0) {
+        // Tangent-space normal map: rgb ∈ [0,1]³ → n_ts = 2·rgb − 1 in the frame (s ∥ ∂p/∂u,
+        // t = n × s, n) — the OpenGL convention (Mitsuba's too); DirectX stores −t in green.
+        Spectrum c = eval_texture(textures, uint32_t(mt.normal_map), ctx);
+        Vec3f nt(2.f * c.r - 1.f, 2.f * c.g - 1.f, 2.f * c.b - 1.f);
+        if (mt.normal_map_directx) nt.y = -nt.y;
+        Vec3f w = si.shading.to_world(nt);
+        float len = length(w);
+        if (len > 0.f && std::isfinite(len)) n = w / len;
+    }
+    if (mt.bump >= 0) {
+        SurfaceInteraction s2 = si;
+        s2.shading = Frame::from_xz(si.dpdu, n);
+        Vec2f d = bump_steps(ctx);
+        n = bump_normal(textures, uint32_t(mt.bump), mt.bump_scale, ctx, s2, d.x, d.y, true);
+    }
+    // A perturbed normal can put the viewer below the shading hemisphere while it is above the
+    // geometric one: then no light could ever be reflected (black pixels along silhouettes). Remove
+    // just enough of n's component along wo that wo sits slightly above it (a minimal change).
+    float side = dot(si.wo, si.ng) >= 0.f ? 1.f : -1.f;
+    constexpr float kMinCos = 0.02f;
+    if (side * dot(si.wo, n) < kMinCos) {
+        Vec3f fixed = n - si.wo * (dot(si.wo, n) - side * kMinCos);
+        float len = length(fixed);
+        if (len > 0.f) n = fixed / len;
+    }
+    return Frame::from_xz(si.dpdu, n);
+}
+}  // namespace pellucid

@@ -1,0 +1,177 @@
+// OpenImageIO TextureSystem wrapper: loading (with sRGB → linear conversion into a cached MIP-mapped
+// file) and filtered lookups.
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/texture/texture_system.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
+#include <OpenImageIO/texture.h>
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <vector>
+
+#include "pellucid/util/error.h"
+
+namespace pellucid {
+namespace fs = std::filesystem;
+namespace {
+
+OIIO::TextureSystem* texture_system() {
+    static OIIO::TextureSystem* ts = [] {
+        OIIO::TextureSystem* t = OIIO::TextureSystem::create(/*shared=*/false);
+        t->attribute("automip", 1);           // MIP-map untiled/unmipped files in memory
+        t->attribute("autotile", 64);         // and read them in tiles
+        t->attribute("max_memory_MB", 2048.f);
+        t->attribute("accept_untiled", 1);
+        t->attribute("accept_unmipped", 1);
+        return t;
+    }();
+    return ts;
+}
+
+std::string cache_dir() {
+    if (const char* env = std::getenv("PELLUCID_TEXTURE_CACHE"); env && *env) return env;
+    std::error_code ec;
+    fs::path tmp = fs::temp_directory_path(ec);
+    if (ec) tmp = "/tmp";
+    return (tmp / "pellucid-texture-cache").string();
+}
+
+// FNV-1a, 64 bit: a cache key, not a security boundary.
+uint64_t fnv1a(const std::string& s) {
+    uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+    return h;
+}
+
+std::string hex(uint64_t v) {
+    static const char* d = "0123456789abcdef";
+    std::string s(16, '0');
+    for (int i = 15; i >= 0; --i, v >>= 4) s[size_t(i)] = d[v & 15];
+    return s;
+}
+
+// Convert an sRGB-encoded file once into a linear half-float tiled MIP map (maketx's job).
+std::string linear_copy(const std::string& path) {
+    std::error_code ec;
+    fs::path abs = fs::absolute(path, ec);
+    auto size = fs::file_size(abs, ec);
+    auto mtime = fs::last_write_time(abs, ec).time_since_epoch().count();
+    std::string key = hex(fnv1a(abs.string() + "|" + std::to_string(size) + "|" + std::to_string(mtime) + "|srgb-v1"));
+    fs::path dir = cache_dir();
+    fs::path out = dir / (abs.stem().string() + "-" + key + ".exr");
+    if (fs::exists(out, ec)) return out.string();
+    fs::create_directories(dir, ec);
+    if (ec) throw Error(path + ": cannot create the texture cache directory " + dir.string() + ": " + ec.message());
+    // Write to a unique temporary name and rename: concurrent processes never see half a file.
+    static std::atomic<unsigned> counter{0};
+    fs::path tmp = dir / (out.stem().string() + ".tmp" + std::to_string(::getpid()) + "-" +
+                          std::to_string(counter++) + ".exr");
+    OIIO::ImageSpec config;
+    config.format = OIIO::TypeDesc::HALF;
+    config.tile_width = config.tile_height = 64;
+    config.attribute("maketx:incolorspace", "sRGB");
+    config.attribute("maketx:outcolorspace", "linear");
+    config.attribute("maketx:filtername", "box");
+    if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, path, tmp.string(), config))
+        throw Error(path + ": cannot convert the texture to linear MIP-mapped form: " + OIIO::geterror());
+    fs::rename(tmp, out, ec);
+    if (ec) throw Error(path + ": cannot write the texture cache entry " + out.string() + ": " + ec.message());
+    return out.string();
+}
+
+OIIO::TextureOpt::Wrap to_oiio(TextureWrap w) {
+    switch (w) {
+        case TextureWrap::Repeat: return OIIO::TextureOpt::WrapPeriodic;
+        case TextureWrap::Mirror: return OIIO::TextureOpt::WrapMirror;
+        case TextureWrap::Clamp: return OIIO::TextureOpt::WrapClamp;
+        case TextureWrap::Black: return OIIO::TextureOpt::WrapBlack;
+    }
+    return OIIO::TextureOpt::WrapPeriodic;
+}
+}  // namespace
+
+ImageTextureHandle open_image_texture(const std::string& path, TextureColorSpace cs, ImageTextureInfo* info) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw Error(path + ": texture file not found");
+    int width = 0, height = 0, channels = 0;
+    bool integer_format = false;
+    {
+        auto in = OIIO::ImageInput::open(path);
+        if (!in) throw Error(path + ": cannot read texture (unsupported or corrupt image): " + OIIO::geterror());
+        const OIIO::ImageSpec& spec = in->spec();
+        width = spec.width;
+        height = spec.height;
+        channels = spec.nchannels;
+        integer_format = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
+                         spec.format.basetype == OIIO::TypeDesc::UINT16 ||
+                         spec.format.basetype == OIIO::TypeDesc::INT8 || spec.format.basetype == OIIO::TypeDesc::INT16;
+        in->close();
+    }
+    if (width < 1 || height < 1 || channels < 1) throw Error(path + ": texture has no pixels");
+    bool srgb = cs == TextureColorSpace::SRGB || (cs == TextureColorSpace::Auto && integer_format);
+    std::string resolved = srgb ? linear_copy(path) : path;
+
+    OIIO::TextureSystem* ts = texture_system();
+    static std::mutex mutex;  // handle creation is cheap and rare; keep error reporting per call
+    std::lock_guard<std::mutex> lock(mutex);
+    OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(OIIO::ustring(resolved));
+    if (!h || !ts->good(h)) throw Error(path + ": cannot open texture: " + ts->geterror());
+    if (info) *info = ImageTextureInfo{width, height, channels, srgb, resolved};
+    return ImageTextureHandle{h, channels};
+}
+
+Spectrum lookup_image_texture(const ImageTextureHandle& h, TextureFilter filter, TextureWrap wrap, float s,
+                              float t, float dsdx, float dtdx, float dsdy, float dtdy) {
+    OIIO::TextureSystem* ts = texture_system();
+    OIIO::TextureOpt opt;
+    opt.swrap = opt.twrap = to_oiio(wrap);
+    switch (filter) {
+        case TextureFilter::Nearest:
+            opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
+            opt.interpmode = OIIO::TextureOpt::InterpClosest;
+            break;
+        case TextureFilter::Bilinear:
+            opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
+            opt.interpmode = OIIO::TextureOpt::InterpBilinear;
+            break;
+        case TextureFilter::Trilinear:
+            opt.mipmode = OIIO::TextureOpt::MipModeTrilinear;
+            opt.interpmode = OIIO::TextureOpt::InterpBilinear;
+            break;
+        case TextureFilter::Anisotropic:
+            opt.mipmode = OIIO::TextureOpt::MipModeAniso;
+            opt.interpmode = OIIO::TextureOpt::InterpBilinear;
+            break;
+    }
+    float r[3] = {0.f, 0.f, 0.f};
+    auto* handle = static_cast<OIIO::TextureSystem::TextureHandle*>(h.handle);
+    int n = h.channels >= 3 ? 3 : 1;
+    ts->texture(handle, ts->get_perthread_info(), opt, s, t, dsdx, dtdx, dsdy, dtdy, n, r);
+    if (n == 1) return Spectrum(r[0]);
+    return Spectrum(r[0], r[1], r[2]);
+}
+
+int write_level_index_mipmap(const std::string& path, int size) {
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out || !out->supports("mipmap")) throw Error(path + ": cannot write a MIP-mapped file");
+    int levels = 0;
+    for (int s = size; s >= 1; s /= 2) ++levels;
+    for (int k = 0, s = size; k < levels; ++k, s /= 2) {
+        OIIO::ImageSpec spec(s, s, 1, OIIO::TypeDesc::FLOAT);
+        spec.tile_width = spec.tile_height = 16;
+        std::vector<float> px(size_t(s) * size_t(s), float(k));
+        bool ok = k == 0 ? out->open(path, spec) : out->open(path, spec, OIIO::ImageOutput::AppendMIPLevel);
+        if (!ok || !out->write_image(OIIO::TypeDesc::FLOAT, px.data()))
+            throw Error(path + ": cannot write MIP level " + std::to_string(k) + ": " + out->geterror());
+    }
+    out->close();
+    return levels;
+}
+}  // namespace pellucid

@@ -1,0 +1,54 @@
+// Filtered image lookups through OpenImageIO's TextureSystem (the only TextureSystem user; plain
+// image files go through image/image_io.cpp).
+// SPDX-License-Identifier: Apache-2.0
+//
+// One process-wide, thread-safe texture cache. Images are MIP-mapped on first use (OIIO "automip"
+// for linear float files; 8- and 16-bit files whose values are sRGB-encoded are converted once to a
+// linear, tiled, MIP-mapped half-float file in the texture cache directory, as maketx does, so that
+// every filter averages linear values: averaging encoded values darkens high-contrast texture at a
+// distance, e.g. a black/white checker would filter to 0.21 instead of 0.5).
+//
+// Cache directory: $PELLUCID_TEXTURE_CACHE, else <temp dir>/pellucid-texture-cache. Entries are keyed
+// by the source's absolute path, size and modification time; stale entries are simply not reused.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "pellucid/math/spectrum.h"
+#include "pellucid/math/vec.h"
+
+namespace pellucid {
+
+enum class TextureWrap : uint8_t { Repeat, Mirror, Clamp, Black };
+/// Filtering: Nearest and Bilinear read the full-resolution level only (no MIP map); Trilinear
+/// blends two MIP levels chosen by the larger footprint axis; Anisotropic (OIIO's elliptical
+/// multi-probe filter) follows the footprint's shape.
+enum class TextureFilter : uint8_t { Nearest, Bilinear, Trilinear, Anisotropic };
+enum class TextureColorSpace : uint8_t { Auto, SRGB, Linear };
+
+struct ImageTextureInfo {
+    int width = 0, height = 0, channels = 0;
+    bool srgb = false;         ///< values were decoded from sRGB at load
+    std::string resolved;      ///< the file the TextureSystem reads (the cached linear copy if any)
+};
+
+/// A loaded texture: an opaque handle into the shared TextureSystem (no heap, trivially copyable).
+struct ImageTextureHandle {
+    void* handle = nullptr;  ///< OIIO::TextureSystem::TextureHandle*
+    int channels = 3;
+};
+
+/// Open (and if needed convert) an image for filtered lookups. Throws pellucid::Error naming the
+/// path for a missing file, an unreadable or unsupported format.
+ImageTextureHandle open_image_texture(const std::string& path, TextureColorSpace cs, ImageTextureInfo* info);
+
+/// Filtered lookup at texture coordinates (s, t) ∈ [0,1]² (t = 0 is the image's top row) with the
+/// screen-space derivatives of (s, t): the footprint. Zero derivatives give a point lookup at the
+/// finest level. One channel is replicated to RGB; alpha is ignored.
+Spectrum lookup_image_texture(const ImageTextureHandle& h, TextureFilter filter, TextureWrap wrap, float s,
+                              float t, float dsdx, float dtdx, float dsdy, float dtdy);
+
+/// Testing aid: write a tiled, MIP-mapped float image whose level k is the constant value
+/// `level_value(k)` (here: k itself), to check which level a lookup reads. Returns the level count.
+int write_level_index_mipmap(const std::string& path, int size);
+}  // namespace pellucid
