@@ -41,7 +41,7 @@ public:
     }
     float pdf(const Vec3f& wo_w, const Vec3f& wi_w, TransportMode mode = TransportMode::Radiance) const {
         Vec3f wo = m_frame.to_local(wo_w), wi = m_frame.to_local(wi_w);
-        if (wo.z == 0.f) return 0.f;
+        if (wo.z == 0.f || leaks(wo_w, wi_w, wo, wi)) return 0.f;  // as sample(): leaking directions are never produced
         return pellucid::pdf(m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, wi);
     }
     /// Sample wi (world space). Returns nullopt for wo on the horizon, failed, zero-pdf,

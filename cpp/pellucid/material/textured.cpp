@@ -99,6 +99,10 @@ Frame perturbed_shading_frame(const MaterialTextures& mt, const TextureList& tex
         // t = n × s, n) — the OpenGL convention (Mitsuba's too); DirectX stores −t in green.
         Spectrum c = eval_texture(textures, uint32_t(mt.normal_map), ctx);
         Vec3f nt(2.f * c.r - 1.f, 2.f * c.g - 1.f, 2.f * c.b - 1.f);
+        // 8-bit maps cannot store ½: the flat code 128 decodes to 1/255. Tilts within one 8-bit step
+        // of zero are taken as zero, so a flat map, (128, 128, 255) or (0.5, 0.5, 1), changes nothing.
+        for (int i = 0; i < 2; ++i)
+            if (std::fabs(nt[i]) <= 1.f / 255.f + 1e-6f) nt[i] = 0.f;
         if (mt.normal_map_directx) nt.y = -nt.y;
         Vec3f w = si.shading.to_world(nt);
         float len = length(w);

@@ -10,7 +10,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
@@ -73,13 +75,30 @@ std::string linear_copy(const std::string& path) {
     static std::atomic<unsigned> counter{0};
     fs::path tmp = dir / (out.stem().string() + ".tmp" + std::to_string(::getpid()) + "-" +
                           std::to_string(counter++) + ".exr");
+    // Decode sRGB → linear ourselves (IEC 61966-2-1; OIIO's own conversion needs an OCIO config),
+    // then let make_texture build the tiled MIP pyramid from linear floats.
+    OIIO::ImageBuf src(path);
+    if (!src.read(0, 0, true, OIIO::TypeDesc::FLOAT))
+        throw Error(path + ": cannot read texture: " + src.geterror());
+    const OIIO::ImageSpec& spec = src.spec();
+    std::vector<float> px(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+    src.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, px.data());
+    int colour_channels = spec.alpha_channel >= 0 ? std::min(spec.nchannels, 3) : spec.nchannels;
+    for (size_t i = 0; i < px.size(); ++i) {
+        if (int(i % size_t(spec.nchannels)) >= colour_channels) continue;  // alpha stays linear
+        float c = px[i];
+        px[i] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+    }
+    OIIO::ImageSpec lin_spec(spec.width, spec.height, spec.nchannels, OIIO::TypeDesc::FLOAT);
+    lin_spec.channelnames = spec.channelnames;
+    lin_spec.alpha_channel = spec.alpha_channel;
+    OIIO::ImageBuf lin(lin_spec);
+    lin.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, px.data());
     OIIO::ImageSpec config;
     config.format = OIIO::TypeDesc::HALF;
     config.tile_width = config.tile_height = 64;
-    config.attribute("maketx:incolorspace", "sRGB");
-    config.attribute("maketx:outcolorspace", "linear");
     config.attribute("maketx:filtername", "box");
-    if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, path, tmp.string(), config))
+    if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, lin, tmp.string(), config))
         throw Error(path + ": cannot convert the texture to linear MIP-mapped form: " + OIIO::geterror());
     fs::rename(tmp, out, ec);
     if (ec) throw Error(path + ": cannot write the texture cache entry " + out.string() + ": " + ec.message());
@@ -166,6 +185,8 @@ int write_level_index_mipmap(const std::string& path, int size) {
     for (int k = 0, s = size; k < levels; ++k, s /= 2) {
         OIIO::ImageSpec spec(s, s, 1, OIIO::TypeDesc::FLOAT);
         spec.tile_width = spec.tile_height = 16;
+        spec.attribute("openexr:levelmode", 1);  // MIPMAP_LEVELS
+        spec.attribute("textureformat", "Plain Texture");
         std::vector<float> px(size_t(s) * size_t(s), float(k));
         bool ok = k == 0 ? out->open(path, spec) : out->open(path, spec, OIIO::ImageOutput::AppendMIPLevel);
         if (!ok || !out->write_image(OIIO::TypeDesc::FLOAT, px.data()))
@@ -173,5 +194,15 @@ int write_level_index_mipmap(const std::string& path, int size) {
     }
     out->close();
     return levels;
+}
+
+void write_test_image(const std::string& path, int width, int height, int channels, int bits, const float* data) {
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) throw Error(path + ": cannot create image writer: " + OIIO::geterror());
+    OIIO::TypeDesc fmt = bits == 8 ? OIIO::TypeDesc::UINT8 : bits == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::FLOAT;
+    OIIO::ImageSpec spec(width, height, channels, fmt);
+    if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, data))
+        throw Error(path + ": cannot write: " + out->geterror());
+    out->close();
 }
 }  // namespace pellucid
