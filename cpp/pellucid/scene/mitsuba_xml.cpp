@@ -447,9 +447,15 @@ private:
         Node out;
         if (type == "bitmap") {
             out = make("image", n);
+            // raw="true" means linear values; without it our default applies (sRGB for 8/16-bit files,
+            // linear for float files, and linear for bump and normal maps: docs/mitsuba-import.md).
+            if (Prop* raw = take(c, "raw")) {
+                if (!raw->value.is_bool()) fail(raw->node, "bitmap 'raw' must be a boolean");
+                if (raw->value.as_bool()) out.set("color_space", Node::string("linear"));
+            }
             map_params(out, c, what,
-                       {{"filename", "filename"}, {"filter_type", "filter_type"}, {"wrap_mode", "wrap_mode"},
-                        {"raw", "raw"}, {"to_uv", "to_uv"}},
+                       {{"filename", "filename"}, {"filter_type", "filter"}, {"wrap_mode", "wrap_mode"},
+                        {"to_uv", "to_uv"}},
                        {"format"});
             if (!out.find("filename")) fail(n, "bitmap texture needs a 'filename'");
         } else if (type == "checkerboard") {
@@ -529,8 +535,16 @@ private:
             if (!inner) fail(n, what + " needs a nested bsdf");
             if (type == "bumpmap" && !out.find("texture")) fail(n, "bumpmap needs a nested texture");
             if (type == "normalmap" && !out.find("normalmap")) fail(n, "normalmap needs a texture named 'normalmap'");
-            out.set("material", *inner);
-            return out;
+            // Our materials carry bump and normal maps as keys: copy the wrapped material and add them.
+            Node mat = *inner;
+            if (mat.is_string()) mat = *m_materials.find(mat.as_string());
+            if (type == "bumpmap") {
+                mat.set("bump_map", *out.find("texture"));
+                if (const Node* sc = out.find("scale")) mat.set("bump_scale", *sc);
+            } else {
+                mat.set("normal_map", *out.find("normalmap"));
+            }
+            return mat;
         }
 
         Collected c = collect(n);

@@ -265,10 +265,11 @@ TEST(MitsubaXml, WrappersAndTextures) {
   "tiles": {"type": "lambertian", "reflectance": {"type": "checkerboard", "color0": 0.1, "color1": 0.9,
                                                    "to_uv": [{"scale": [4, 4, 1]}]}},
   "img": {"type": "rough_plastic", "diffuse_reflectance": {"type": "image", "filename": "textures/wood.png",
-          "filter_type": "nearest", "wrap_mode": "clamp", "raw": false}, "distribution": "beckmann"},
-  "bumpy": {"type": "bump_map", "texture": {"type": "image", "filename": "bump.png", "raw": true}, "scale": 0.5,
-            "material": "tiles"},
-  "nm": {"type": "normal_map", "normalmap": {"type": "image", "filename": "n.png"}, "material": {"type": "conductor"}}}})"));
+          "filter": "nearest", "wrap_mode": "clamp"}, "distribution": "beckmann"},
+  "bumpy": {"type": "lambertian", "reflectance": {"type": "checkerboard", "color0": 0.1, "color1": 0.9,
+                                                   "to_uv": [{"scale": [4, 4, 1]}]},
+            "bump_map": {"type": "image", "color_space": "linear", "filename": "bump.png"}, "bump_scale": 0.5},
+  "nm": {"type": "conductor", "normal_map": {"type": "image", "filename": "n.png"}}}})"));
 }
 
 TEST(MitsubaXml, Lights) {
