@@ -332,7 +332,8 @@ namespace {
 // Keys every material takes: bump_map / bump_scale, normal_map / normal_map_convention, and
 // terminator_softening (material/textured.h).
 void read_normal_perturbation(Properties& p, const BuildContext& ctx) {
-    static const char* keys[] = {"bump_map", "bump_scale", "normal_map", "normal_map_convention", "terminator_softening"};
+    static const char* keys[] = {"bump_map", "bump_scale", "bump_step_scale", "normal_map", "normal_map_convention",
+                                 "terminator_softening"};
     bool any = false;
     for (const char* k : keys) any = any || p.has(k);
     if (!any) return;
@@ -342,6 +343,8 @@ void read_normal_perturbation(Properties& p, const BuildContext& ctx) {
     MaterialTextures& mt = *ctx.material_textures;
     if (p.has("bump_map")) mt.bump = int32_t(ctx.textures->texture(*p.get_node("bump_map"), p.key_path("bump_map"), true));
     mt.bump_scale = p.get_float("bump_scale", 1.f);
+    mt.bump_step_scale = p.get_float("bump_step_scale", 1.f);
+    if (!(mt.bump_step_scale > 0.f)) p.fail("bump_step_scale", "value " + format_float(mt.bump_step_scale) + " must be > 0");
     if (p.has("normal_map"))
         mt.normal_map = int32_t(ctx.textures->texture(*p.get_node("normal_map"), p.key_path("normal_map"), true));
     mt.normal_map_directx =

@@ -111,7 +111,7 @@ Frame perturbed_shading_frame(const MaterialTextures& mt, const TextureList& tex
     if (mt.bump >= 0) {
         SurfaceInteraction s2 = si;
         s2.shading = Frame::from_xz(si.dpdu, n);
-        Vec2f d = bump_steps(ctx);
+        Vec2f d = bump_steps(ctx) * mt.bump_step_scale;
         n = bump_normal(textures, uint32_t(mt.bump), mt.bump_scale, ctx, s2, d.x, d.y, true);
     }
     // A perturbed normal can put the viewer below the shading hemisphere while it is above the

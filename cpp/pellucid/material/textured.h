@@ -38,6 +38,7 @@ struct MaterialTextures {
     int count = 0;
     int32_t bump = -1;        ///< height texture B (world units × bump_scale), or -1
     float bump_scale = 1.f;
+    float bump_step_scale = 1.f;  ///< multiplies the footprint step Δu (for studies; 1 = one footprint)
     int32_t normal_map = -1;  ///< tangent-space normal map, or -1
     bool normal_map_directx = false;  ///< DirectX convention (green = −bitangent)
     /// Soften the shadow terminator of perturbed normals (Chiang et al. 2019); on by default.
