@@ -30,6 +30,17 @@ void bind_render(py::module_& m) {
     }, py::arg("scene"), py::arg("spp") = -1, py::arg("seed") = -1, py::arg("threads") = 0,
        py::arg("time_budget") = 0.0, py::arg("target_rel_error") = 0.0, py::arg("progress") = false,
        "Render; returns (image, variance, stats). Use pellucid.render for the documented API.");
+    m.def("render_aov", [](const Scene& scene, const std::string& aov, int spp, int64_t seed, int threads) {
+        RenderOptions o{spp, seed, threads, 0.0, 0.0, false, &g_cancel};
+        g_cancel = false;
+        RenderResult r;
+        {
+            py::gil_scoped_release nogil;
+            r = render_aov(scene, aov, o);
+        }
+        return py::make_tuple(image_to_array(std::move(r.image)), image_to_array(std::move(r.variance)));
+    }, py::arg("scene"), py::arg("aov"), py::arg("spp") = -1, py::arg("seed") = -1, py::arg("threads") = 0,
+       "Render one AOV; returns (image, variance). Use pellucid.aov.render_aov for the documented API.");
     m.def("cancel", [] { g_cancel = true; }, "Ask the running render to stop after its current tiles.");
 }
 }  // namespace pellucid::bind

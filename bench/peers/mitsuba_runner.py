@@ -165,8 +165,9 @@ def _mesh(shape, to_world, name, bsdf, emitter):
 
 
 # --------------------------------------------------------------------------- conversion
-def to_mitsuba_dict(scene_json: dict) -> dict:
-    """Convert a pellucid JSON scene (parsed) into a Mitsuba 3 scene dict.
+def to_mitsuba_dict(scene_json: dict, base_dir: str = ".") -> dict:
+    """Convert a pellucid JSON scene (parsed) into a Mitsuba 3 scene dict. Relative file names
+    (envmaps) are resolved against base_dir, the scene file's directory.
 
     Requires a Mitsuba variant to be set (mi.set_variant) beforehand.
     """
@@ -259,6 +260,10 @@ def to_mitsuba_dict(scene_json: dict) -> dict:
         t = l.get("type")
         if t == "constant":
             out[f"light_{i}"] = {"type": "constant", "radiance": _rgb(l["radiance"], f"lights[{i}].radiance")}
+        elif t == "envmap":  # same plugin name, parameters and lat-long convention
+            out[f"light_{i}"] = {"type": "envmap", "filename": os.path.join(base_dir, l["filename"]),
+                                 "scale": float(l.get("scale", 1.0)),
+                                 "to_world": _transform(l.get("to_world"), f"lights[{i}].to_world")}
         else:
             raise NotImplementedError(f"lights[{i}]: light type {t!r} is not mapped")
     return out
@@ -310,7 +315,7 @@ def main(argv=None):
         sj.setdefault("integrator", {"type": "path"})["max_depth"] = a.max_depth
 
     t0 = time.perf_counter()
-    scene = mi.load_dict(to_mitsuba_dict(sj))
+    scene = mi.load_dict(to_mitsuba_dict(sj, os.path.dirname(os.path.abspath(a.scene))))
     load_s = time.perf_counter() - t0
     film_size = scene.sensors()[0].film().size()
     W, H = int(film_size[0]), int(film_size[1])

@@ -1,6 +1,6 @@
 // pellucid-render: the standalone renderer (no Python needed).
 // Usage: pellucid-render [render] SCENE -o OUT [-o OUT2 ...] [--spp N] [--seed S] [--threads T]
-//                        [--time-budget SECONDS] [--quiet]
+//                        [--time-budget SECONDS] [--aov albedo|normal|depth] [--quiet]
 // The same flags as `python -m pellucid render`; the same scene and seed give the same image.
 // SPDX-License-Identifier: Apache-2.0
 #include <atomic>
@@ -19,8 +19,10 @@ extern "C" void on_sigint(int) { g_cancel = true; }
 
 const char* kUsage =
     "usage: pellucid-render [render] SCENE -o OUT [-o OUT ...] [--spp N] [--seed S] [--threads T]\n"
-    "                       [--time-budget SECONDS] [--quiet]\n"
-    "Renders SCENE (.json) and writes each OUT (.exr keeps HDR values; .png/.jpg are tone-mapped sRGB).\n";
+    "                       [--time-budget SECONDS] [--aov albedo|normal|depth] [--quiet]\n"
+    "Renders SCENE (.json) and writes each OUT (.exr keeps HDR values; .png/.jpg are tone-mapped sRGB).\n"
+    "--aov renders that AOV of the first hit instead of the scene's integrator (signed normals and depth\n"
+    "need .exr to keep their values).\n";
 
 [[noreturn]] void usage_error(const std::string& msg) {
     std::fprintf(stderr, "pellucid-render: error: %s\n%s", msg.c_str(), kUsage);
@@ -42,6 +44,7 @@ int main(int argc, char** argv) {
     pellucid::RenderOptions opts;
     opts.progress = true;
     bool quiet = false;
+    std::string aov;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&](const char* flag) -> std::string {
@@ -73,6 +76,10 @@ int main(int argc, char** argv) {
             char* end = nullptr;
             opts.time_budget = std::strtod(v.c_str(), &end);
             if (v.empty() || *end || !(opts.time_budget > 0)) usage_error("--time-budget: expected seconds > 0");
+        } else if (a == "--aov") {
+            aov = value("--aov");
+            if (aov != "albedo" && aov != "normal" && aov != "depth")
+                usage_error("--aov: unknown aov '" + aov + "' (known: albedo, depth, normal)");
         } else if (a == "--quiet" || a == "-q") {
             quiet = true;
         } else if (a == "render" && scene_path.empty() && i == 0) {
@@ -92,7 +99,7 @@ int main(int argc, char** argv) {
     std::signal(SIGINT, on_sigint);
     try {
         auto scene = pellucid::load_file(scene_path);
-        pellucid::RenderResult r = pellucid::render(*scene, opts);
+        pellucid::RenderResult r = aov.empty() ? pellucid::render(*scene, opts) : pellucid::render_aov(*scene, aov, opts);
         for (const auto& out : outputs) {
             pellucid::write_image(out, r.image);
             if (!quiet) std::fprintf(stderr, "wrote %s\n", out.c_str());

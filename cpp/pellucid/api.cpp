@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "pellucid/image/image_io.h"
+#include "pellucid/integrator/aov.h"
 #include "pellucid/integrator/integrator.h"
 #include "pellucid/pellucid.h"
 #include "pellucid/scene/build.h"
@@ -32,6 +33,13 @@ RenderResult render(const Scene& scene, const RenderOptions& opts) {
     if (opts.time_budget < 0.0) throw Error("time_budget: must be >= 0");
     if (opts.target_rel_error < 0.0) throw Error("target_rel_error: must be >= 0");
     return make_integrator(scene)->render(scene, opts);
+}
+
+RenderResult render_aov(const Scene& scene, const std::string& aov, const RenderOptions& opts) {
+    AovIntegrator integrator(AovIntegrator::parse(aov));
+    if (opts.spp < -1 || opts.spp == 0) throw Error("spp: value " + std::to_string(opts.spp) + " must be >= 1");
+    if (opts.threads < 0) throw Error("threads: value " + std::to_string(opts.threads) + " must be >= 0");
+    return integrator.render(scene, opts);
 }
 
 void write_image(const std::string& path, const Image& img) { pellucid::write_image_file(path, img); }

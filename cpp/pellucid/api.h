@@ -19,6 +19,8 @@ std::shared_ptr<const Scene> load_file(const std::string& path);
 std::shared_ptr<const Scene> load_desc(const SceneDesc& desc);
 /// Render with the scene's integrator.
 RenderResult render(const Scene& scene, const RenderOptions& opts);
+/// Render one AOV ("albedo", "normal", "depth"; integrator/aov.h) instead of the scene's integrator.
+RenderResult render_aov(const Scene& scene, const std::string& aov, const RenderOptions& opts);
 /// Write / read images (see image/image_io.h).
 void write_image(const std::string& path, const Image& img);
 Image read_image(const std::string& path);

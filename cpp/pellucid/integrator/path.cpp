@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "pellucid/integrator/aov.h"
 #include "pellucid/sampling/mis.h"
 #include "pellucid/util/error.h"
 
@@ -11,6 +12,8 @@ namespace pellucid {
 
 std::unique_ptr<Integrator> make_integrator(const Scene& scene) {
     if (scene.integrator.type == "path") return std::make_unique<PathIntegrator>(scene.integrator);
+    if (scene.integrator.type == "aov")
+        return std::make_unique<AovIntegrator>(AovIntegrator::parse(scene.integrator.aov));
     throw Error("integrator.type: unknown integrator '" + scene.integrator.type + "'");
 }
 
@@ -47,9 +50,9 @@ Spectrum PathIntegrator::Li(const Scene& scene, RayDifferential ray, PCG32& rng)
     for (int depth = 1;; ++depth) {  // depth = number of path segments, including this ray
         if (!scene.intersect(ray, si)) {
             for (uint32_t li : scene.infinite_lights) {
-                const auto& env = std::get<ConstantLight>(scene.lights[li]);
-                float lpdf = scene.light_pmf(li) * env.pdf_li(prev_ctx, ray.d);
-                L += beta * env.Le(ray.d) * bsdf_hit_weight(use_mis, use_nee, specular, prev_pdf, lpdf);
+                InfiniteHit env = infinite_hit(scene.lights[li], prev_ctx, ray.d);
+                float lpdf = scene.light_pmf(li) * env.pdf;
+                L += beta * env.Le * bsdf_hit_weight(use_mis, use_nee, specular, prev_pdf, lpdf);
             }
             break;
         }

@@ -2,10 +2,34 @@
 // sampling (no MIS: a BSDF sample hits them with probability 0).
 // SPDX-License-Identifier: Apache-2.0
 //
-// point       | position [0,0,0] (or to_world) | intensity (W/sr) 1
-// spot        | to_world (looks down +z; look_at) | intensity 1 | cutoff_angle 20° | beam_width 0.75·cutoff
-// directional | direction [0,0,-1] (or to_world: +z) | irradiance (W/m²) 1
+//
+// `point`: radiant intensity I in every direction; power 4π·I.
+// | parameter | type      | default   | meaning                                              |
+// |-----------|-----------|-----------|------------------------------------------------------|
+// | position  | vec3      | [0, 0, 0] | position (or the origin of to_world)                 |
+// | to_world  | transform | identity  | used when position is absent                         |
+// | intensity | colour    | 1         | radiant intensity (W·sr⁻¹), ≥ 0; zero skips the light with a warning |
 // JSON: "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 10}]
+//
+// `spot`: a point light shining down +z of to_world, full intensity inside beam_width, a ramp
+// linear in angle to zero at cutoff_angle (Mitsuba 3's falloff).
+// | parameter    | type      | default        | meaning                                      |
+// |--------------|-----------|----------------|----------------------------------------------|
+// | to_world     | transform | identity       | position and orientation (e.g. look_at)      |
+// | intensity    | colour    | 1              | intensity on the axis (W·sr⁻¹), ≥ 0          |
+// | cutoff_angle | float     | 20             | degrees, in [0.001, 90]: no light beyond     |
+// | beam_width   | float     | 0.75·cutoff    | degrees, in [0, cutoff_angle]: full intensity within |
+// JSON: {"type": "spot", "intensity": 50, "cutoff_angle": 30,
+//        "to_world": [{"look_at": {"origin": [0, 4, 0], "target": [0, 0, 0], "up": [0, 0, 1]}}]}
+//
+// `directional`: parallel light from infinitely far away.
+// | parameter  | type      | default    | meaning                                             |
+// |------------|-----------|------------|-----------------------------------------------------|
+// | direction  | vec3      | [0, 0, 1]  | direction the light travels (or +z of to_world)     |
+// | to_world   | transform | identity   | used when direction is absent                       |
+// | irradiance | colour    | 1          | irradiance on a surface facing the light (W·m⁻²), ≥ 0 |
+// JSON: {"type": "directional", "direction": [0, -1, 0], "irradiance": 3}
+// Its power (for light selection) is π r² E over a disk of the scene's bounding radius r.
 #pragma once
 #include <cmath>
 #include <optional>
@@ -68,9 +92,13 @@ public:
         s->L *= f;
         return s;
     }
-    /// Power of the cone with the linear ramp approximated by its mean half-angle.
+    /// Φ = 2π I ∫ falloff(θ) sin θ dθ, exact for the linear ramp: with b = beam, c = cutoff,
+    /// ∫_0^b sin θ dθ + ∫_b^c (c − θ)/(c − b) sin θ dθ = 1 − (sin c − sin b)/(c − b)
+    /// (→ 1 − cos c as b → c).
     float power() const {
-        return 2.f * kPi * (1.f - std::cos(0.5f * (m_cutoff + m_beam))) * m_I.average();
+        double b = m_beam, c = m_cutoff;
+        double frac = c - b > 1e-6 ? 1.0 - (std::sin(c) - std::sin(b)) / (c - b) : 1.0 - std::cos(c);
+        return float(2.0 * M_PI * frac) * m_I.average();
     }
     std::string to_string() const { return "SpotLight[position=" + pellucid::to_string(m_p) + ", intensity=" + m_I.to_string() + "]"; }
 

@@ -6,6 +6,7 @@
 #include <map>
 #include <type_traits>
 
+#include "pellucid/image/image_io.h"
 #include "pellucid/material/builders.h"
 #include "pellucid/scene/registry.h"
 #include "pellucid/scene/texture_builder.h"
@@ -92,7 +93,14 @@ private:
         Properties p(*n, m_desc.source, "integrator");
         IntegratorSettings& s = m_scene.integrator;
         s.type = p.type();
-        if (s.type != "path") p.fail("type", "unknown integrator '" + s.type + "' (known: path)");
+        if (s.type == "aov") {  // integrator/aov.h
+            s.aov = p.get_string("aov");
+            if (s.aov != "albedo" && s.aov != "normal" && s.aov != "depth")
+                p.fail("aov", "unknown aov '" + s.aov + "' (known: albedo, depth, normal)");
+            p.check_unqueried();
+            return;
+        }
+        if (s.type != "path") p.fail("type", "unknown integrator '" + s.type + "' (known: aov, path)");
         s.max_depth = p.get_int("max_depth", -1);
         if (s.max_depth < -1) p.fail("max_depth", "value " + std::to_string(s.max_depth) + " must be >= -1");
         s.rr_depth = p.get_int("rr_depth", 5);
@@ -277,12 +285,7 @@ private:
         // Light selection for next-event estimation.
         std::vector<float> weights;
         for (const auto& l : m_scene.lights) {
-            float w = 1.f;
-            if (m_scene.integrator.light_selection == "power")
-                w = std::visit([&](const auto& x) {
-                    if constexpr (std::is_same_v<std::decay_t<decltype(x)>, ConstantLight>) return x.power(radius);
-                    else return x.power();
-                }, l);
+            float w = m_scene.integrator.light_selection == "power" ? light_power(l, radius) : 1.f;
             weights.push_back(std::isfinite(w) && w > 0.f ? w : 0.f);
         }
         m_scene.light_distribution = Distribution1D(weights);
@@ -315,16 +318,58 @@ private:
             Vec3f dir = p.has("direction") ? p.get_vec3("direction") : t.vector(Vec3f(0, 0, 1));
             if (!(length(dir) > 0.f)) p.fail("direction", "must be non-zero");
             light = DirectionalLight(dir, value, radius);
+        } else if (type == "envmap") {
+            EnvmapLight env = build_envmap(p);
+            value = Spectrum(float(env.integral()));
+            light = std::move(env);
         } else {
-            p.fail("type", "unknown light type '" + type + "' (known: constant, directional, point, spot)");
+            p.fail("type", "unknown light type '" + type + "' (known: constant, directional, envmap, point, spot)");
         }
         p.check_unqueried();
         if (value.is_black()) {
             log_warning(format_error(m_desc.source, path, "light has zero power; skipped"));
             return;
         }
-        if (type == "constant") m_scene.infinite_lights.push_back(uint32_t(m_scene.lights.size()));
-        m_scene.lights.push_back(light);
+        bool infinite = std::visit([](const auto& x) {
+            return is_infinite_area_light_v<std::decay_t<decltype(x)>>;
+        }, light);
+        if (infinite) m_scene.infinite_lights.push_back(uint32_t(m_scene.lights.size()));
+        m_scene.lights.push_back(std::move(light));
+    }
+
+    // A lat-long environment map (light/envmap.h). Every failure names the file and the key path.
+    EnvmapLight build_envmap(Properties& p) {
+        const std::string name = p.get_string("filename");
+        const std::string file = m_ctx.resolve(name);
+        float scale = p.get_float("scale", 1.f);
+        if (!(scale >= 0.f) || !std::isfinite(scale))
+            p.fail("scale", "value " + std::to_string(scale) + " must be finite and >= 0");
+        // The map's frame must be rotated (and at most uniformly scaled), so solid angle is preserved.
+        Mat3f m(p.get_transform("to_world").matrix());
+        float s0 = length(m[0]), s1 = length(m[1]), s2 = length(m[2]);
+        if (!(s0 > 0.f) || std::fabs(s0 - s1) > 1e-4f * s0 || std::fabs(s0 - s2) > 1e-4f * s0 ||
+            std::fabs(dot(m[0], m[1])) > 1e-4f * s0 * s1 || std::fabs(dot(m[0], m[2])) > 1e-4f * s0 * s2 ||
+            std::fabs(dot(m[1], m[2])) > 1e-4f * s1 * s2)
+            p.fail("to_world", "an envmap's transform must be a rotation (got scales " + std::to_string(s0) + ", " +
+                                   std::to_string(s1) + ", " + std::to_string(s2) + " or sheared axes)");
+        Image img;
+        try {
+            img = read_image_file(file);
+        } catch (const Error& e) {
+            p.fail("filename", e.what());
+        }
+        if (img.width < 2 || img.height < 3)
+            p.fail("filename", file + ": the environment map is " + std::to_string(img.width) + "x" +
+                                   std::to_string(img.height) + " pixels; it must be at least 2x3");
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    float v = img.pixel(x, y)[c];
+                    if (!std::isfinite(v) || v < 0.f)
+                        p.fail("filename", file + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                               ") has radiance " + std::to_string(v) + "; it must be finite and >= 0");
+                }
+        return EnvmapLight(img, scale, m / s0, name);
     }
 
     const SceneDesc& m_desc;

@@ -158,10 +158,10 @@ std::map<std::string, std::vector<std::string>> registry_types() {
     for (const auto& [k, v] : shape_registry()) out["shapes"].push_back(k);
     for (const auto& [k, v] : filter_registry()) out["filters"].push_back(k);
     for (const auto& [k, v] : texture_registry()) out["textures"].push_back(k);
-    out["lights"] = {"constant"};
+    out["lights"] = {"constant", "directional", "envmap", "point", "spot"};
     out["emitters"] = {"area"};
     out["cameras"] = {"perspective"};
-    out["integrators"] = {"path"};
+    out["integrators"] = {"aov", "path"};
     return out;
 }
 }  // namespace pellucid

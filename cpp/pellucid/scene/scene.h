@@ -37,6 +37,7 @@ struct IntegratorSettings {
     int rr_depth = 5;     ///< Russian roulette starts at this depth
     std::string strategy = "mis";  ///< "mis", "nee", "bsdf", "direct"
     std::string light_selection = "power";  ///< "power" or "uniform"
+    std::string aov;  ///< type "aov": "albedo", "normal" or "depth" (integrator/aov.h)
 };
 
 class Scene {
