@@ -1,6 +1,6 @@
 // pellucid-render: the standalone renderer (no Python needed).
 // Usage: pellucid-render [render] SCENE -o OUT [-o OUT2 ...] [--spp N] [--seed S] [--threads T]
-//                        [--time-budget SECONDS] [--quiet]
+//                        [--time-budget SECONDS] [--lenient] [--quiet]
 // The same flags as `python -m pellucid render`; the same scene and seed give the same image.
 // SPDX-License-Identifier: Apache-2.0
 #include <atomic>
@@ -19,8 +19,9 @@ extern "C" void on_sigint(int) { g_cancel = true; }
 
 const char* kUsage =
     "usage: pellucid-render [render] SCENE -o OUT [-o OUT ...] [--spp N] [--seed S] [--threads T]\n"
-    "                       [--time-budget SECONDS] [--quiet]\n"
-    "Renders SCENE (.json) and writes each OUT (.exr keeps HDR values; .png/.jpg are tone-mapped sRGB).\n";
+    "                       [--time-budget SECONDS] [--lenient] [--quiet]\n"
+    "Renders SCENE (.json or Mitsuba 3 .xml) and writes each OUT (.exr keeps HDR values; .png/.jpg are\n"
+    "tone-mapped sRGB). --lenient: unsupported Mitsuba XML elements are warnings (skipped), not errors.\n";
 
 [[noreturn]] void usage_error(const std::string& msg) {
     std::fprintf(stderr, "pellucid-render: error: %s\n%s", msg.c_str(), kUsage);
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> outputs;
     pellucid::RenderOptions opts;
     opts.progress = true;
-    bool quiet = false;
+    bool quiet = false, lenient = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&](const char* flag) -> std::string {
@@ -73,6 +74,8 @@ int main(int argc, char** argv) {
             char* end = nullptr;
             opts.time_budget = std::strtod(v.c_str(), &end);
             if (v.empty() || *end || !(opts.time_budget > 0)) usage_error("--time-budget: expected seconds > 0");
+        } else if (a == "--lenient") {
+            lenient = true;
         } else if (a == "--quiet" || a == "-q") {
             quiet = true;
         } else if (a == "render" && scene_path.empty() && i == 0) {
@@ -91,7 +94,7 @@ int main(int argc, char** argv) {
     opts.cancel = &g_cancel;
     std::signal(SIGINT, on_sigint);
     try {
-        auto scene = pellucid::load_file(scene_path);
+        auto scene = pellucid::load_file(scene_path, lenient);
         pellucid::RenderResult r = pellucid::render(*scene, opts);
         for (const auto& out : outputs) {
             pellucid::write_image(out, r.image);
