@@ -7,6 +7,7 @@ same seed.
 from __future__ import annotations
 
 import argparse
+import importlib
 import logging
 import sys
 import threading
@@ -38,7 +39,7 @@ def _bench(argv: List[str]) -> int:
     """Hand the arguments after ``bench`` to pellucid.bench.main, imported only now (it pulls in
     plotting and peer-renderer code that rendering does not need)."""
     try:
-        from pellucid import bench
+        bench = importlib.import_module("pellucid.bench")
     except ImportError as e:
         print(f"pellucid: error: the bench subcommand is not available: cannot import pellucid.bench ({e})",
               file=sys.stderr)

@@ -128,6 +128,10 @@ class Image(np.ndarray):
         return Comparison(float(np.sqrt(d2.mean())), float((d2 / (b * b + RELMSE_EPSILON)).mean()))
 
     # ---- printing -----------------------------------------------------------------------------
+    def __str__(self) -> str:
+        """The same summary as repr for images (``np.array2string(img)`` prints the values)."""
+        return self.__repr__() if self.ndim in (2, 3) and self.size else np.asarray(self).__str__()
+
     def __repr__(self) -> str:
         if self.ndim not in (2, 3) or self.size == 0:
             return np.asarray(self).__repr__().replace("array", "Image", 1)

@@ -128,3 +128,20 @@ def test_objects_print_themselves(tiny_scene_path) -> None:
     img = pellucid.render(scene, spp=1)
     assert repr(img).startswith("Image(32x24, 3 channels")
     assert repr(pellucid._core.RenderProgress()).startswith("RenderProgress(")
+
+
+def test_readme_python_example_runs(tmp_path, monkeypatch, capsys) -> None:
+    """The README's Python quick start runs as written (with spp capped at 2 to keep it fast)."""
+    import re
+
+    text = (ROOT / "README.md").read_text()
+    snippet = re.search(r"## Python\n\n```python\n(.*?)```", text, re.S).group(1)
+    assert len([ln for ln in snippet.splitlines() if ln.strip()]) <= 10
+    real = pellucid.render
+    monkeypatch.setattr(pellucid, "render", lambda scene, spp=None, **k: real(scene, spp=min(spp or 2, 2), **k))
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "out").mkdir()
+    exec(compile(snippet, "README.md", "exec"), {})
+    out = capsys.readouterr().out
+    assert out.startswith("Image(128x128, 3 channels, float32") and "Comparison(rmse=" in out
+    assert pellucid.read_image(tmp_path / "out" / "box.png").shape == (128, 128, 3)

@@ -89,6 +89,7 @@ def test_repr_is_readable() -> None:
     img = pellucid.Image(np.array([[[0.0, 1.0, 2.0], [3.0, 4.0, 5.0]]], dtype=np.float32))
     r = repr(img)
     assert r == "Image(2x1, 3 channels, float32, mean 2.5, min 0, max 5)", r
+    assert str(img) == r  # print(img) shows the summary, not 100k numbers
     bad = img.copy()
     bad[0, 0, 0] = np.nan
     assert "1 non-finite" in repr(bad)
