@@ -81,7 +81,11 @@ def _split_top(s: str) -> List[str]:
     return out
 
 
-def _map_type(t: str) -> str:
+def _map_type(t: str, param: bool = False) -> str:
+    # Arrays are spelled differently by pybind11 2.x (numpy.ndarray[numpy.float32]) and 3.x
+    # (Annotated[ArrayLike, ...] / NDArray[...]): normalise so that the stub does not depend on it.
+    if re.fullmatch(r"(typing\.Annotated\[)?numpy\.(typing\.)?(ndarray|NDArray|ArrayLike)\b.*", t):
+        return "ArrayLike" if param else "NDArray[np.float32]"
     for a, b in TYPE_MAP:
         t = t.replace(a, b)
     return t
@@ -100,7 +104,7 @@ def signature(obj: Any, name: str, method: bool) -> str:
             continue
         pname, _, rest = p.partition(":")
         ptype, eq, _default = rest.partition("=")
-        params.append(f"{pname.strip()}: {_map_type(ptype.strip())}" + (" = ..." if eq else ""))
+        params.append(f"{pname.strip()}: {_map_type(ptype.strip(), param=True)}" + (" = ..." if eq else ""))
     return f"({', '.join(params)}) -> {_map_type(ret.strip())}"
 
 
