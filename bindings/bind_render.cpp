@@ -11,9 +11,17 @@ std::atomic<bool> g_cancel{false};
 }
 
 void bind_render(py::module_& m) {
+    py::class_<RenderProgress>(m, "RenderProgress", "Progress of a running render, polled from another thread.")
+        .def(py::init<>())
+        .def_property_readonly("samples", [](const RenderProgress& p) { return p.samples.load(); })
+        .def_property_readonly("fraction", [](const RenderProgress& p) { return p.fraction.load(); })
+        .def("__repr__", [](const RenderProgress& p) {
+            return "RenderProgress(samples=" + std::to_string(p.samples.load()) +
+                   ", fraction=" + std::to_string(p.fraction.load()) + ")";
+        });
     m.def("render_full", [](const Scene& scene, int spp, int64_t seed, int threads, double time_budget,
-                            double target_rel_error, bool progress) {
-        RenderOptions o{spp, seed, threads, time_budget, target_rel_error, progress, &g_cancel};
+                            double target_rel_error, bool progress, RenderProgress* monitor) {
+        RenderOptions o{spp, seed, threads, time_budget, target_rel_error, progress, &g_cancel, monitor};
         g_cancel = false;
         RenderResult r;
         {
@@ -29,6 +37,7 @@ void bind_render(py::module_& m) {
         return py::make_tuple(image_to_array(std::move(r.image)), image_to_array(std::move(r.variance)), stats);
     }, py::arg("scene"), py::arg("spp") = -1, py::arg("seed") = -1, py::arg("threads") = 0,
        py::arg("time_budget") = 0.0, py::arg("target_rel_error") = 0.0, py::arg("progress") = false,
+       py::arg("monitor") = py::none(),
        "Render; returns (image, variance, stats). Use pellucid.render for the documented API.");
     m.def("render_aov", [](const Scene& scene, const std::string& aov, int spp, int64_t seed, int threads) {
         RenderOptions o{spp, seed, threads, 0.0, 0.0, false, &g_cancel};

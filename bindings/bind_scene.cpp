@@ -2,8 +2,11 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <cmath>
 
+#include <pybind11/stl.h>
+
 #include "bind.h"
 #include "pellucid/api.h"
+#include "pellucid/scene/registry.h"
 #include "pellucid/util/error.h"
 
 namespace pellucid::bind {
@@ -42,8 +45,17 @@ void bind_scene(py::module_& m) {
         .def_property_readonly("spp", [](const Scene& s) { return s.spp; })
         .def_property_readonly("source", [](const Scene& s) { return s.source; })
         .def("__repr__", &Scene::to_string);
-    m.def("load_file", [](const std::string& path) { return std::const_pointer_cast<Scene>(load_file(path)); },
-          py::arg("path"), py::call_guard<py::gil_scoped_release>(), "Load and build a scene file (.json).");
+    m.def("load_file", [](const std::string& path, bool lenient) {
+        return std::const_pointer_cast<Scene>(load_file(path, lenient));
+    }, py::arg("path"), py::arg("lenient") = false, py::call_guard<py::gil_scoped_release>(),
+       "Load and build a scene file (.json or Mitsuba 3 .xml; lenient: unsupported XML elements warn).");
+    m.def("registry_types", &registry_types, "Registered type names per family (materials, shapes, ...).");
+    m.def("record_parameters", [](const py::dict& d, const std::string& base_dir) {
+        std::vector<py::tuple> out;
+        for (auto& r : record_parameters(SceneDesc{to_node(d, ""), "<dict>", base_dir}))
+            out.push_back(py::make_tuple(r.path, r.type, r.keys));
+        return out;
+    }, py::arg("d"), py::arg("base_dir") = ".", "Build d; return (path, type, keys looked up) per object.");
     m.def("load_dict", [](const py::dict& d, const std::string& base_dir) {
         SceneDesc desc{to_node(d, ""), "<dict>", base_dir};
         py::gil_scoped_release nogil;

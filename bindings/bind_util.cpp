@@ -20,5 +20,8 @@ void bind_util(py::module_& m) {
               });
           },
           py::arg("fn"), "Route log messages to fn(level: int, message: str); None restores stderr.");
+    // Drop the Python sink while the interpreter is still alive: destroyed later, among the C++
+    // static destructors, its decref would run without the GIL and abort the process at exit.
+    py::module_::import("atexit").attr("register")(py::cpp_function([] { set_log_sink(nullptr); }));
 }
 }  // namespace pellucid::bind

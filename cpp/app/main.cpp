@@ -1,6 +1,6 @@
 // pellucid-render: the standalone renderer (no Python needed).
 // Usage: pellucid-render [render] SCENE -o OUT [-o OUT2 ...] [--spp N] [--seed S] [--threads T]
-//                        [--time-budget SECONDS] [--aov albedo|normal|depth] [--quiet]
+//                        [--time-budget SECONDS] [--aov albedo|normal|depth] [--lenient] [--quiet]
 // The same flags as `python -m pellucid render`; the same scene and seed give the same image.
 // SPDX-License-Identifier: Apache-2.0
 #include <atomic>
@@ -19,8 +19,9 @@ extern "C" void on_sigint(int) { g_cancel = true; }
 
 const char* kUsage =
     "usage: pellucid-render [render] SCENE -o OUT [-o OUT ...] [--spp N] [--seed S] [--threads T]\n"
-    "                       [--time-budget SECONDS] [--aov albedo|normal|depth] [--quiet]\n"
-    "Renders SCENE (.json) and writes each OUT (.exr keeps HDR values; .png/.jpg are tone-mapped sRGB).\n"
+    "                       [--time-budget SECONDS] [--aov albedo|normal|depth] [--lenient] [--quiet]\n"
+    "Renders SCENE (.json or Mitsuba 3 .xml) and writes each OUT (.exr keeps HDR values; .png/.jpg are\n"
+    "tone-mapped sRGB). --lenient: unsupported Mitsuba XML elements are warnings (skipped), not errors.\n"
     "--aov renders that AOV of the first hit instead of the scene's integrator (signed normals and depth\n"
     "need .exr to keep their values).\n";
 
@@ -43,7 +44,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> outputs;
     pellucid::RenderOptions opts;
     opts.progress = true;
-    bool quiet = false;
+    bool quiet = false, lenient = false;
     std::string aov;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
@@ -80,6 +81,8 @@ int main(int argc, char** argv) {
             aov = value("--aov");
             if (aov != "albedo" && aov != "normal" && aov != "depth")
                 usage_error("--aov: unknown aov '" + aov + "' (known: albedo, depth, normal)");
+        } else if (a == "--lenient") {
+            lenient = true;
         } else if (a == "--quiet" || a == "-q") {
             quiet = true;
         } else if (a == "render" && scene_path.empty() && i == 0) {
@@ -98,7 +101,7 @@ int main(int argc, char** argv) {
     opts.cancel = &g_cancel;
     std::signal(SIGINT, on_sigint);
     try {
-        auto scene = pellucid::load_file(scene_path);
+        auto scene = pellucid::load_file(scene_path, lenient);
         pellucid::RenderResult r = aov.empty() ? pellucid::render(*scene, opts) : pellucid::render_aov(*scene, aov, opts);
         for (const auto& out : outputs) {
             pellucid::write_image(out, r.image);

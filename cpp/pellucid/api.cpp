@@ -15,16 +15,28 @@
 
 namespace pellucid {
 
-SceneDesc load_desc_file(const std::string& path) {
+SceneDesc load_desc_file(const std::string& path, bool lenient) {
     std::string ext = std::filesystem::path(path).extension().string();
     if (ext == ".json") return read_json_file(path);
-    if (ext == ".xml") return read_mitsuba_xml_file(path, /*lenient=*/false);
+    if (ext == ".xml") return read_mitsuba_xml_file(path, lenient);
     throw Error(path + ": unsupported scene format '" + ext + "' (expected .json or Mitsuba 3 .xml)");
 }
 
-std::shared_ptr<const Scene> load_file(const std::string& path) { return load_desc(load_desc_file(path)); }
+std::shared_ptr<const Scene> load_file(const std::string& path, bool lenient) {
+    return load_desc(load_desc_file(path, lenient));
+}
 
 std::shared_ptr<const Scene> load_desc(const SceneDesc& desc) { return build_scene(desc); }
+
+std::vector<ParameterRecord> record_parameters(const SceneDesc& desc) {
+    std::vector<ParameterRecord> records;
+    struct Stop {  // stop recording on every exit, errors included
+        ~Stop() { set_parameter_recorder(nullptr); }
+    } stop;
+    set_parameter_recorder(&records);
+    build_scene(desc);
+    return records;
+}
 
 RenderResult render(const Scene& scene, const RenderOptions& opts) {
     if (opts.spp == 0) throw Error("spp: value 0 must be >= 1");

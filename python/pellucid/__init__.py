@@ -3,33 +3,44 @@
 Quick start::
 
     import pellucid
-    scene = pellucid.load_file("scenes/cornell_box.json")
-    image = pellucid.render(scene, spp=64)          # float32 (H, W, 3), linear radiance
-    pellucid.write_image("out/cornell_box.exr", image)
+    from pellucid import materials, scenes
+    scene = pellucid.load_dict(scenes.cornell_box())       # or load_file("scenes/cornell_box.json")
+    image = pellucid.render(scene, spp=64, progress=True)  # pellucid.Image: float32 (H, W, 3) radiance
+    image.save("out/cornell_box.png")                      # .exr keeps HDR; .png is sRGB
+    image.compare(reference)                               # Comparison(rmse=..., relmse=...)
+
+C++ log messages go to the ``logging`` logger ``"pellucid"`` (warnings show by default).
 """
 from __future__ import annotations
 
 import logging as _logging
 import os as _os
-from typing import Any, Dict, Optional, Union
+import threading as _threading
+from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as _np
 
 from . import _core
+from . import materials, scenes
 from ._core import Error, Scene, cancel
 from .bsdf import bsdf
+from .image import Comparison, Image
 
 __version__: str = _core.__version__
 __all__ = [
+    "Comparison",
     "Error",
+    "Image",
     "Scene",
     "bsdf",
     "cancel",
     "load_dict",
     "load_file",
+    "materials",
     "read_image",
     "render",
     "render_with_stats",
+    "scenes",
     "write_image",
     "__version__",
 ]
@@ -44,9 +55,15 @@ def _sink(level: int, message: str) -> None:
 _core.set_log_sink(_sink)
 
 
-def load_file(path: Union[str, "_os.PathLike[str]"]) -> Scene:
-    """Load and build a scene file (JSON, see docs/scene-format.md). Raises pellucid.Error."""
-    return _core.load_file(_os.fspath(path))
+def load_file(path: Union[str, "_os.PathLike[str]"], lenient: bool = False) -> Scene:
+    """Load and build a scene file: JSON (docs/scene-format.md) or Mitsuba 3 XML
+    (docs/mitsuba-import.md). Raises pellucid.Error naming the file, and the line for XML.
+
+    ``lenient=True`` turns unsupported Mitsuba XML elements (plugins, parameters, media) into
+    warnings on the ``"pellucid"`` logger, naming the element and line, and skips them; malformed
+    XML, unknown ids, missing files and bad values stay errors. JSON scenes ignore it.
+    """
+    return _core.load_file(_os.fspath(path), bool(lenient))
 
 
 def load_dict(d: Dict[str, Any], base_dir: Union[str, "_os.PathLike[str]"] = ".") -> Scene:
@@ -63,9 +80,43 @@ def write_image(path: Union[str, "_os.PathLike[str]"], array: _np.ndarray) -> No
     _core.write_image(_os.fspath(path), array)
 
 
-def read_image(path: Union[str, "_os.PathLike[str]"]) -> _np.ndarray:
-    """Read an image as a linear float32 (H, W, 3) array (8-bit files are decoded from sRGB)."""
-    return _core.read_image(_os.fspath(path))
+def read_image(path: Union[str, "_os.PathLike[str]"]) -> Image:
+    """Read an image as a linear float32 (H, W, 3) :class:`Image` (8-bit files are decoded from
+    sRGB)."""
+    return _core.read_image(_os.fspath(path)).view(Image)
+
+
+def _tqdm() -> Any:
+    """tqdm's auto bar (notebook widget or terminal), or None when tqdm is not installed."""
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        return None
+    return tqdm
+
+
+def _render_with_bar(tqdm: Any, kwargs: Dict[str, Any]) -> Tuple[Any, Any, Dict[str, Any]]:
+    """Run _core.render_full while a Python thread polls its progress counters into a tqdm bar
+    (the render releases the GIL, so the thread runs; no callback from C++ is needed)."""
+    monitor = _core.RenderProgress()
+    done = _threading.Event()
+    bar = tqdm(total=100, desc="rendering", unit="%", bar_format="{l_bar}{bar}| {elapsed}<{remaining}{postfix}")
+
+    def poll() -> None:
+        while not done.wait(0.1):
+            bar.n = round(100.0 * monitor.fraction, 1)
+            bar.set_postfix_str(f"{monitor.samples:,} samples", refresh=True)
+
+    t = _threading.Thread(target=poll, name="pellucid-progress", daemon=True)
+    t.start()
+    try:
+        return _core.render_full(monitor=monitor, **kwargs)
+    finally:
+        done.set()
+        t.join()
+        bar.n = round(100.0 * monitor.fraction, 1)
+        bar.set_postfix_str(f"{monitor.samples:,} samples", refresh=False)
+        bar.close()
 
 
 def render_with_stats(
@@ -79,23 +130,31 @@ def render_with_stats(
 ):
     """Render and return ``(image, variance, stats)``.
 
-    ``image`` is the per-pixel mean radiance, ``variance`` the variance of that mean (both float32
-    (H, W, 3) arrays that view C++ memory), ``stats`` a dict with the spp reached, wall seconds,
-    camera samples and the number of NaN/Inf samples kept out of the film.
+    ``image`` is the per-pixel mean radiance, ``variance`` the variance of that mean (both
+    :class:`Image`, float32 (H, W, 3), viewing C++ memory), ``stats`` a dict with the spp reached,
+    wall seconds, camera samples and the number of NaN/Inf samples kept out of the film.
+
+    ``progress=True`` shows a tqdm bar (a widget in Jupyter) when tqdm is installed, else the
+    renderer's own text bar on a terminal's stderr.
     """
     if spp is not None and (not isinstance(spp, int) or isinstance(spp, bool) or spp < 1):
         raise Error(f"spp: value {spp!r} must be an integer >= 1")
     if seed is not None and (not isinstance(seed, int) or seed < 0):
         raise Error(f"seed: value {seed!r} must be an integer >= 0")
-    return _core.render_full(
-        scene,
+    kwargs: Dict[str, Any] = dict(
+        scene=scene,
         spp=-1 if spp is None else spp,
         seed=-1 if seed is None else seed,
         threads=threads,
         time_budget=time_budget or 0.0,
         target_rel_error=target_rel_error or 0.0,
-        progress=progress,
     )
+    tqdm = _tqdm() if progress else None
+    if tqdm is not None:
+        image, variance, stats = _render_with_bar(tqdm, kwargs)
+    else:
+        image, variance, stats = _core.render_full(progress=bool(progress), **kwargs)
+    return image.view(Image), variance.view(Image), stats
 
 
 def render(
@@ -106,12 +165,13 @@ def render(
     time_budget: Optional[float] = None,
     target_rel_error: Optional[float] = None,
     progress: bool = False,
-) -> _np.ndarray:
-    """Render ``scene`` and return the image, a float32 (H, W, 3) numpy array of linear radiance
-    that views the renderer's memory (no copy). The GIL is released while rendering.
+) -> Image:
+    """Render ``scene`` and return the image: an :class:`Image` (a numpy.ndarray subclass), float32
+    (H, W, 3) linear radiance that views the renderer's memory (no copy). The GIL is released
+    while rendering.
 
     ``spp`` and ``seed`` default to the scene's sampler; ``threads=0`` uses every core. The same
-    scene and seed give the same image at any thread count.
+    scene and seed give the same image at any thread count. ``progress=True`` shows a tqdm bar.
     """
     image, _, _ = render_with_stats(scene, spp, seed, threads, time_budget, target_rel_error, progress)
     return image

@@ -1,10 +1,14 @@
-"""Command line: ``python -m pellucid render SCENE -o OUT [--spp N] [--seed S] [--threads T]``.
+"""Command line: ``python -m pellucid render SCENE -o OUT [--spp N] [--seed S] [--threads T]``
+and ``python -m pellucid bench ...`` (the benchmarks of ``pellucid.bench``).
 
-Takes the same flags as the C++ ``pellucid-render`` and gives the same image for the same seed.
+``render`` takes the same flags as the C++ ``pellucid-render`` and gives the same image for the
+same seed.
 """
 from __future__ import annotations
 
 import argparse
+import importlib
+import logging
 import sys
 import threading
 from typing import List, Optional
@@ -24,8 +28,24 @@ def _build_parser() -> argparse.ArgumentParser:
     r.add_argument("--seed", type=int, default=None, help="random seed (default: the scene's)")
     r.add_argument("--threads", type=int, default=0, help="worker threads (0 = all cores)")
     r.add_argument("--time-budget", type=float, default=None, help="stop after about this many seconds")
+    r.add_argument("--lenient", action="store_true",
+                   help="Mitsuba XML: unsupported elements are warnings (skipped), not errors")
     r.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
+    sub.add_parser("bench", add_help=False, help="benchmarks (pellucid.bench); `bench --help` for its options")
     return p
+
+
+def _bench(argv: List[str]) -> int:
+    """Hand the arguments after ``bench`` to pellucid.bench.main, imported only now (it pulls in
+    plotting and peer-renderer code that rendering does not need)."""
+    try:
+        bench = importlib.import_module("pellucid.bench")
+    except ImportError as e:
+        print(f"pellucid: error: the bench subcommand is not available: cannot import pellucid.bench ({e})",
+              file=sys.stderr)
+        return 2
+    rc = bench.main(argv)
+    return int(rc) if rc is not None else 0
 
 
 def _render(args: argparse.Namespace) -> int:
@@ -35,14 +55,14 @@ def _render(args: argparse.Namespace) -> int:
         raise pellucid.Error("--seed: value must be >= 0")
     if not (0 <= args.threads <= 4096):
         raise pellucid.Error("--threads: value must be in [0, 4096]")
-    scene = pellucid.load_file(args.scene)
+    scene = pellucid.load_file(args.scene, lenient=args.lenient)
     result = {}
 
     def work() -> None:
         try:
             result["out"] = pellucid.render_with_stats(
                 scene, spp=args.spp, seed=args.seed, threads=args.threads,
-                time_budget=args.time_budget, progress=not args.quiet)
+                time_budget=args.time_budget, progress=not args.quiet and sys.stderr.isatty())
         except BaseException as e:  # re-raised in the main thread
             result["error"] = e
 
@@ -75,7 +95,28 @@ def _render(args: argparse.Namespace) -> int:
     return 0
 
 
+class _LogFormat(logging.Formatter):
+    def format(self, record: logging.LogRecord) -> str:
+        return f"pellucid: {record.levelname.lower()}: {record.getMessage()}"
+
+
+def _setup_logging() -> None:
+    """Warnings of the renderer (logger "pellucid") go to stderr, unless the caller configured
+    logging already."""
+    log = logging.getLogger("pellucid")
+    if log.handlers or logging.getLogger().handlers:
+        return
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(_LogFormat())
+    handler.setLevel(logging.WARNING)
+    log.addHandler(handler)
+
+
 def main(argv: Optional[List[str]] = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    _setup_logging()
+    if argv[:1] == ["bench"]:
+        return _bench(argv[1:])
     args = _build_parser().parse_args(argv)
     try:
         if args.command == "render":

@@ -18,6 +18,13 @@ namespace pellucid {
 namespace {
 constexpr int kTile = 16;
 
+/// a = max(a, v) atomically: tiles finish out of order across threads, the fraction must not go back.
+void store_max(std::atomic<double>& a, double v) {
+    double seen = a.load(std::memory_order_relaxed);
+    while (seen < v && !a.compare_exchange_weak(seen, v, std::memory_order_relaxed)) {
+    }
+}
+
 class ProgressBar {
 public:
     explicit ProgressBar(bool enabled) : m_enabled(enabled && isatty(STDERR_FILENO)) {}
@@ -74,6 +81,11 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
                               ? elapsed() / opts.time_budget
                               : (double(s0) * n_tiles + double(s1 - s0) * double(k)) / (double(total_spp) * n_tiles);
             bar.update(std::min(1.0, frac), elapsed());
+            if (opts.progress_out) {
+                uint64_t n = uint64_t(job.x1 - job.x0) * uint64_t(job.y1 - job.y0) * uint64_t(s1 - s0);
+                opts.progress_out->samples.fetch_add(n, std::memory_order_relaxed);
+                store_max(opts.progress_out->fraction, std::min(1.0, frac));
+            }
         });
         tiles_done = 0;
         if (cancelled()) {
@@ -89,6 +101,7 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
         pass = adaptive ? std::max(1, std::min(done, 64)) : pass;
     }
     bar.finish();
+    if (opts.progress_out) opts.progress_out->fraction.store(1.0, std::memory_order_relaxed);
     stats.seconds = elapsed();
     stats.invalid_samples = invalid.load();
     uint64_t min_n = ~0ull, total = 0;

@@ -14,6 +14,13 @@
 
 namespace pellucid {
 
+/// Progress of a running render, written by the render loop and polled by another thread (the
+/// Python tqdm bar reads it while the render runs without the GIL): no callback, no lock.
+struct RenderProgress {
+    std::atomic<uint64_t> samples{0};  ///< camera samples finished so far (valid or not)
+    std::atomic<double> fraction{0.0};  ///< estimated completed fraction in [0, 1]
+};
+
 struct RenderOptions {
     int spp = -1;                 ///< samples per pixel; -1 = the scene's sample_count
     int64_t seed = -1;            ///< -1 = the scene's seed
@@ -22,6 +29,7 @@ struct RenderOptions {
     double target_rel_error = 0;  ///< > 0 stops once the mean relative standard error falls below it
     bool progress = false;        ///< draw a progress bar on stderr if stderr is a terminal
     const std::atomic<bool>* cancel = nullptr;  ///< set to true to stop after the current tiles
+    RenderProgress* progress_out = nullptr;     ///< if set, updated after every tile
 };
 
 struct RenderStats {

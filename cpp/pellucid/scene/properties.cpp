@@ -16,10 +16,29 @@ std::string format_error(const std::string& source, const std::string& path, con
     return s + msg;
 }
 
+namespace {
+thread_local std::vector<ParameterRecord>* t_recorder = nullptr;
+}
+
+void set_parameter_recorder(std::vector<ParameterRecord>* out) { t_recorder = out; }
+
 Properties::Properties(const Node& node, std::string source, std::string path)
     : m_node(node), m_source(std::move(source)), m_path(std::move(path)) {
     if (!node.is_object())
         throw Error(format_error(m_source, m_path, std::string("expected an object, got a ") + node.kind_name()));
+}
+
+Properties::~Properties() {
+    if (!t_recorder) return;
+    try {
+        ParameterRecord r{m_path, "", {}};
+        if (const Node* t = m_node.find("type"); t && t->is_string()) r.type = t->as_string();
+        std::set<std::string> keys = m_queried;
+        keys.insert(m_tested.begin(), m_tested.end());
+        r.keys.assign(keys.begin(), keys.end());
+        t_recorder->push_back(std::move(r));
+    } catch (...) {  // a destructor must not throw; a lost record only weakens a docs check
+    }
 }
 
 void Properties::fail(const std::string& key, const std::string& msg) const {

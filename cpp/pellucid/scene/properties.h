@@ -14,14 +14,31 @@
 
 namespace pellucid {
 
+/// What one builder asked of its Properties: the object's key path, its "type" ("" if none) and
+/// every key it read or tested with has(), present or not. Collected only while a recorder is set;
+/// the documentation check (tests/python/test_docs.py) compares these keys with docs/scene-format.md.
+struct ParameterRecord {
+    std::string path, type;
+    std::vector<std::string> keys;
+};
+/// While `out` is set (on this thread), every Properties object appends its record when destroyed.
+/// Pass nullptr to stop. Build time only; nothing is recorded otherwise.
+void set_parameter_recorder(std::vector<ParameterRecord>* out);
+
 class Properties {
 public:
     /// `source` is the file name ("<dict>" for dicts); `path` the key path of this object.
     Properties(const Node& node, std::string source, std::string path);
+    ~Properties();
+    Properties(const Properties&) = delete;
+    Properties& operator=(const Properties&) = delete;
 
     const std::string& path() const { return m_path; }
     const std::string& source() const { return m_source; }
-    bool has(const std::string& key) const { return m_node.find(key) != nullptr; }
+    bool has(const std::string& key) const {
+        m_tested.insert(key);
+        return m_node.find(key) != nullptr;
+    }
     /// The "type" key (required).
     std::string type();
 
@@ -58,6 +75,7 @@ private:
     const Node& m_node;
     std::string m_source, m_path;
     std::set<std::string> m_queried;
+    mutable std::set<std::string> m_tested;  ///< keys passed to has(), for the parameter record
 };
 
 /// "file: path: msg" (file omitted when empty).

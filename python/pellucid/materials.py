@@ -1,0 +1,169 @@
+"""``pellucid.materials``: one small builder per material type, returning the scene-format dict.
+
+Each keyword is the JSON key of the same name; a keyword left at ``None`` is omitted, so the
+renderer's default applies (defaults, ranges and models: docs/scene-format.md, ``## materials``).
+The first parameter may be given positionally, the others by name::
+
+    from pellucid import materials as M
+    M.lambertian(0.8)                                   # {"type": "lambertian", "reflectance": 0.8}
+    M.rough_conductor("Au", roughness=0.3)              # gold, α = 0.09
+    M.rough_plastic([0.1, 0.3, 0.6], alpha=0.15)
+    pellucid.bsdf(M.dielectric(1.5)).albedo([[0, 0, 1]])
+
+Colours take a number (grey) or ``[r, g, b]``; IORs a number or a name (``"bk7"``, ``"water"``,
+...); values are checked by the renderer when the scene (or ``pellucid.bsdf``) is built, with
+errors naming the key and value.
+"""
+from __future__ import annotations
+
+from typing import Any, Dict, Optional, Sequence, Union
+
+Colour = Union[float, Sequence[float], Dict[str, Any]]  # a dict: a texture, where supported
+IOR = Union[float, str]
+Material = Dict[str, Any]
+
+__all__ = [
+    "conductor",
+    "dielectric",
+    "lambertian",
+    "oren_nayar",
+    "plastic",
+    "principled",
+    "rough_conductor",
+    "rough_dielectric",
+    "rough_plastic",
+    "thin_dielectric",
+]
+
+
+def _make(type_name: str, params: Dict[str, Any]) -> Material:
+    d: Material = {"type": type_name}
+    d.update((k, v) for k, v in params.items() if v is not None)
+    return d
+
+
+def lambertian(reflectance: Optional[Colour] = None) -> Material:
+    """Ideal diffuse reflection, f = ρ/π. ``reflectance``: albedo ρ (default 0.5).
+
+    docs/scene-format.md, ``### lambertian``.
+    """
+    return _make("lambertian", dict(reflectance=reflectance))
+
+
+def oren_nayar(reflectance: Optional[Colour] = None, *, variant: Optional[str] = None,
+               roughness: Optional[float] = None, sigma: Optional[float] = None) -> Material:
+    """Rough diffuse reflection: ``variant="eon"`` (default; energy-preserving, takes
+    ``roughness`` in [0, 1]) or ``"classic"`` (Oren & Nayar 1994, takes ``sigma`` in degrees).
+
+    docs/scene-format.md, ``### oren_nayar``.
+    """
+    return _make("oren_nayar", dict(reflectance=reflectance, variant=variant, roughness=roughness, sigma=sigma))
+
+
+def conductor(material: Optional[str] = None, *, eta: Optional[Colour] = None, k: Optional[Colour] = None,
+              specular_reflectance: Optional[Colour] = None, fresnel: Optional[str] = None) -> Material:
+    """Smooth metal. ``material``: a metal name (``"Au"``, ``"Ag"``, ``"Cu"``, ``"Al"``, ...,
+    ``"none"`` = perfect mirror), or give the complex IOR ``eta`` + ``k`` instead.
+    ``fresnel``: ``"exact"`` (default) or ``"schlick"``.
+
+    docs/scene-format.md, ``### conductor``.
+    """
+    return _make("conductor", dict(material=material, eta=eta, k=k, specular_reflectance=specular_reflectance,
+                                   fresnel=fresnel))
+
+
+def rough_conductor(material: Optional[str] = None, *, eta: Optional[Colour] = None, k: Optional[Colour] = None,
+                    specular_reflectance: Optional[Colour] = None, fresnel: Optional[str] = None,
+                    distribution: Optional[str] = None, alpha: Optional[float] = None,
+                    alpha_u: Optional[float] = None, alpha_v: Optional[float] = None,
+                    roughness: Optional[float] = None, multiple_scattering: Optional[bool] = None) -> Material:
+    """Microfacet metal: the ``conductor`` parameters plus ``distribution`` (``"ggx"`` default,
+    ``"beckmann"``), one of ``alpha`` / ``alpha_u`` + ``alpha_v`` / ``roughness`` (α = r²), and
+    ``multiple_scattering`` (Kulla–Conty energy compensation, GGX only).
+
+    docs/scene-format.md, ``### rough_conductor``.
+    """
+    return _make("rough_conductor", dict(material=material, eta=eta, k=k, specular_reflectance=specular_reflectance,
+                                         fresnel=fresnel, distribution=distribution, alpha=alpha, alpha_u=alpha_u,
+                                         alpha_v=alpha_v, roughness=roughness,
+                                         multiple_scattering=multiple_scattering))
+
+
+def dielectric(int_ior: Optional[IOR] = None, *, ext_ior: Optional[IOR] = None,
+               specular_reflectance: Optional[Colour] = None,
+               specular_transmittance: Optional[Colour] = None) -> Material:
+    """Smooth glass-like interface (Fresnel reflection + Snell refraction). ``int_ior`` inside
+    (default ``"bk7"``), ``ext_ior`` outside (default ``"air"``).
+
+    docs/scene-format.md, ``### dielectric``.
+    """
+    return _make("dielectric", dict(int_ior=int_ior, ext_ior=ext_ior, specular_reflectance=specular_reflectance,
+                                    specular_transmittance=specular_transmittance))
+
+
+def rough_dielectric(int_ior: Optional[IOR] = None, *, ext_ior: Optional[IOR] = None,
+                     specular_reflectance: Optional[Colour] = None,
+                     specular_transmittance: Optional[Colour] = None, distribution: Optional[str] = None,
+                     alpha: Optional[float] = None, alpha_u: Optional[float] = None,
+                     alpha_v: Optional[float] = None, roughness: Optional[float] = None) -> Material:
+    """Rough interface (Walter et al. 2007): the ``dielectric`` parameters plus ``distribution``
+    (``"ggx"``) and one of ``alpha`` / ``alpha_u`` + ``alpha_v`` / ``roughness``.
+
+    docs/scene-format.md, ``### rough_dielectric``.
+    """
+    return _make("rough_dielectric", dict(int_ior=int_ior, ext_ior=ext_ior, specular_reflectance=specular_reflectance,
+                                          specular_transmittance=specular_transmittance, distribution=distribution,
+                                          alpha=alpha, alpha_u=alpha_u, alpha_v=alpha_v, roughness=roughness))
+
+
+def thin_dielectric(int_ior: Optional[IOR] = None, *, ext_ior: Optional[IOR] = None,
+                    specular_reflectance: Optional[Colour] = None,
+                    specular_transmittance: Optional[Colour] = None) -> Material:
+    """A thin slab (window pane): the ``dielectric`` parameters; light passes straight through.
+
+    docs/scene-format.md, ``### thin_dielectric``.
+    """
+    return _make("thin_dielectric", dict(int_ior=int_ior, ext_ior=ext_ior, specular_reflectance=specular_reflectance,
+                                         specular_transmittance=specular_transmittance))
+
+
+def plastic(diffuse_reflectance: Optional[Colour] = None, *, specular_reflectance: Optional[Colour] = None,
+            int_ior: Optional[IOR] = None, ext_ior: Optional[IOR] = None,
+            variant: Optional[str] = None) -> Material:
+    """A smooth dielectric coat over a Lambertian base. ``variant``: ``"coupled"`` (default,
+    energy-conserving) or ``"sum"``.
+
+    docs/scene-format.md, ``### plastic``.
+    """
+    return _make("plastic", dict(diffuse_reflectance=diffuse_reflectance, specular_reflectance=specular_reflectance,
+                                 int_ior=int_ior, ext_ior=ext_ior, variant=variant))
+
+
+def rough_plastic(diffuse_reflectance: Optional[Colour] = None, *, specular_reflectance: Optional[Colour] = None,
+                  int_ior: Optional[IOR] = None, ext_ior: Optional[IOR] = None, variant: Optional[str] = None,
+                  distribution: Optional[str] = None, alpha: Optional[float] = None,
+                  alpha_u: Optional[float] = None, alpha_v: Optional[float] = None,
+                  roughness: Optional[float] = None) -> Material:
+    """``plastic`` with a GGX coat: the ``plastic`` parameters plus ``distribution`` and one of
+    ``alpha`` / ``alpha_u`` + ``alpha_v`` / ``roughness``.
+
+    docs/scene-format.md, ``### rough_plastic``.
+    """
+    return _make("rough_plastic", dict(diffuse_reflectance=diffuse_reflectance,
+                                       specular_reflectance=specular_reflectance, int_ior=int_ior, ext_ior=ext_ior,
+                                       variant=variant, distribution=distribution, alpha=alpha, alpha_u=alpha_u,
+                                       alpha_v=alpha_v, roughness=roughness))
+
+
+def principled(base_color: Optional[Colour] = None, *, metallic: Optional[float] = None,
+               roughness: Optional[float] = None, specular: Optional[float] = None,
+               specular_tint: Optional[float] = None, sheen: Optional[float] = None,
+               sheen_tint: Optional[float] = None, clearcoat: Optional[float] = None,
+               clearcoat_gloss: Optional[float] = None, anisotropic: Optional[float] = None) -> Material:
+    """Burley 2012 ("Disney") BRDF, reflection only; every scalar in [0, 1].
+
+    docs/scene-format.md, ``### principled``.
+    """
+    return _make("principled", dict(base_color=base_color, metallic=metallic, roughness=roughness, specular=specular,
+                                    specular_tint=specular_tint, sheen=sheen, sheen_tint=sheen_tint,
+                                    clearcoat=clearcoat, clearcoat_gloss=clearcoat_gloss, anisotropic=anisotropic))
