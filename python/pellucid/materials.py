@@ -42,6 +42,34 @@ def _make(type_name: str, params: Dict[str, Any]) -> Material:
     return d
 
 
+# Keys every material takes (bump and normal maps; docs/scene-format.md, "Bump and normal maps").
+_SURFACE_KEYS = ("bump_map", "bump_scale", "bump_step_scale", "normal_map", "normal_map_convention",
+                 "terminator_softening")
+
+
+def _with_surface_keys(fn):
+    """Add the keyword-only surface keys (bump_map=..., normal_map=...) to a builder."""
+    import functools
+    import inspect
+
+    sig = inspect.signature(fn)
+    extra = [inspect.Parameter(k, inspect.Parameter.KEYWORD_ONLY, default=None) for k in _SURFACE_KEYS]
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        surface = {k: kwargs.pop(k) for k in _SURFACE_KEYS if k in kwargs}
+        d = fn(*args, **kwargs)
+        d.update((k, v) for k, v in surface.items() if v is not None)
+        return d
+
+    wrapper.__signature__ = sig.replace(parameters=list(sig.parameters.values()) + extra)
+    wrapper.__doc__ = (fn.__doc__ or "") + (
+        "\n    Every material also takes ``bump_map``, ``bump_scale``, ``bump_step_scale``, ``normal_map``,"
+        "\n    ``normal_map_convention`` and ``terminator_softening`` (docs/scene-format.md).\n")
+    return wrapper
+
+
+@_with_surface_keys
 def lambertian(reflectance: Optional[Colour] = None) -> Material:
     """Ideal diffuse reflection, f = ρ/π. ``reflectance``: albedo ρ (default 0.5).
 
@@ -50,6 +78,7 @@ def lambertian(reflectance: Optional[Colour] = None) -> Material:
     return _make("lambertian", dict(reflectance=reflectance))
 
 
+@_with_surface_keys
 def oren_nayar(reflectance: Optional[Colour] = None, *, variant: Optional[str] = None,
                roughness: Optional[float] = None, sigma: Optional[float] = None) -> Material:
     """Rough diffuse reflection: ``variant="eon"`` (default; energy-preserving, takes
@@ -60,6 +89,7 @@ def oren_nayar(reflectance: Optional[Colour] = None, *, variant: Optional[str] =
     return _make("oren_nayar", dict(reflectance=reflectance, variant=variant, roughness=roughness, sigma=sigma))
 
 
+@_with_surface_keys
 def conductor(material: Optional[str] = None, *, eta: Optional[Colour] = None, k: Optional[Colour] = None,
               specular_reflectance: Optional[Colour] = None, fresnel: Optional[str] = None) -> Material:
     """Smooth metal. ``material``: a metal name (``"Au"``, ``"Ag"``, ``"Cu"``, ``"Al"``, ...,
@@ -72,6 +102,7 @@ def conductor(material: Optional[str] = None, *, eta: Optional[Colour] = None, k
                                    fresnel=fresnel))
 
 
+@_with_surface_keys
 def rough_conductor(material: Optional[str] = None, *, eta: Optional[Colour] = None, k: Optional[Colour] = None,
                     specular_reflectance: Optional[Colour] = None, fresnel: Optional[str] = None,
                     distribution: Optional[str] = None, alpha: Optional[float] = None,
@@ -89,6 +120,7 @@ def rough_conductor(material: Optional[str] = None, *, eta: Optional[Colour] = N
                                          multiple_scattering=multiple_scattering))
 
 
+@_with_surface_keys
 def dielectric(int_ior: Optional[IOR] = None, *, ext_ior: Optional[IOR] = None,
                specular_reflectance: Optional[Colour] = None,
                specular_transmittance: Optional[Colour] = None) -> Material:
@@ -101,6 +133,7 @@ def dielectric(int_ior: Optional[IOR] = None, *, ext_ior: Optional[IOR] = None,
                                     specular_transmittance=specular_transmittance))
 
 
+@_with_surface_keys
 def rough_dielectric(int_ior: Optional[IOR] = None, *, ext_ior: Optional[IOR] = None,
                      specular_reflectance: Optional[Colour] = None,
                      specular_transmittance: Optional[Colour] = None, distribution: Optional[str] = None,
@@ -116,6 +149,7 @@ def rough_dielectric(int_ior: Optional[IOR] = None, *, ext_ior: Optional[IOR] = 
                                           alpha=alpha, alpha_u=alpha_u, alpha_v=alpha_v, roughness=roughness))
 
 
+@_with_surface_keys
 def thin_dielectric(int_ior: Optional[IOR] = None, *, ext_ior: Optional[IOR] = None,
                     specular_reflectance: Optional[Colour] = None,
                     specular_transmittance: Optional[Colour] = None) -> Material:
@@ -127,6 +161,7 @@ def thin_dielectric(int_ior: Optional[IOR] = None, *, ext_ior: Optional[IOR] = N
                                          specular_transmittance=specular_transmittance))
 
 
+@_with_surface_keys
 def plastic(diffuse_reflectance: Optional[Colour] = None, *, specular_reflectance: Optional[Colour] = None,
             int_ior: Optional[IOR] = None, ext_ior: Optional[IOR] = None,
             variant: Optional[str] = None) -> Material:
@@ -139,6 +174,7 @@ def plastic(diffuse_reflectance: Optional[Colour] = None, *, specular_reflectanc
                                  int_ior=int_ior, ext_ior=ext_ior, variant=variant))
 
 
+@_with_surface_keys
 def rough_plastic(diffuse_reflectance: Optional[Colour] = None, *, specular_reflectance: Optional[Colour] = None,
                   int_ior: Optional[IOR] = None, ext_ior: Optional[IOR] = None, variant: Optional[str] = None,
                   distribution: Optional[str] = None, alpha: Optional[float] = None,
@@ -155,6 +191,7 @@ def rough_plastic(diffuse_reflectance: Optional[Colour] = None, *, specular_refl
                                        alpha_v=alpha_v, roughness=roughness))
 
 
+@_with_surface_keys
 def principled(base_color: Optional[Colour] = None, *, metallic: Optional[float] = None,
                roughness: Optional[float] = None, specular: Optional[float] = None,
                specular_tint: Optional[float] = None, sheen: Optional[float] = None,

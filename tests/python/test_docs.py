@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 from typing import Dict, List, Set, Tuple
 
+import numpy as np
 import pytest
 
 import pellucid
@@ -118,15 +119,23 @@ def _scenes(tmp_path) -> List[dict]:
     types = _core.registry_types()
     obj, ply = _mesh_files(tmp_path)
     mats = {f"m_{t}": {"type": t} for t in types["materials"]}
+    image = tmp_path / "tex.exr"
+    pellucid.write_image(image, np.full((4, 6, 3), 0.5, np.float32))
+    # Textures with required keys get them; every optional key is still looked up.
+    required = {"image": {"filename": str(image)}, "scale": {"texture": 0.5}}
     for t in types.get("textures", []):
-        mats[f"tex_{t}"] = {"type": "lambertian", "reflectance": {"type": t}}
+        mats[f"tex_{t}"] = {"type": "lambertian", "reflectance": dict({"type": t}, **required.get(t, {}))}
+    # The keys every material takes (bump and normal maps) are looked up only when one is given.
+    mats["m_bumped"] = {"type": "lambertian", "bump_map": {"type": "checkerboard"}}
     shapes = [_shape_example(t, obj, ply) for t in types["shapes"]]
     shapes[0]["emitter"] = {"type": "area"}
     shapes[0]["material"] = "m_lambertian"
-    lights = [{"type": t} for t in types["lights"]]
+    lights = [dict({"type": t}, **({"filename": str(image)} if t == "envmap" else {})) for t in types["lights"]]
     base = {"camera": {"type": "perspective"}, "sampler": {"type": "independent"},
             "integrator": {"type": "path"}, "materials": mats, "shapes": shapes, "lights": lights}
-    return [dict(base, film={"filter": {"type": f}}) for f in types["filters"]]
+    out = [dict(base, film={"filter": {"type": f}}) for f in types["filters"]]
+    out += [dict(base, integrator={"type": t, "aov": "albedo"}) for t in types["integrators"] if t == "aov"]
+    return out
 
 
 def _records(tmp_path) -> Dict[Tuple[str, str], Set[str]]:
