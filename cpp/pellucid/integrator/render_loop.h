@@ -73,7 +73,11 @@ uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, LiFn&& 
             for (int s = job.s0; s < job.s1; ++s) {
                 PCG32 rng = PCG32::for_sample(pixel, uint64_t(s), job.seed);
                 Vec2f off = sample_filter(scene.filter, rng.next_2d());
-                Spectrum L = Li(scene.camera.generate_ray_differential(float(x) + 0.5f + off.x, float(y) + 0.5f + off.y), rng);
+                const float fx = float(x) + 0.5f + off.x, fy = float(y) + 0.5f + off.y;
+                // Differentials only where textures need footprints (two more rays' worth of setup).
+                Spectrum L = Li(scene.has_textures ? scene.camera.generate_ray_differential(fx, fy)
+                                                   : RayDifferential(scene.camera.generate_ray(fx, fy)),
+                                rng);
                 if (!L.is_finite() || L.has_negative()) {
                     ++bad;
                     continue;
