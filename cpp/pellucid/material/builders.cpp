@@ -66,11 +66,9 @@ float read_ior(Properties& p, const std::string& key, const char* def_name) {
 }
 
 /// distribution + one of alpha | alpha_u/alpha_v | roughness (α = r²).
-MicrofacetParams read_microfacet(Properties& p, bool beckmann_ok) {
+MicrofacetParams read_microfacet(Properties& p) {
     MicrofacetParams m;
     std::string d = read_choice(p, "distribution", "ggx", "distribution", {"ggx", "beckmann"});
-    if (d == "beckmann" && !beckmann_ok)
-        p.fail("distribution", "distribution 'beckmann' is not available for this material (known: ggx)");
     m.distribution = d == "ggx" ? MicrofacetType::GGX : MicrofacetType::Beckmann;
     bool has_alpha = p.has("alpha"), has_uv = p.has("alpha_u") || p.has("alpha_v"), has_r = p.has("roughness");
     if (int(has_alpha) + int(has_uv) + int(has_r) > 1)
@@ -164,7 +162,7 @@ Material build_conductor(Properties& p, const BuildContext&) {
 
 Material build_rough_conductor(Properties& p, const BuildContext&) {
     RoughConductorParams q;
-    q.microfacet = read_microfacet(p, true);
+    q.microfacet = read_microfacet(p);
     q.ior = read_conductor_ior(p);
     q.specular_reflectance = read_colour(p, "specular_reflectance", Spectrum(1.f));
     q.multiple_scattering = p.get_bool("multiple_scattering", false);
@@ -179,15 +177,18 @@ Material build_thin_dielectric(Properties& p, const BuildContext&) {
 }
 Material build_rough_dielectric(Properties& p, const BuildContext&) {
     RoughDielectricParams q;
-    q.microfacet = read_microfacet(p, false);
+    q.microfacet = read_microfacet(p);
     q.dielectric = read_dielectric(p);
+    q.multiple_scattering = p.get_bool("multiple_scattering", false);
+    if (q.multiple_scattering && q.microfacet.distribution != MicrofacetType::GGX)
+        p.fail("multiple_scattering", "requires distribution 'ggx' (the Kulla-Conty tables are GGX only)");
     return RoughDielectricMaterial(q);
 }
 
 Material build_plastic(Properties& p, const BuildContext&) { return PlasticMaterial(read_plastic(p)); }
 Material build_rough_plastic(Properties& p, const BuildContext&) {
     RoughPlasticParams q;
-    q.microfacet = read_microfacet(p, false);
+    q.microfacet = read_microfacet(p);
     q.plastic = read_plastic(p);
     return RoughPlasticMaterial(q);
 }
