@@ -45,7 +45,7 @@
 // η ∈ [1/3, 3], α ≤ 1 with our tables; tested) it is set to 1 and x_L lowered to keep the
 // balance. The lobes are sampled by cosine-weighted directions with probability
 // 1 − E(μo) (then reflection vs transmission by x), the single-scattering lobe otherwise.
-// Model no more than needed: skipped when max(1 − Ē_e, 1 − Ē_i) < 1e-3 (GGX, η = 1.5: α ≲ 0.02;
+// Model no more than needed: skipped when max(1 − Ē_e, 1 − Ē_i) < 1e-3 (GGX, η = 1.5: α < 0.015;
 // test_kulla_conty_dielectric.cpp), as for the conductor. Anisotropic α reads the table at √(αx αy),
 // which is approximate: white furnace 0.96–1.00 for αx:αy = 0.8:0.4 (bxdf_cases.h);
 // η outside [1/3, 3] reads it at the nearest η (approximate, documented in docs/materials.md).
