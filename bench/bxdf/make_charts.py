@@ -43,9 +43,13 @@ MODELS = {
                                        "distribution": "beckmann"},
     "dielectric bk7": {"type": "dielectric"},
     "rough_dielectric α=0.3": {"type": "rough_dielectric", "alpha": 0.3},
+    "rough_dielectric α=0.3 ms": {"type": "rough_dielectric", "alpha": 0.3, "multiple_scattering": True},
+    "rough_dielectric beckmann α=0.3": {"type": "rough_dielectric", "alpha": 0.3, "distribution": "beckmann"},
     "thin_dielectric": {"type": "thin_dielectric"},
     "plastic white": {"type": "plastic", "diffuse_reflectance": 1.0},
     "rough_plastic white α=0.3": {"type": "rough_plastic", "diffuse_reflectance": 1.0, "alpha": 0.3},
+    "rough_plastic beckmann α=0.3": {"type": "rough_plastic", "diffuse_reflectance": 1.0, "alpha": 0.3,
+                                     "distribution": "beckmann"},
     "principled": {"type": "principled", "base_color": 1.0, "roughness": 0.5},
 }
 
@@ -202,6 +206,29 @@ def chart_kulla_conty(notes: list) -> None:
                  f"gold α=1 at normal incidence {au[(1.0, False)]:.3f} → {au[(1.0, True)]:.3f}")
 
 
+def chart_kulla_conty_dielectric(notes: list) -> None:
+    """White rough glass (GGX, η = 1.5) R+T in Importance mode (energy), from outside (cos θo > 0) and
+    inside (cos θo < 0), Kulla–Conty off (dashed) and on (solid)."""
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True)
+    rows = []
+    for ax, side in zip(axes, (1.0, -1.0)):
+        for i, a in enumerate([0.1, 0.3, 0.6, 1.0]):
+            for ms in (False, True):
+                v = albedo({"type": "rough_dielectric", "int_ior": 1.5, "ext_ior": 1.0, "alpha": a,
+                            "multiple_scattering": ms}, cos=side * COS, mode="importance")
+                rows += [[a, ms, side * c, x] for c, x in zip(COS, v)]
+                ax.plot(COS, v, color=f"C{i}", ls="-" if ms else "--", label=f"α={a} {'KC' if ms else 'single'}")
+        ax.set(xlabel="|cos θo|", ylabel="R + T (importance mode)", ylim=(0.3, 1.05),
+               title=f"GGX glass η=1.5, wo {'outside' if side > 0 else 'inside'}; KC solid, single dashed")
+        ax.legend(fontsize=7, ncol=2)
+    save(fig, "kulla_conty_dielectric")
+    write_csv("kulla_conty_dielectric", ["alpha", "multiple_scattering", "cos_theta_o", "albedo_R_plus_T"], rows)
+    on = [r[3] for r in rows if r[1] and abs(r[2]) >= 0.1]
+    off = [r[3] for r in rows if not r[1] and abs(r[2]) >= 0.1]
+    notes.append(f"rough dielectric (GGX, η=1.5) white furnace R+T over α∈[0.1,1], |cos θo|∈[0.1,1], both sides: "
+                 f"single scattering {min(off):.3f}–{max(off):.3f}, Kulla–Conty {min(on):.4f}–{max(on):.4f}")
+
+
 def chart_plastic(notes: list) -> None:
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5), sharey=True)
     rows, diffs = [], []
@@ -248,7 +275,7 @@ def main() -> int:
     t0 = time.time()
     notes: list = []
     for chart in (chart_albedo_vs_cos, chart_roughness_ladder, chart_fresnel, chart_oren_nayar, chart_kulla_conty,
-                  chart_plastic):
+                  chart_kulla_conty_dielectric, chart_plastic):
         chart(notes)
         print(f"{chart.__name__}: {time.time() - t0:.1f} s", flush=True)
     timing = chart_timing(notes)

@@ -35,11 +35,12 @@ struct is_bxdf<T, std::void_t<
 template <class T>
 inline constexpr bool is_bxdf_v = is_bxdf<T>::value;
 
-/// The closed list. Beckmann is instantiated only for the rough conductor (its tests exercise the
-/// distribution); the other microfacet models use GGX.
+/// The closed list. Every microfacet model is here with both distributions (GGX and Beckmann);
+/// Principled is GGX by definition (Burley 2012).
 using BxDF = std::variant<Lambertian, OrenNayar, SmoothConductor<ConductorFresnel>, RoughConductor,
-                          RoughConductorBeckmann, SmoothDielectric, RoughDielectric<GGX>, ThinDielectric,
-                          SmoothPlastic, RoughPlastic<GGX>, Principled>;
+                          RoughConductorBeckmann, SmoothDielectric, RoughDielectric<GGX>,
+                          RoughDielectric<Beckmann>, ThinDielectric, SmoothPlastic, RoughPlastic<GGX>,
+                          RoughPlastic<Beckmann>, Principled>;
 
 namespace detail {
 template <class V>

@@ -3,6 +3,10 @@
 #include "pellucid/bxdf/dielectric.h"
 
 #include <cmath>
+#include <type_traits>
+
+#include "pellucid/bxdf/kulla_conty.h"
+#include "pellucid/sampling/warp.h"
 
 namespace pellucid {
 namespace {
@@ -98,8 +102,69 @@ std::string ThinDielectric::to_string() const {
 
 // ---------------------------------------------------------------------------------------------
 template <class D>
-RoughDielectric<D>::RoughDielectric(const D& d, float eta, const Spectrum& r, const Spectrum& t)
-    : m_d(d), m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_r(r), m_t(t) {}
+RoughDielectric<D>::RoughDielectric(const D& d, float eta, const Spectrum& r, const Spectrum& t, bool multiscatter)
+    : m_d(d), m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_r(r), m_t(t) {
+    if constexpr (std::is_same_v<D, GGX>) {
+        if (multiscatter && !is_smooth()) setup_multiscatter();
+    }
+}
+
+// Kulla–Conty set-up (dielectric.h header comment): losses, skip rule and the reciprocal split.
+template <class D>
+void RoughDielectric<D>::setup_multiscatter() {
+    const GGXDielectricAlbedoTable& t = GGXDielectricAlbedoTable::get();
+    m_alpha_ms = std::sqrt(m_d.alpha_x() * m_d.alpha_y());
+    float loss_e = 1.f - t.E_avg(m_alpha_ms, m_eta), loss_i = 1.f - t.E_avg(m_alpha_ms, 1.f / m_eta);
+    if (std::max(loss_e, loss_i) < 1e-3f) return;  // effect below 1e-3: skip (header comment)
+    loss_e = std::max(loss_e, 1e-6f);
+    loss_i = std::max(loss_i, 1e-6f);
+    // The less dense side L transmits like an average smooth interface, x_L = 1 − F_avg(η_ld); the
+    // denser side D follows from x_L (1 − Ē_L) = η_ld² x_D (1 − Ē_D) (header comment).
+    float eta_ld = m_eta >= 1.f ? m_eta : 1.f / m_eta;
+    int L = m_eta >= 1.f ? 0 : 1, Dn = 1 - L;
+    float loss[2] = {loss_e, loss_i};
+    m_x[L] = 1.f - fresnel_dielectric_average(eta_ld);
+    m_x[Dn] = m_x[L] * loss[L] / (eta_ld * eta_ld * loss[Dn]);
+    if (m_x[Dn] > 1.f) {
+        m_x[Dn] = 1.f;
+        m_x[L] = eta_ld * eta_ld * loss[Dn] / loss[L];
+    }
+    m_inv_loss[0] = kInvPi / loss_e;
+    m_inv_loss[1] = kInvPi / loss_i;
+    m_ms = true;
+}
+
+template <class D>
+float RoughDielectric<D>::ms_E(const Vec3f& w) const {
+    return GGXDielectricAlbedoTable::get().E(std::fabs(w.z), m_alpha_ms, w.z > 0.f ? m_eta : 1.f / m_eta);
+}
+
+template <class D>
+Spectrum RoughDielectric<D>::ms_eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
+    if (wo.z == 0.f || wi.z == 0.f) return Spectrum(0.f);
+    int so = wo.z > 0.f ? 0 : 1, si = wi.z > 0.f ? 0 : 1;
+    float x = so == si ? 1.f - m_x[so] : m_x[so];
+    float f = x * (1.f - ms_E(wo)) * (1.f - ms_E(wi)) * m_inv_loss[si] * std::fabs(wi.z);
+    f = std::max(f, 0.f);
+    if (so == si) return m_r * f;
+    if (ctx.mode == TransportMode::Radiance) {
+        float etap = so == 0 ? m_eta : 1.f / m_eta;  // η(wi side)/η(wo side)
+        f /= etap * etap;
+    }
+    return m_t * f;
+}
+
+// Probability of sampling the compensation lobe from wo (its missing energy 1 − E(μo)), and in
+// *p_trans the probability that it then transmits (x of wo's side, restricted to ctx.allowed).
+template <class D>
+float RoughDielectric<D>::ms_probability(const BxDFContext& ctx, const Vec3f& wo, float* p_trans) const {
+    float x = m_x[wo.z > 0.f ? 0 : 1];
+    float pr = has_flag(ctx.allowed, BxDFFlags::Reflection) ? 1.f - x : 0.f;
+    float pt = has_flag(ctx.allowed, BxDFFlags::Transmission) ? x : 0.f;
+    if (!(pr + pt > 0.f)) return 0.f;
+    *p_trans = pt / (pr + pt);
+    return clamp(1.f - ms_E(wo), 0.f, 1.f);
+}
 
 template <class D>
 typename RoughDielectric<D>::EvalPdf RoughDielectric<D>::eval_pdf(const BxDFContext& ctx, const Vec3f& wo,
@@ -147,12 +212,20 @@ typename RoughDielectric<D>::EvalPdf RoughDielectric<D>::eval_pdf(const BxDFCont
 template <class D>
 Spectrum RoughDielectric<D>::eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
     if (is_smooth()) return Spectrum(0.f);
-    return eval_pdf(ctx, wo, wi).f;
+    Spectrum f = eval_pdf(ctx, wo, wi).f;
+    if (m_ms) f += ms_eval(ctx, wo, wi);
+    return f;
 }
 template <class D>
 float RoughDielectric<D>::pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
     if (is_smooth()) return 0.f;
-    return eval_pdf(ctx, wo, wi).pdf;
+    float p = eval_pdf(ctx, wo, wi).pdf;
+    if (m_ms && wo.z != 0.f && wi.z != 0.f) {
+        float p_trans = 0.f, p_ms = ms_probability(ctx, wo, &p_trans);
+        float q = same_hemisphere(wo, wi) ? 1.f - p_trans : p_trans;
+        p = (1.f - p_ms) * p + p_ms * q * std::fabs(wi.z) * kInvPi;
+    }
+    return p;
 }
 
 template <class D>
@@ -160,12 +233,29 @@ std::optional<BxDFSample> RoughDielectric<D>::sample(const BxDFContext& ctx, con
                                                      const Vec2f& u) const {
     if (is_smooth()) return SmoothDielectric(m_eta, m_r, m_t).sample(ctx, wo, u_lobe, u);
     if (wo.z == 0.f) return std::nullopt;
+    BxDFSample s;
+    if (m_ms) {
+        float p_trans = 0.f, p_ms = ms_probability(ctx, wo, &p_trans);
+        if (u_lobe < p_ms) {
+            // Compensation lobe: cosine-weighted on the chosen side.
+            bool trans = u_lobe / p_ms < p_trans;
+            s.wi = square_to_cosine_hemisphere(u);
+            if ((wo.z > 0.f) == trans) s.wi.z = -s.wi.z;
+            if (s.wi.z == 0.f) return std::nullopt;
+            if (trans) s.eta = wo.z > 0.f ? m_eta : 1.f / m_eta;
+            s.lobe = trans ? BxDFFlags::GlossyTransmission : BxDFFlags::GlossyReflection;
+            s.pdf = pdf(ctx, wo, s.wi);
+            if (!(s.pdf > 0.f)) return std::nullopt;
+            s.weight = eval(ctx, wo, s.wi) / s.pdf;
+            return s;
+        }
+        u_lobe = std::min((u_lobe - p_ms) / (1.f - p_ms), kOneMinusEpsilon);
+    }
     Vec3f wm = m_d.sample_visible(wo, u);
     double Fd = fresnel_dielectric_d(dot(wo, wm), m_eta);
     float pr, pt;
     lobe_probabilities(ctx, float(Fd), float(1.0 - Fd), pr, pt);
     if (!(pr + pt > 0.f)) return std::nullopt;
-    BxDFSample s;
     if (u_lobe < pr / (pr + pt)) {
         s.wi = reflect(wo, wm);
         if (!same_hemisphere(wo, s.wi)) return std::nullopt;
@@ -175,6 +265,12 @@ std::optional<BxDFSample> RoughDielectric<D>::sample(const BxDFContext& ctx, con
         if (!refract(wo, wm, m_eta, &etap, &s.wi) || s.wi.z * wo.z >= 0.f) return std::nullopt;
         s.eta = etap;
         s.lobe = BxDFFlags::GlossyTransmission;
+    }
+    if (m_ms) {
+        s.pdf = pdf(ctx, wo, s.wi);
+        if (!(s.pdf > 0.f)) return std::nullopt;
+        s.weight = eval(ctx, wo, s.wi) / s.pdf;
+        return s;
     }
     EvalPdf ep = eval_pdf(ctx, wo, s.wi);  // f does not depend on ctx.allowed, pdf does
     if (!(ep.pdf > 0.f)) return std::nullopt;
@@ -191,7 +287,8 @@ BxDFFlags RoughDielectric<D>::flags() const {
 template <class D>
 std::string RoughDielectric<D>::to_string() const {
     return "RoughDielectric[" + m_d.to_string() + ", eta=" + std::to_string(m_eta) +
-           ", specular_reflectance=" + m_r.to_string() + ", specular_transmittance=" + m_t.to_string() + "]";
+           ", specular_reflectance=" + m_r.to_string() + ", specular_transmittance=" + m_t.to_string() +
+           ", multiscatter=" + (m_ms ? "true" : "false") + "]";
 }
 
 template class RoughDielectric<GGX>;

@@ -19,7 +19,36 @@
 // RoughDielectric<Distribution> ("rough_dielectric"): the above plus
 // | distribution           | string        | "ggx"   | "ggx" or "beckmann"                       |
 // | alpha, alpha_u, alpha_v| float         | 0.1     | as for rough_conductor                    |
+// | multiple_scattering    | bool          | false   | Kulla–Conty compensation (GGX only)       |
 // JSON: {"type": "rough_dielectric", "int_ior": 1.5, "distribution": "ggx", "alpha": 0.3}
+//
+// Kulla–Conty for the dielectric (Kulla & Conty 2017, "Revisiting Physically Based Shading at
+// Imageworks", SIGGRAPH course, multiple-scattering section, dielectric slides: one compensation
+// lobe per side of the interface, split between reflection and transmission so that the pair
+// stays reciprocal). With E_e, E_i the single-scattering R+T albedos seen from the exterior and
+// interior (kulla_conty.h tables, Importance mode), Ē_e, Ē_i their averages, and x_e, x_i the
+// transmitted fractions of each side's lobe, the lobes (f·|cos θi| without the cos) are
+//   exterior → exterior: (1 − x_e) (1 − E_e(μo)) (1 − E_e(μi)) / (π (1 − Ē_e))
+//   exterior → interior:      x_e  (1 − E_e(μo)) (1 − E_i(μi)) / (π (1 − Ē_i))
+//   interior → interior: (1 − x_i) (1 − E_i(μo)) (1 − E_i(μi)) / (π (1 − Ē_i))
+//   interior → exterior:      x_i  (1 − E_i(μo)) (1 − E_e(μi)) / (π (1 − Ē_e))
+// in Importance form (Radiance divides transmission by η'², as the single-scattering lobe).
+// Each side's lobe integrates to exactly its missing energy 1 − E(μo), so the white R+T albedo is
+// 1 up to the table's error. Reflection lobes are symmetric. Transmission obeys the η² rule
+// (f_rad(e→i) = f_imp(i→e), Veach 1997 eq. 5.14) iff
+//   x_e (1 − Ē_e) = η² x_i (1 − Ē_i)      (η = int_ior/ext_ior),
+// the energy balance of Kulla & Conty's dielectric slides: the two sides exchange energy in the
+// proportion that radiance compression by η² dictates. One degree of freedom remains; we let the
+// less dense side L transmit like an average smooth interface, x_L = 1 − F_avg(η_ld) with
+// η_ld = max(η, 1/η) (the fraction a diffuse-like lobe refracts, cf. plastic.h), and solve
+// x_L (1 − Ē_L) = η_ld² x_D (1 − Ē_D) for the denser side's x_D; should x_D exceed 1 (never for
+// η ∈ [1/3, 3], α ≤ 1 with our tables; tested) it is set to 1 and x_L lowered to keep the
+// balance. The lobes are sampled by cosine-weighted directions with probability
+// 1 − E(μo) (then reflection vs transmission by x), the single-scattering lobe otherwise.
+// Model no more than needed: skipped when max(1 − Ē_e, 1 − Ē_i) < 1e-3 (GGX, η = 1.5: α < 0.015;
+// test_kulla_conty_dielectric.cpp), as for the conductor. Anisotropic α reads the table at √(αx αy),
+// which is approximate: white furnace 0.96–1.00 for αx:αy = 0.8:0.4 (bxdf_cases.h);
+// η outside [1/3, 3] reads it at the nearest η (approximate, documented in docs/materials.md).
 // Scene-facing rules: material/dielectric.h.
 //
 // Model no more than needed: an effectively smooth distribution (max α < 1e-3) or an
@@ -78,13 +107,14 @@ template <class Distribution>
 class RoughDielectric {
 public:
     RoughDielectric(const Distribution& distrib, float eta, const Spectrum& specular_reflectance = Spectrum(1.f),
-                    const Spectrum& specular_transmittance = Spectrum(1.f));
+                    const Spectrum& specular_transmittance = Spectrum(1.f), bool multiscatter = false);
     Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
     float pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
     std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe, const Vec2f& u) const;
     BxDFFlags flags() const;
     std::string to_string() const;
     bool is_smooth() const { return m_d.effectively_smooth() || m_eta == 1.f; }
+    bool multiscatter() const { return m_ms; }
 
 private:
     struct EvalPdf {
@@ -92,10 +122,19 @@ private:
         float pdf = 0.f;
     };
     EvalPdf eval_pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
+    // Kulla–Conty (header comment): lobe value (with |cos θi|, Importance form) and sampling terms.
+    void setup_multiscatter();
+    float ms_E(const Vec3f& w) const;  // E of the side w is on
+    Spectrum ms_eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
+    float ms_probability(const BxDFContext& ctx, const Vec3f& wo, float* p_trans) const;
 
     Distribution m_d;
     float m_eta;
     Spectrum m_r, m_t;
+    bool m_ms = false;
+    float m_alpha_ms = 0.f;
+    float m_x[2] = {0.f, 0.f};         // transmitted fraction x_e, x_i
+    float m_inv_loss[2] = {0.f, 0.f};  // 1/(π(1 − Ē)) of the exterior / interior
 };
 extern template class RoughDielectric<GGX>;
 extern template class RoughDielectric<Beckmann>;

@@ -1,11 +1,15 @@
-// Generation and lookup of the GGX albedo table for Kulla–Conty compensation.
+// Generation and lookup of the GGX albedo tables (conductor; dielectric R+T) for Kulla–Conty compensation.
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/bxdf/kulla_conty.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
+#include <thread>
+#include <vector>
 
+#include "pellucid/bxdf/fresnel.h"
 #include "pellucid/bxdf/microfacet.h"
 #include "pellucid/math/constants.h"
 
@@ -95,4 +99,147 @@ float GGXAlbedoTable::E_avg(float alpha) const {
 }
 
 float GGXAlbedoTable::average_loss(float alpha) const { return 1.f - E_avg(alpha); }
+}  // namespace pellucid
+
+// ---------------------------------------------------------------------------------------------
+// Rough dielectric (kulla_conty.h, GGXDielectricAlbedoTable).
+namespace pellucid {
+namespace {
+using DT = GGXDielectricAlbedoTable;
+
+// 2∫E μ dμ = 4∫E(t) t³ dt of a row piecewise linear in t = √μ (3-point Gauss–Legendre: exact).
+template <size_t N>
+float average_of_row(const std::array<float, N>& e) {
+    const double gx[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, gw[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+    double s = 0.0;
+    for (size_t m = 0; m + 1 < N; ++m) {
+        double t0 = double(m) / (N - 1), t1 = double(m + 1) / (N - 1), h = 0.5 * (t1 - t0);
+        for (int q = 0; q < 3; ++q) {
+            double f = 0.5 * (1.0 + gx[q]), t = t0 + h * (1.0 + gx[q]);
+            s += gw[q] * h * (e[m] * (1.0 - f) + e[m + 1] * f) * t * t * t;
+        }
+    }
+    return float(4.0 * s);
+}
+// Continuous grid coordinate x ∈ [0, n − 1] → cell index i ∈ [0, n − 2] and fraction.
+void cell(float x, int n, int& i, float& f) {
+    x = clamp(x, 0.f, float(n - 1));
+    i = std::min(int(x), n - 2);
+    f = x - float(i);
+}
+}  // namespace
+
+float DT::node_mu(int i) { return sqr(float(i) / float(kNMu - 1)); }
+float DT::node_alpha(int j) { return sqr(float(j) / float(kNAlpha - 1)); }
+// η nodes uniform in s = √((η − 1)/(η_max − 1)): E changes fastest just above η = 1.
+float DT::node_eta(int k) { return 1.f + (kMaxEta - 1.f) * sqr(float(k) / float(kNEta - 1)); }
+
+double DT::integrate_E(double mu, double alpha, double eta_rel, int n) {
+    if (alpha <= 0.0) return 1.0;  // smooth interface: lossless
+    GGX d{float(alpha)};
+    mu = std::max(double(kMinMu), std::min(1.0, mu));
+    Vec3f wo(float(std::sqrt(1.0 - mu * mu)), 0.f, float(mu));
+    double g1 = d.G1(wo), sum = 0.0;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            Vec3f wm = d.sample_visible(wo, Vec2f((i + 0.5f) / n, (j + 0.5f) / n));
+            double F = fresnel_dielectric_d(dot(wo, wm), eta_rel);
+            Vec3f wr = reflect(wo, wm), wt;
+            if (wr.z > 0.f) sum += F * d.G(wo, wr) / g1;
+            float etap;
+            if (F < 1.0 && refract(wo, wm, float(eta_rel), &etap, &wt) && wt.z < 0.f)
+                sum += (1.0 - F) * d.G(wo, wt) / g1;
+        }
+    return sum / (double(n) * n);
+}
+
+DT::GGXDielectricAlbedoTable() {
+    for (int s = 0; s < 2; ++s)
+        for (int k = 0; k < kNEta; ++k)
+            for (int j = 0; j < kNAlpha; ++j) {
+                for (int i = 0; i < kNMu; ++i) m_e[s][k][j][i] = kGGXDielectricAlbedoData[s][k][j][i];
+                m_eavg[s][k][j] = average_of_row(m_e[s][k][j]);
+            }
+}
+
+const DT& DT::get() {
+    static const DT table;
+    return table;
+}
+
+float DT::E(float mu, float alpha, float eta_rel) const {
+    int side = eta_rel >= 1.f ? Enter : Leave;
+    float eta = side == Enter ? eta_rel : 1.f / eta_rel;
+    int i, j, k;
+    float fi, fj, fk;
+    cell(std::sqrt(clamp(mu, 0.f, 1.f)) * (kNMu - 1), kNMu, i, fi);
+    cell(std::sqrt(clamp(alpha, 0.f, 1.f)) * (kNAlpha - 1), kNAlpha, j, fj);
+    cell(std::sqrt(std::max(0.f, (eta - 1.f) / (kMaxEta - 1.f))) * (kNEta - 1), kNEta, k, fk);
+    auto row = [&](int kk, int jj) {
+        const auto& r = m_e[side][kk][jj];
+        return r[i] * (1.f - fi) + r[i + 1] * fi;
+    };
+    float e0 = row(k, j) * (1.f - fj) + row(k, j + 1) * fj;
+    float e1 = row(k + 1, j) * (1.f - fj) + row(k + 1, j + 1) * fj;
+    return e0 * (1.f - fk) + e1 * fk;
+}
+
+float DT::E_avg(float alpha, float eta_rel) const {
+    int side = eta_rel >= 1.f ? Enter : Leave;
+    float eta = side == Enter ? eta_rel : 1.f / eta_rel;
+    int j, k;
+    float fj, fk;
+    cell(std::sqrt(clamp(alpha, 0.f, 1.f)) * (kNAlpha - 1), kNAlpha, j, fj);
+    cell(std::sqrt(std::max(0.f, (eta - 1.f) / (kMaxEta - 1.f))) * (kNEta - 1), kNEta, k, fk);
+    const auto& a = m_eavg[side];
+    float e0 = a[k][j] * (1.f - fj) + a[k][j + 1] * fj;
+    float e1 = a[k + 1][j] * (1.f - fj) + a[k + 1][j + 1] * fj;
+    return e0 * (1.f - fk) + e1 * fk;
+}
+
+std::string DT::generate_source(int n) {
+    // One task per (side, η) slab; results do not depend on the thread count.
+    std::vector<float> v(size_t(2) * kNEta * kNAlpha * kNMu);
+    std::atomic<int> next{0};
+    auto work = [&] {
+        for (int t; (t = next++) < 2 * kNEta;) {
+            int s = t / kNEta, k = t % kNEta;
+            double eta = s == Enter ? node_eta(k) : 1.0 / node_eta(k);
+            for (int j = 0; j < kNAlpha; ++j)
+                for (int i = 0; i < kNMu; ++i)
+                    v[((size_t(t) * kNAlpha) + j) * kNMu + i] = float(integrate_E(node_mu(i), node_alpha(j), eta, n));
+        }
+    };
+    std::vector<std::thread> threads;
+    unsigned nt = std::max(1u, std::thread::hardware_concurrency());
+    for (unsigned t = 0; t < nt; ++t) threads.emplace_back(work);
+    for (auto& t : threads) t.join();
+
+    std::ostringstream os;
+    os << "// GENERATED by GGXDielectricAlbedoTable::generate_source(" << n
+       << ") (tests/cpp/bxdf/test_kulla_conty_dielectric.cpp,\n"
+       << "// DISABLED_RegenerateDielectricTable). Do not edit. [side][eta][alpha][mu]: side 0 = enter (eta_k),\n"
+       << "// 1 = leave (1/eta_k); eta_k = 1 + 2(k/15)^2, alpha_j = (j/15)^2, mu_i = (i/31)^2.\n"
+       << "// SPDX-License-Identifier: Apache-2.0\n#include \"pellucid/bxdf/kulla_conty.h\"\n\n"
+       << "namespace pellucid {\nconst float kGGXDielectricAlbedoData[2][GGXDielectricAlbedoTable::kNEta]"
+       << "[GGXDielectricAlbedoTable::kNAlpha][GGXDielectricAlbedoTable::kNMu] = {\n";
+    os.precision(7);
+    os << std::fixed;
+    size_t idx = 0;
+    for (int s = 0; s < 2; ++s) {
+        os << "  {\n";
+        for (int k = 0; k < kNEta; ++k) {
+            os << "   {\n";
+            for (int j = 0; j < kNAlpha; ++j) {
+                os << "    {";
+                for (int i = 0; i < kNMu; ++i) os << (i ? (i % 8 ? ", " : ",\n     ") : "") << v[idx++] << "f";
+                os << "},\n";
+            }
+            os << "   },\n";
+        }
+        os << "  },\n";
+    }
+    os << "};\n}  // namespace pellucid\n";
+    return os.str();
+}
 }  // namespace pellucid

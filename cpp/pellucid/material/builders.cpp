@@ -137,11 +137,9 @@ void read_ior(Binder& b, const std::string& key, const char* def_name, float& fi
 }
 
 /// distribution + one of alpha | alpha_u/alpha_v | roughness (α = r²), each constant or textured.
-void read_microfacet(Binder& b, MicrofacetParams& m, bool beckmann_ok) {
+void read_microfacet(Binder& b, MicrofacetParams& m) {
     Properties& p = b.props();
     std::string d = read_choice(p, "distribution", "ggx", "distribution", {"ggx", "beckmann"});
-    if (d == "beckmann" && !beckmann_ok)
-        p.fail("distribution", "distribution 'beckmann' is not available for this material (known: ggx)");
     m.distribution = d == "ggx" ? MicrofacetType::GGX : MicrofacetType::Beckmann;
     bool has_alpha = p.has("alpha"), has_uv = p.has("alpha_u") || p.has("alpha_v"), has_r = p.has("roughness");
     if (int(has_alpha) + int(has_uv) + int(has_r) > 1)
@@ -268,7 +266,7 @@ Material build_conductor(Properties& p, const BuildContext& ctx) {
 Material build_rough_conductor(Properties& p, const BuildContext& ctx) {
     RoughConductorParams q;
     Binder b(p, ctx, q);
-    read_microfacet(b, q.microfacet, true);
+    read_microfacet(b, q.microfacet);
     read_conductor_ior(b, q.ior);
     q.specular_reflectance = Spectrum(1.f);
     b.colour("specular_reflectance", q.specular_reflectance);
@@ -293,8 +291,11 @@ Material build_thin_dielectric(Properties& p, const BuildContext& ctx) {
 Material build_rough_dielectric(Properties& p, const BuildContext& ctx) {
     RoughDielectricParams q;
     Binder b(p, ctx, q);
-    read_microfacet(b, q.microfacet, false);
+    read_microfacet(b, q.microfacet);
     read_dielectric(b, q.dielectric);
+    q.multiple_scattering = p.get_bool("multiple_scattering", false);
+    if (q.multiple_scattering && q.microfacet.distribution != MicrofacetType::GGX)
+        p.fail("multiple_scattering", "requires distribution 'ggx' (the Kulla-Conty tables are GGX only)");
     return RoughDielectricMaterial(q);
 }
 
@@ -307,7 +308,7 @@ Material build_plastic(Properties& p, const BuildContext& ctx) {
 Material build_rough_plastic(Properties& p, const BuildContext& ctx) {
     RoughPlasticParams q;
     Binder b(p, ctx, q);
-    read_microfacet(b, q.microfacet, false);
+    read_microfacet(b, q.microfacet);
     read_plastic(b, q.plastic);
     return RoughPlasticMaterial(q);
 }

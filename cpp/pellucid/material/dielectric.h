@@ -10,10 +10,11 @@
 // | specular_transmittance | colour       | 1       | multiplier on transmission, in [0, 1]            |
 // JSON: {"type": "dielectric", "int_ior": "water", "ext_ior": "air"}
 //
-// `rough_dielectric` (RoughDielectric<GGX>, Walter et al. 2007): the above plus `distribution`
-// ("ggx" only: the Beckmann instantiation exists in bxdf/ but is not in the BxDF list), `alpha`,
-// `alpha_u`/`alpha_v` or `roughness` exactly as for `rough_conductor`.
-// JSON: {"type": "rough_dielectric", "int_ior": 1.5, "alpha": 0.3}
+// `rough_dielectric` (RoughDielectric<GGX|Beckmann>, Walter et al. 2007): the above plus
+// `distribution` ("ggx" or "beckmann"), `alpha`, `alpha_u`/`alpha_v` or `roughness` exactly as for
+// `rough_conductor`, and `multiple_scattering` (bool, default false: Kulla–Conty compensation of
+// the reflection + transmission energy, ggx only; bxdf/kulla_conty.h).
+// JSON: {"type": "rough_dielectric", "int_ior": 1.5, "alpha": 0.3, "multiple_scattering": true}
 #pragma once
 #include <string>
 
@@ -59,6 +60,7 @@ private:
 struct RoughDielectricParams {
     MicrofacetParams microfacet;
     DielectricParams dielectric;
+    bool multiple_scattering = false;
 };
 
 class RoughDielectricMaterial {

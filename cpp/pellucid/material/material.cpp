@@ -56,6 +56,26 @@ BxDF make_rough_conductor(const RoughConductorParams& p) {
     return RoughConductor(GGX(p.microfacet.alpha_u, p.microfacet.alpha_v), fr, p.specular_reflectance,
                           p.multiple_scattering);
 }
+// `distribution` picks the template argument (as make_rough_conductor); Kulla–Conty is GGX only
+// (the builder rejects beckmann + multiple_scattering).
+BxDF make_rough_dielectric(const RoughDielectricParams& p) {
+    const DielectricParams& d = p.dielectric;
+    const MicrofacetParams& m = p.microfacet;
+    if (m.distribution == MicrofacetType::Beckmann)
+        return RoughDielectric<Beckmann>(Beckmann(m.alpha_u, m.alpha_v), d.eta(), d.specular_reflectance,
+                                         d.specular_transmittance);
+    return RoughDielectric<GGX>(GGX(m.alpha_u, m.alpha_v), d.eta(), d.specular_reflectance, d.specular_transmittance,
+                                p.multiple_scattering);
+}
+BxDF make_rough_plastic(const RoughPlasticParams& p) {
+    const PlasticParams& q = p.plastic;
+    const MicrofacetParams& m = p.microfacet;
+    float eta = q.int_ior / q.ext_ior;
+    if (m.distribution == MicrofacetType::Beckmann)
+        return RoughPlastic<Beckmann>(Beckmann(m.alpha_u, m.alpha_v), eta, q.diffuse_reflectance,
+                                      q.specular_reflectance, q.variant);
+    return RoughPlastic<GGX>(GGX(m.alpha_u, m.alpha_v), eta, q.diffuse_reflectance, q.specular_reflectance, q.variant);
+}
 }  // namespace
 
 OrenNayarMaterial::OrenNayarMaterial(const OrenNayarParams& p) : m_p(p), m_bxdf(make_oren_nayar(p)) {}
@@ -82,11 +102,10 @@ std::string RoughConductorMaterial::to_string() const {
 }
 
 RoughDielectricMaterial::RoughDielectricMaterial(const RoughDielectricParams& p)
-    : m_p(p),
-      m_bxdf(RoughDielectric<GGX>(GGX(p.microfacet.alpha_u, p.microfacet.alpha_v), p.dielectric.eta(),
-                                  p.dielectric.specular_reflectance, p.dielectric.specular_transmittance)) {}
+    : m_p(p), m_bxdf(make_rough_dielectric(p)) {}
 std::string RoughDielectricMaterial::to_string() const {
-    return "RoughDielectricMaterial[" + m_p.microfacet.to_string() + ", " + m_p.dielectric.to_string() + "]";
+    return "RoughDielectricMaterial[" + m_p.microfacet.to_string() + ", " + m_p.dielectric.to_string() +
+           ", multiple_scattering=" + (m_p.multiple_scattering ? "true" : "false") + "]";
 }
 
 PlasticMaterial::PlasticMaterial(const PlasticParams& p)
@@ -94,10 +113,7 @@ PlasticMaterial::PlasticMaterial(const PlasticParams& p)
       m_bxdf(SmoothPlastic(p.int_ior / p.ext_ior, p.diffuse_reflectance, p.specular_reflectance, p.variant)) {}
 std::string PlasticMaterial::to_string() const { return "PlasticMaterial[" + m_p.to_string() + "]"; }
 
-RoughPlasticMaterial::RoughPlasticMaterial(const RoughPlasticParams& p)
-    : m_p(p),
-      m_bxdf(RoughPlastic<GGX>(GGX(p.microfacet.alpha_u, p.microfacet.alpha_v), p.plastic.int_ior / p.plastic.ext_ior,
-                               p.plastic.diffuse_reflectance, p.plastic.specular_reflectance, p.plastic.variant)) {}
+RoughPlasticMaterial::RoughPlasticMaterial(const RoughPlasticParams& p) : m_p(p), m_bxdf(make_rough_plastic(p)) {}
 std::string RoughPlasticMaterial::to_string() const {
     return "RoughPlasticMaterial[" + m_p.microfacet.to_string() + ", " + m_p.plastic.to_string() + "]";
 }

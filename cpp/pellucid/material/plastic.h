@@ -1,4 +1,5 @@
-// Plastic materials: `plastic` (smooth coat) and `rough_plastic` (GGX coat) over a Lambertian base.
+// Plastic materials: `plastic` (smooth coat) and `rough_plastic` (GGX or Beckmann coat) over a
+// Lambertian base.
 // SPDX-License-Identifier: Apache-2.0
 //
 // bxdf/plastic.h explains both variants.
@@ -8,7 +9,7 @@
 // | specular_reflectance | colour       | 1               | coat multiplier Ks, in [0, 1]             |
 // | int_ior, ext_ior     | float/string | "polypropylene", "air" | coat IOR (η = int_ior/ext_ior), as for `dielectric` |
 // | variant              | string       | "coupled"       | "coupled" (energy-conserving, Weidlich & Wilkie 2007) or "sum" (Kd/π + coat) |
-// `rough_plastic` adds `distribution` ("ggx" only), `alpha` (default 0.1), `alpha_u`/`alpha_v`,
+// `rough_plastic` adds `distribution` ("ggx" or "beckmann"), `alpha` (default 0.1), `alpha_u`/`alpha_v`,
 // `roughness`, as for `rough_conductor`.
 // JSON: {"type": "rough_plastic", "diffuse_reflectance": [0.1, 0.3, 0.6], "alpha": 0.2}
 #pragma once

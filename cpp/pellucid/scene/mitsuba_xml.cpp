@@ -649,6 +649,10 @@ private:
         if (type == "obj" || type == "ply") {
             if (!out.find("filename")) fail(n, type + " shape needs a 'filename'");
             set_default(out, "face_normals", Node::boolean(false));
+            // Mitsuba computes vertex normals for a mesh file without them unless face_normals is set
+            // (found by tests/python/test_mitsuba_scenes.py, metals.xml).
+            const Node* fnode = out.find("face_normals");
+            set_default(out, "smooth_normals", Node::boolean(!(fnode && fnode->is_bool() && fnode->as_bool())));
             // Mitsuba flips OBJ texture v by default (OBJ's v points up, image rows go down).
             if (type == "obj") set_default(out, "flip_tex_coords", Node::boolean(true));
         }
@@ -667,6 +671,13 @@ private:
             } else {
                 unsupported(o, "unexpected <" + t + "> inside " + what);
             }
+        }
+        // Mitsuba gives an emitting shape without a bsdf a black diffuse one (it only emits), a
+        // plain shape a 0.5 diffuse (our default material). Found by tests/python/test_mitsuba_scenes.py.
+        if (emitter && !material) {
+            Node black = make("lambertian", n);
+            black.set("reflectance", num(0.0));
+            material = black;
         }
         if (material) out.set("material", *material);
         if (emitter) out.set("emitter", *emitter);

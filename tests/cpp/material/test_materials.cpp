@@ -92,9 +92,11 @@ TEST(Materials, ErrorsNameKeyPathParameterAndValue) {
     EXPECT_EQ(material_error(R"({"type": "dielectric", "int_ior": "glas"})").rfind(
                   "scene.json: materials.m.int_ior: unknown IOR name 'glas' (known: vacuum", 0),
               0u);
-    EXPECT_EQ(material_error(R"({"type": "rough_dielectric", "distribution": "beckmann"})"),
-              "scene.json: materials.m.distribution: distribution 'beckmann' is not available for this material "
-              "(known: ggx)");
+    EXPECT_EQ(material_error(R"({"type": "rough_dielectric", "distribution": "beckmann", "multiple_scattering": true})"),
+              "scene.json: materials.m.multiple_scattering: requires distribution 'ggx' (the Kulla-Conty tables are "
+              "GGX only)");
+    EXPECT_EQ(material_error(R"({"type": "rough_plastic", "distribution": "blinn"})"),
+              "scene.json: materials.m.distribution: unknown distribution 'blinn' (known: ggx, beckmann)");
     EXPECT_EQ(material_error(R"({"type": "rough_conductor", "distribution": "beckmann", "multiple_scattering": true})"),
               "scene.json: materials.m.multiple_scattering: requires distribution 'ggx' (the Kulla-Conty table is "
               "GGX only)");
@@ -125,6 +127,20 @@ TEST(Materials, ErrorsInsideAScene) {
     } catch (const Error& e) {
         EXPECT_STREQ(e.what(), "scene.json: materials.gold.alpha: value -0.1 must be >= 0");
     }
+}
+
+// `distribution` picks the template argument of the BxDF; `multiple_scattering` switches Kulla–Conty on.
+TEST(Materials, DistributionPicksTheBxDF) {
+    EXPECT_TRUE(std::holds_alternative<RoughDielectric<Beckmann>>(
+        bxdf_from(R"({"type": "rough_dielectric", "distribution": "beckmann", "alpha": 0.3})")));
+    EXPECT_TRUE(std::holds_alternative<RoughDielectric<GGX>>(bxdf_from(R"({"type": "rough_dielectric", "alpha": 0.3})")));
+    EXPECT_TRUE(std::holds_alternative<RoughPlastic<Beckmann>>(
+        bxdf_from(R"({"type": "rough_plastic", "distribution": "beckmann", "alpha": 0.3})")));
+    EXPECT_TRUE(std::holds_alternative<RoughPlastic<GGX>>(bxdf_from(R"({"type": "rough_plastic", "alpha": 0.3})")));
+    BxDF ms = bxdf_from(R"({"type": "rough_dielectric", "alpha": 0.5, "multiple_scattering": true})");
+    ASSERT_TRUE(std::holds_alternative<RoughDielectric<GGX>>(ms));
+    EXPECT_TRUE(std::get<RoughDielectric<GGX>>(ms).multiscatter());
+    EXPECT_FALSE(std::get<RoughDielectric<GGX>>(bxdf_from(R"({"type": "rough_dielectric", "alpha": 0.5})")).multiscatter());
 }
 
 TEST(Materials, OrenNayarAtZeroRoughnessIsLambertian) {

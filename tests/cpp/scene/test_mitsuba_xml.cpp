@@ -153,12 +153,13 @@ TEST(MitsubaXml, ShapesMaterialsAndAreaEmitters) {
                             R"({
   "materials": {"white": {"type": "lambertian", "reflectance": [0.8, 0.7, 0.6]}},
   "shapes": [
-    {"type": "obj", "filename": "meshes/bunny.obj", "face_normals": true, "flip_tex_coords": true,
-     "material": "white"},
-    {"type": "ply", "filename": "a.ply", "face_normals": false, "material": "white"},
+    {"type": "obj", "filename": "meshes/bunny.obj", "face_normals": true, "smooth_normals": false,
+     "flip_tex_coords": true, "material": "white"},
+    {"type": "ply", "filename": "a.ply", "face_normals": false, "smooth_normals": true, "material": "white"},
     {"type": "sphere", "center": [1, 2, 3], "radius": 0.5,
      "material": {"type": "lambertian", "reflectance": 0.25}},
-    {"type": "rectangle", "flip_normals": true, "emitter": {"type": "area", "radiance": 10}},
+    {"type": "rectangle", "flip_normals": true, "material": {"type": "lambertian", "reflectance": 0},
+     "emitter": {"type": "area", "radiance": 10}},
     {"type": "cube"},
     {"type": "disk"}]})"));
 }
@@ -378,7 +379,7 @@ TEST(MitsubaXml, IncludesResolveRelativeToTheirFile) {
     SceneDesc d = read_mitsuba_xml_file((dir / "main.xml").string(), false);
     EXPECT_EQ(d.source, (dir / "main.xml").string());
     EXPECT_TRUE(same(d.root, parse_json(R"({"materials": {"grey": {"type": "lambertian"}}, "shapes": [
-        {"type": "obj", "filename": "parts/meshes/a.obj", "face_normals": false, "flip_tex_coords": true,
+        {"type": "obj", "filename": "parts/meshes/a.obj", "face_normals": false, "smooth_normals": true, "flip_tex_coords": true,
          "material": "grey"},
         {"type": "sphere", "radius": 3, "material": "grey"}]})", "e")));
     fs::remove_all(dir);
