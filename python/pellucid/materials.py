@@ -138,15 +138,18 @@ def rough_dielectric(int_ior: Optional[IOR] = None, *, ext_ior: Optional[IOR] = 
                      specular_reflectance: Optional[Colour] = None,
                      specular_transmittance: Optional[Colour] = None, distribution: Optional[str] = None,
                      alpha: Optional[float] = None, alpha_u: Optional[float] = None,
-                     alpha_v: Optional[float] = None, roughness: Optional[float] = None) -> Material:
+                     alpha_v: Optional[float] = None, roughness: Optional[float] = None,
+                     multiple_scattering: Optional[bool] = None) -> Material:
     """Rough interface (Walter et al. 2007): the ``dielectric`` parameters plus ``distribution``
-    (``"ggx"``) and one of ``alpha`` / ``alpha_u`` + ``alpha_v`` / ``roughness``.
+    (``"ggx"`` or ``"beckmann"``), one of ``alpha`` / ``alpha_u`` + ``alpha_v`` / ``roughness``, and
+    ``multiple_scattering`` (Kulla–Conty energy compensation, GGX only).
 
     docs/scene-format.md, ``### rough_dielectric``.
     """
     return _make("rough_dielectric", dict(int_ior=int_ior, ext_ior=ext_ior, specular_reflectance=specular_reflectance,
                                           specular_transmittance=specular_transmittance, distribution=distribution,
-                                          alpha=alpha, alpha_u=alpha_u, alpha_v=alpha_v, roughness=roughness))
+                                          alpha=alpha, alpha_u=alpha_u, alpha_v=alpha_v, roughness=roughness,
+                                          multiple_scattering=multiple_scattering))
 
 
 @_with_surface_keys

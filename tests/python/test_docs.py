@@ -182,7 +182,8 @@ def test_the_check_would_catch_an_undocumented_parameter(tmp_path) -> None:
     assert ("materials", "rough_conductor") in records
     assert "multiple_scattering" in records[("materials", "rough_conductor")]
     doc = DOC.replace("`multiple_scattering`", "`multiple_scatterin`")
-    assert _missing_parameters(records, doc) == ["materials/rough_conductor: `multiple_scattering`"]
+    assert _missing_parameters(records, doc) == ["materials/rough_conductor: `multiple_scattering`",
+                                                 "materials/rough_dielectric: `multiple_scattering`"]
     doc = DOC.replace("`stddev`", "`std`")
     assert "filters/gaussian: `stddev`" in _missing_parameters(records, doc)
 

@@ -461,6 +461,8 @@ private:
         } else if (type == "checkerboard") {
             out = make("checkerboard", n);
             map_params(out, c, what, {{"color0", "color0"}, {"color1", "color1"}, {"to_uv", "to_uv"}});
+            // Mitsuba's checkerboard is point-sampled; keep its definition so renders agree.
+            out.set("filtered", Node::boolean(false));
         } else {
             unsupported(n, "unsupported " + what);
             return std::nullopt;

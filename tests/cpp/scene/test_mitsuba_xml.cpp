@@ -264,11 +264,11 @@ TEST(MitsubaXml, WrappersAndTextures) {
   </bsdf>)"),
                             R"({"materials": {
   "tiles": {"type": "lambertian", "reflectance": {"type": "checkerboard", "color0": 0.1, "color1": 0.9,
-                                                   "to_uv": [{"scale": [4, 4, 1]}]}},
+                                                   "to_uv": [{"scale": [4, 4, 1]}], "filtered": false}},
   "img": {"type": "rough_plastic", "diffuse_reflectance": {"type": "image", "filename": "textures/wood.png",
           "filter": "nearest", "wrap_mode": "clamp"}, "distribution": "beckmann"},
   "bumpy": {"type": "lambertian", "reflectance": {"type": "checkerboard", "color0": 0.1, "color1": 0.9,
-                                                   "to_uv": [{"scale": [4, 4, 1]}]},
+                                                   "to_uv": [{"scale": [4, 4, 1]}], "filtered": false},
             "bump_map": {"type": "image", "color_space": "linear", "filename": "bump.png"}, "bump_scale": 0.5},
   "nm": {"type": "conductor", "normal_map": {"type": "image", "filename": "n.png"}}}})"));
 }
