@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import pathlib
 import resource
 import statistics
@@ -25,9 +24,11 @@ import tempfile
 
 import numpy as np
 
+from pellucid.bench import mitsuba_python, z_test
+
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SCENE = ROOT / "scenes" / "cornell_box.json"
-MITSUBA_PY = ROOT / "bench" / ".venv-mitsuba" / "bin" / "python"
+MITSUBA_PY = mitsuba_python() or ROOT / "bench" / ".venv-mitsuba" / "bin" / "python"  # or $PELLUCID_MITSUBA_PYTHON
 RUNNER = ROOT / "bench" / "peers" / "mitsuba_runner.py"
 
 # Child process: render with pellucid and print stats as JSON (so peak memory is its own).
@@ -70,18 +71,6 @@ def run_mitsuba(variant: str, spp: int, threads: int, seed: int, tmp: pathlib.Pa
     var_path = pathlib.Path(str(out)[:-4] + ".var.exr")
     st["variance"] = pellucid.read_image(var_path) if var_path.exists() else None
     return st
-
-
-def z_test(a: np.ndarray, va: np.ndarray, b: np.ndarray, vb: np.ndarray, alpha: float = 0.01) -> tuple:
-    """Fraction of pixel channels passing a two-sided z-test at α Šidák-corrected over all of them."""
-    n = a.size
-    alpha_1 = 1.0 - (1.0 - alpha) ** (1.0 / n)
-    lo, hi = 0.0, 40.0  # z such that erfc(z/√2) = alpha_1
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if math.erfc(mid / math.sqrt(2)) > alpha_1 else (lo, mid)
-    z = np.abs(a - b) / np.sqrt(va + vb + 1e-12)
-    return float(np.mean(z <= lo)), lo
 
 
 def main() -> int:

@@ -95,10 +95,88 @@ def _transform(ops, what="to_world"):
     return m
 
 
+# pellucid's measured RGB complex IORs (cpp/pellucid/bxdf/ior.cpp). Mitsuba's own `material`
+# names go through its spectral tables, which give other RGB values, so the converter passes ours.
+_METALS = {
+    "Au": ([0.1556, 0.4241, 1.383], [3.602, 2.472, 1.915]),
+    "Ag": ([0.05222, 0.05958, 0.04], [4.409, 3.597, 2.648]),
+    "Cu": ([0.2378, 1.007, 1.24], [3.626, 2.582, 2.393]),
+    "Al": ([1.558, 1.015, 0.6332], [7.712, 6.627, 5.454]),
+    "Cr": ([3.107, 3.181, 2.323], [3.331, 3.329, 3.135]),
+    "Fe": ([2.911, 2.95, 2.584], [3.089, 2.932, 2.767]),
+    "Ti": ([2.741, 2.542, 2.267], [3.814, 3.435, 3.038]),
+    "Ni": ([1.99, 1.921, 1.729], [4.209, 3.616, 2.944]),
+}
+_IORS = {"vacuum": 1.0, "air": 1.000277, "water": 1.333, "ethanol": 1.361, "glass": 1.5046, "bk7": 1.5046,
+         "fused-quartz": 1.458, "acrylic": 1.49, "polypropylene": 1.49, "sapphire": 1.77, "diamond": 2.419}
+
+
+def _ior(v, what):
+    if isinstance(v, str):
+        if v not in _IORS:
+            raise ValueError(f"{what}: unknown IOR name {v!r}")
+        return _IORS[v]
+    return float(v)
+
+
+def _conductor_ior(mat, what):
+    if "eta" in mat:
+        return _rgb(mat["eta"], f"{what}.eta"), _rgb(mat.get("k", 0.0), f"{what}.k")
+    name = mat.get("material", "none")
+    if name == "none":
+        return None, None
+    if name not in _METALS:
+        raise ValueError(f"{what}.material: unknown metal {name!r}")
+    eta, k = _METALS[name]
+    return _rgb(eta, f"{what}.eta"), _rgb(k, f"{what}.k")
+
+
+def _alpha(mat, d, what):
+    """pellucid roughness keys -> Mitsuba alpha / alpha_u, alpha_v (roughness r means alpha = r^2)."""
+    if "alpha_u" in mat:
+        d["alpha_u"] = float(mat["alpha_u"])
+        d["alpha_v"] = float(mat.get("alpha_v", mat["alpha_u"]))
+    elif "roughness" in mat:
+        d["alpha"] = float(mat["roughness"]) ** 2
+    else:
+        d["alpha"] = float(mat.get("alpha", 0.1))
+    dist = mat.get("distribution", "ggx")
+    if dist not in ("ggx", "beckmann"):
+        raise ValueError(f"{what}.distribution: unknown {dist!r}")
+    d["distribution"] = dist  # Mitsuba's default is beckmann, pellucid's ggx: always explicit
+
+
 def _bsdf(mat, what):
     t = mat.get("type")
     if t in ("lambertian", "diffuse"):
         return {"type": "diffuse", "reflectance": _rgb(mat.get("reflectance", 0.5), f"{what}.reflectance")}
+    if t in ("conductor", "rough_conductor"):
+        if mat.get("fresnel", "exact") != "exact":
+            raise NotImplementedError(f"{what}.fresnel: only 'exact' has a Mitsuba equivalent")
+        if mat.get("multiple_scattering", False):
+            raise NotImplementedError(f"{what}.multiple_scattering: Mitsuba has no energy compensation")
+        d = {"type": "conductor" if t == "conductor" else "roughconductor"}
+        eta, k = _conductor_ior(mat, what)
+        if eta is None:
+            d["material"] = "none"
+        else:
+            d["eta"], d["k"] = eta, k
+        if "specular_reflectance" in mat:
+            d["specular_reflectance"] = _rgb(mat["specular_reflectance"], f"{what}.specular_reflectance")
+        if t == "rough_conductor":
+            _alpha(mat, d, what)
+        return d
+    if t in ("dielectric", "rough_dielectric", "thin_dielectric"):
+        d = {"type": {"dielectric": "dielectric", "rough_dielectric": "roughdielectric",
+                      "thin_dielectric": "thindielectric"}[t],
+             "int_ior": _ior(mat.get("int_ior", "bk7"), f"{what}.int_ior"),
+             "ext_ior": _ior(mat.get("ext_ior", "air"), f"{what}.ext_ior")}
+        for key in ("specular_reflectance", "specular_transmittance"):
+            if key in mat:
+                d[key] = _rgb(mat[key], f"{what}.{key}")
+        if t == "rough_dielectric":
+            _alpha(mat, d, what)
+        return d
     raise NotImplementedError(f"{what}: material type {t!r} is not mapped to Mitsuba")
 
 
@@ -164,12 +242,49 @@ def _mesh(shape, to_world, name, bsdf, emitter):
     return mesh
 
 
+def _light(l, what, base_dir):
+    t = l.get("type")
+    if t == "constant":
+        return {"type": "constant", "radiance": _rgb(l.get("radiance", 1.0), f"{what}.radiance")}
+    if t == "point":
+        d = {"type": "point", "intensity": _rgb(l.get("intensity", 1.0), f"{what}.intensity")}
+        if "position" in l:
+            d["position"] = _vec3(l["position"], f"{what}.position")
+        else:
+            d["to_world"] = _transform(l.get("to_world"), f"{what}.to_world")
+        return d
+    if t == "spot":
+        # Both emit along the local +z axis of to_world. The falloff between beam_width and
+        # cutoff_angle is a smooth ramp in both, not necessarily the same curve: compare spots with care.
+        cutoff = float(l.get("cutoff_angle", 20.0))
+        return {"type": "spot", "intensity": _rgb(l.get("intensity", 1.0), f"{what}.intensity"),
+                "cutoff_angle": cutoff, "beam_width": float(l.get("beam_width", 0.75 * cutoff)),
+                "to_world": _transform(l.get("to_world"), f"{what}.to_world")}
+    if t == "directional":
+        d = {"type": "directional", "irradiance": _rgb(l.get("irradiance", 1.0), f"{what}.irradiance")}
+        if "direction" in l:
+            d["direction"] = _vec3(l["direction"], f"{what}.direction")
+        else:
+            d["to_world"] = _transform(l.get("to_world"), f"{what}.to_world")
+        return d
+    if t == "envmap":
+        fn = l.get("filename")
+        if not isinstance(fn, str):
+            raise ValueError(f"{what}.filename: expected a path string, got {fn!r}")
+        path = fn if os.path.isabs(fn) else os.path.join(base_dir, fn)
+        if not os.path.exists(path):
+            raise FileNotFoundError(f"{what}.filename: no such file {path!r}")
+        return {"type": "envmap", "filename": path, "scale": float(l.get("scale", 1.0)),
+                "to_world": _transform(l.get("to_world"), f"{what}.to_world")}
+    raise NotImplementedError(f"{what}: light type {t!r} is not mapped")
+
+
 # --------------------------------------------------------------------------- conversion
 def to_mitsuba_dict(scene_json: dict, base_dir: str = ".") -> dict:
-    """Convert a pellucid JSON scene (parsed) into a Mitsuba 3 scene dict. Relative file names
-    (envmaps) are resolved against base_dir, the scene file's directory.
+    """Convert a pellucid JSON scene (parsed) into a Mitsuba 3 scene dict.
 
-    Requires a Mitsuba variant to be set (mi.set_variant) beforehand.
+    Requires a Mitsuba variant to be set (mi.set_variant) beforehand. Relative file names (envmap)
+    are resolved against `base_dir` (the scene file's folder).
     """
     if mi.variant() is None:
         raise RuntimeError("call mi.set_variant(...) before to_mitsuba_dict()")
@@ -257,15 +372,7 @@ def to_mitsuba_dict(scene_json: dict, base_dir: str = ".") -> dict:
             raise NotImplementedError(f"{what}: shape type {t!r} is not mapped")
 
     for i, l in enumerate(sj.get("lights", [])):
-        t = l.get("type")
-        if t == "constant":
-            out[f"light_{i}"] = {"type": "constant", "radiance": _rgb(l["radiance"], f"lights[{i}].radiance")}
-        elif t == "envmap":  # same plugin name, parameters and lat-long convention
-            out[f"light_{i}"] = {"type": "envmap", "filename": os.path.join(base_dir, l["filename"]),
-                                 "scale": float(l.get("scale", 1.0)),
-                                 "to_world": _transform(l.get("to_world"), f"lights[{i}].to_world")}
-        else:
-            raise NotImplementedError(f"lights[{i}]: light type {t!r} is not mapped")
+        out[f"light_{i}"] = _light(l, f"lights[{i}]", base_dir)
     return out
 
 
@@ -293,6 +400,7 @@ def main(argv=None):
     ap.add_argument("--passes", type=int, default=1)
     ap.add_argument("--max-depth", type=int, default=None)
     ap.add_argument("--json-report", default=None)
+    ap.add_argument("--base-dir", default=None, help="folder for relative file names (default: the scene's)")
     ap.add_argument("--warmup", choices=["auto", "full", "tiny", "none"], default="auto",
                     help="auto: 'full' for llvm (same spp/pass + film, untimed), 'none' for scalar; "
                          "'tiny' = spp=1 (does not avoid recompiling the timed kernel)")
@@ -306,8 +414,6 @@ def main(argv=None):
 
     mi.set_variant(a.variant)
     mi.set_log_level(mi.LogLevel.Warn)
-    if a.threads is not None:
-        dr.set_thread_count(a.threads)
 
     with open(a.scene) as f:
         sj = json.load(f)
@@ -315,8 +421,14 @@ def main(argv=None):
         sj.setdefault("integrator", {"type": "path"})["max_depth"] = a.max_depth
 
     t0 = time.perf_counter()
-    scene = mi.load_dict(to_mitsuba_dict(sj, os.path.dirname(os.path.abspath(a.scene))))
+    base_dir = a.base_dir or os.path.dirname(os.path.abspath(a.scene))
+    scene = mi.load_dict(to_mitsuba_dict(sj, base_dir))
     load_s = time.perf_counter() - t0
+    # Set the render's thread count only after loading: Mitsuba 3.9's EXR reader and writer
+    # (OpenEXR/IlmThread on Dr.Jit's pool) deadlock when the pool has a single thread, and an
+    # envmap is read while loading.
+    if a.threads is not None:
+        dr.set_thread_count(a.threads)
     film_size = scene.sensors()[0].film().size()
     W, H = int(film_size[0]), int(film_size[1])
 
