@@ -61,15 +61,17 @@ OVERRIDES = {
 
 
 def _split_top(s: str) -> List[str]:
+    """Split a parameter list at commas outside brackets (pybind11 reprs of defaults use <...>)
+    and quotes; the parts are stripped. Also used by tests/python/test_stubs.py."""
     out, depth, cur, quote = [], 0, "", ""
     for ch in s:
         if quote:
             quote = "" if ch == quote else quote
         elif ch in "'\"":
             quote = ch
-        elif ch in "([{":
+        elif ch in "([{<":
             depth += 1
-        elif ch in ")]}":
+        elif ch in ")]}>":
             depth -= 1
         elif ch == "," and depth == 0:
             out.append(cur.strip())

@@ -25,9 +25,10 @@ const char* AovIntegrator::name(Kind kind) {
 
 std::string AovIntegrator::to_string() const { return std::string("AovIntegrator[aov=") + name(m_kind) + "]"; }
 
-Spectrum AovIntegrator::Li(const Scene& scene, const Ray& ray, PCG32& rng) const {
+Spectrum AovIntegrator::Li(const Scene& scene, const RayDifferential& ray, PCG32& rng) const {
     SurfaceInteraction si;
     if (!scene.intersect(ray, si)) return Spectrum(0.f);
+    if (scene.has_textures) scene.compute_footprint(si, ray);  // textured albedo, filtered like renders
     switch (m_kind) {
         case Kind::Depth: return Spectrum(si.t);
         case Kind::Normal: return Spectrum(si.shading.n.x, si.shading.n.y, si.shading.n.z);
@@ -45,26 +46,10 @@ Spectrum AovIntegrator::Li(const Scene& scene, const Ray& ray, PCG32& rng) const
 }
 
 RenderResult AovIntegrator::render(const Scene& scene, const RenderOptions& opts) const {
-    // render_tile() keeps negative values out of the film (they are invalid radiance); normals are
-    // signed, so this loop discards only NaN/Inf. Seeding and filtering are render_tile()'s.
+    // Normals are signed: the film takes every finite sample.
     return render_loop(scene, opts, [&](const TileJob& job, Film& film) {
-        uint64_t bad = 0;
-        const uint64_t width = uint64_t(scene.width);
-        for (int y = job.y0; y < job.y1; ++y)
-            for (int x = job.x0; x < job.x1; ++x) {
-                const uint64_t pixel = uint64_t(y) * width + uint64_t(x);
-                for (int s = job.s0; s < job.s1; ++s) {
-                    PCG32 rng = PCG32::for_sample(pixel, uint64_t(s), job.seed);
-                    Vec2f off = sample_filter(scene.filter, rng.next_2d());
-                    Spectrum v = Li(scene, scene.camera.generate_ray(float(x) + 0.5f + off.x, float(y) + 0.5f + off.y), rng);
-                    if (!v.is_finite()) {
-                        ++bad;
-                        continue;
-                    }
-                    film.add_sample(x, y, v);
-                }
-            }
-        return bad;
+        return render_tile<SampleValues::Signed>(
+            scene, job, film, [&](const RayDifferential& r, PCG32& rng) { return Li(scene, r, rng); });
     });
 }
 }  // namespace pellucid

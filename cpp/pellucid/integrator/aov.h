@@ -29,7 +29,7 @@ public:
     RenderResult render(const Scene& scene, const RenderOptions& opts) const override;
     std::string to_string() const override;
     /// The AOV value of one camera ray.
-    Spectrum Li(const Scene& scene, const Ray& ray, PCG32& rng) const;
+    Spectrum Li(const Scene& scene, const RayDifferential& ray, PCG32& rng) const;
 
 private:
     Kind m_kind;

@@ -58,12 +58,15 @@ using TileFn = std::function<uint64_t(const TileJob&, Film&)>;
 /// The std::function is called once per tile, never per sample or per ray.
 RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const TileFn& tile_fn);
 
+/// Which estimates the film accepts: radiance must be finite and non-negative; signed outputs
+/// (normals, for the AOV integrator) only finite.
+enum class SampleValues { NonNegative, Signed };
+
 /// The per-sample loop every integrator instantiates with its own estimator Li(ray, rng): every
 /// (pixel, sample index, seed) has its own PCG32 stream, so images are bit-identical for any thread
-/// count. Samples that are NaN, infinite or negative are counted and kept out of the film.
-template <class LiFn>
-uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, LiFn&& Li);
-template <class LiFn>
+/// count. Rejected samples (NaN, infinite, or negative under SampleValues::NonNegative) are counted
+/// and kept out of the film.
+template <SampleValues kValues = SampleValues::NonNegative, class LiFn>
 uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, LiFn&& Li) {
     uint64_t bad = 0;
     const uint64_t width = uint64_t(scene.width);
@@ -78,7 +81,7 @@ uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, LiFn&& 
                 Spectrum L = Li(scene.has_textures ? scene.camera.generate_ray_differential(fx, fy)
                                                    : RayDifferential(scene.camera.generate_ray(fx, fy)),
                                 rng);
-                if (!L.is_finite() || L.has_negative()) {
+                if (!L.is_finite() || (kValues == SampleValues::NonNegative && L.has_negative())) {
                     ++bad;
                     continue;
                 }

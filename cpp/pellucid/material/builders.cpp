@@ -35,17 +35,6 @@ float read_nonneg(Properties& p, const std::string& key, float def, float hi) {
     return v;
 }
 
-std::string read_choice(Properties& p, const std::string& key, const std::string& def, const char* what,
-                        std::initializer_list<const char*> known) {
-    std::string v = p.get_string(key, def);
-    std::string list;
-    for (const char* k : known) {
-        if (v == k) return v;
-        list += (list.empty() ? "" : ", ") + std::string(k);
-    }
-    p.fail(key, std::string("unknown ") + what + " '" + v + "' (known: " + list + ")");
-}
-
 /// Reads a material's parameters into its Params struct `q`; a parameter given as a texture (an
 /// object with a "type", or the name of one of the scene's textures) is recorded as a binding to
 /// its field in q (material/textured.h), and the field keeps its default as the constant value.
@@ -139,7 +128,7 @@ void read_ior(Binder& b, const std::string& key, const char* def_name, float& fi
 /// distribution + one of alpha | alpha_u/alpha_v | roughness (α = r²), each constant or textured.
 void read_microfacet(Binder& b, MicrofacetParams& m) {
     Properties& p = b.props();
-    std::string d = read_choice(p, "distribution", "ggx", "distribution", {"ggx", "beckmann"});
+    std::string d = p.get_choice("distribution", "ggx", "distribution", {"ggx", "beckmann"});
     m.distribution = d == "ggx" ? MicrofacetType::GGX : MicrofacetType::Beckmann;
     bool has_alpha = p.has("alpha"), has_uv = p.has("alpha_u") || p.has("alpha_v"), has_r = p.has("roughness");
     if (int(has_alpha) + int(has_uv) + int(has_r) > 1)
@@ -173,7 +162,7 @@ void read_microfacet(Binder& b, MicrofacetParams& m) {
 
 void read_conductor_ior(Binder& b, ConductorIORParams& c) {
     Properties& p = b.props();
-    std::string fresnel = read_choice(p, "fresnel", "exact", "fresnel mode", {"exact", "schlick"});
+    std::string fresnel = p.get_choice("fresnel", "exact", "fresnel mode", {"exact", "schlick"});
     c.schlick = fresnel == "schlick";
     bool has_ek = p.has("eta") || p.has("k");
     if (has_ek) {
@@ -221,7 +210,7 @@ void read_plastic(Binder& b, PlasticParams& q) {
     b.colour("specular_reflectance", q.specular_reflectance);
     read_ior(b, "int_ior", "polypropylene", q.int_ior);
     read_ior(b, "ext_ior", "air", q.ext_ior);
-    std::string v = read_choice(p, "variant", "coupled", "variant", {"coupled", "sum"});
+    std::string v = p.get_choice("variant", "coupled", "variant", {"coupled", "sum"});
     q.variant = v == "coupled" ? PlasticVariant::Coupled : PlasticVariant::Sum;
 }
 }  // namespace
@@ -239,7 +228,7 @@ Material build_oren_nayar(Properties& p, const BuildContext& ctx) {
     Binder b(p, ctx, q);
     q.reflectance = Spectrum(0.5f);
     b.colour("reflectance", q.reflectance);
-    std::string v = read_choice(p, "variant", "eon", "variant", {"eon", "classic"});
+    std::string v = p.get_choice("variant", "eon", "variant", {"eon", "classic"});
     q.variant = v == "eon" ? OrenNayarVariant::EON : OrenNayarVariant::Classic;
     const char* other = q.variant == OrenNayarVariant::EON ? "sigma" : "roughness";
     if (p.has(other))
@@ -349,7 +338,7 @@ void read_normal_perturbation(Properties& p, const BuildContext& ctx) {
     if (p.has("normal_map"))
         mt.normal_map = int32_t(ctx.textures->texture(*p.get_node("normal_map"), p.key_path("normal_map"), true));
     mt.normal_map_directx =
-        read_choice(p, "normal_map_convention", "opengl", "normal map convention", {"opengl", "directx"}) == "directx";
+        p.get_choice("normal_map_convention", "opengl", "normal map convention", {"opengl", "directx"}) == "directx";
     mt.terminator_softening = p.get_bool("terminator_softening", true);
 }
 }  // namespace

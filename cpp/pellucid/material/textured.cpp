@@ -10,8 +10,7 @@ namespace {
 
 template <class P>
 void apply_bindings(P& params, const MaterialTextures& mt, const TextureList& textures, const TextureEvalContext& ctx) {
-    static_assert(std::is_standard_layout_v<P> || std::is_trivially_copyable_v<P>,
-                  "texture bindings address Params fields by byte offset");
+    static_assert(std::is_standard_layout_v<P>, "texture bindings address Params fields by byte offset");
     char* base = reinterpret_cast<char*>(&params);
     for (int i = 0; i < mt.count; ++i) {
         const TextureBinding& b = mt.bindings[i];
@@ -66,13 +65,12 @@ Vec2f bump_steps(const TextureEvalContext& ctx) {
 }
 
 Normal3f bump_normal(const TextureList& textures, uint32_t height, float scale, const TextureEvalContext& ctx,
-                     const SurfaceInteraction& si, float du, float dv, bool allow_analytic) {
+                     const SurfaceInteraction& si, const Normal3f& n, float du, float dv, bool allow_analytic) {
     // The bumped surface F' = F + B·n has tangents
     //   ∂F'/∂u = ∂F/∂u + (∂B/∂u)·n + B·∂n/∂u   (and likewise in v),
     // and normal n' = normalize(∂F'/∂u × ∂F'/∂v) (Blinn 1978, eq. 4; the seeds' definition).
     // ∂B/∂u: the texture's analytic gradient where it has one, else a forward difference of step
     // Δu (first order: error O(Δu)).
-    const Normal3f n = si.shading.n;
     float B = height_at(textures, height, scale, ctx, si, 0.f, 0.f);
     float dBdu, dBdv;
     if (!(allow_analytic && texture_gradient_uv(textures, height, ctx, si.dpdu, si.dpdv, &dBdu, &dBdv))) {
@@ -109,10 +107,8 @@ Frame perturbed_shading_frame(const MaterialTextures& mt, const TextureList& tex
         if (len > 0.f && std::isfinite(len)) n = w / len;
     }
     if (mt.bump >= 0) {
-        SurfaceInteraction s2 = si;
-        s2.shading = Frame::from_xz(si.dpdu, n);
         Vec2f d = bump_steps(ctx) * mt.bump_step_scale;
-        n = bump_normal(textures, uint32_t(mt.bump), mt.bump_scale, ctx, s2, d.x, d.y, true);
+        n = bump_normal(textures, uint32_t(mt.bump), mt.bump_scale, ctx, si, n, d.x, d.y, true);
     }
     // A perturbed normal can put the viewer below the shading hemisphere while it is above the
     // geometric one: then no light could ever be reflected (black pixels along silhouettes). Remove

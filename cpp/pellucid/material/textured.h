@@ -57,9 +57,10 @@ BxDF get_textured_bxdf(const Material& m, const MaterialTextures& mt, const Text
 Frame perturbed_shading_frame(const MaterialTextures& mt, const TextureList& textures, const TextureEvalContext& ctx,
                               const SurfaceInteraction& si);
 
-/// The bump-mapped shading normal from explicit steps Δu, Δv (exposed for the convergence tests).
+/// The bump-mapped shading normal about the unbumped normal n (si supplies ∂p/∂u, ∂p/∂v, ∂n/∂u,
+/// ∂n/∂v), from explicit steps Δu, Δv (exposed for the convergence tests).
 Normal3f bump_normal(const TextureList& textures, uint32_t height, float scale, const TextureEvalContext& ctx,
-                     const SurfaceInteraction& si, float du, float dv, bool allow_analytic);
+                     const SurfaceInteraction& si, const Normal3f& n, float du, float dv, bool allow_analytic);
 
 /// The finite-difference steps bump mapping uses: half the pixel footprint in u and v
 /// (½(|∂u/∂x| + |∂u/∂y|)), and 5e-4 (in uv units) where the hit has no footprint.

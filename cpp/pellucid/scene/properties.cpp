@@ -82,6 +82,17 @@ int Properties::get_int(const std::string& key, int def) {
         fail(key, "expected an integer, got " + std::to_string(d));
     return int(v);
 }
+std::string Properties::get_choice(const std::string& key, const std::string& def, const std::string& what,
+                                   std::initializer_list<const char*> known) {
+    std::string v = get_string(key, def);
+    std::string list;
+    for (const char* k : known) {
+        if (v == k) return v;
+        list += (list.empty() ? "" : ", ") + std::string(k);
+    }
+    fail(key, "unknown " + what + " '" + v + "' (known: " + list + ")");
+}
+
 bool Properties::get_bool(const std::string& key, bool def) {
     const Node* n = lookup(key);
     if (!n) return def;

@@ -3,6 +3,7 @@
 // pass silently (Mitsuba 3 properties.h does the same).
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <initializer_list>
 #include <set>
 #include <string>
 #include <vector>
@@ -56,6 +57,9 @@ public:
     Transform get_transform(const std::string& key);
     std::vector<float> get_float_array(const std::string& key);
     std::vector<int64_t> get_int_array(const std::string& key);
+    /// A string that must be one of `known`; otherwise "unknown <what> 'v' (known: a, b)".
+    std::string get_choice(const std::string& key, const std::string& def, const std::string& what,
+                           std::initializer_list<const char*> known);
     /// Raw child node (marked as read); nullptr if absent.
     const Node* get_node(const std::string& key);
 

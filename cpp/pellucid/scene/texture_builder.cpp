@@ -9,16 +9,6 @@
 
 namespace pellucid {
 namespace {
-std::string choice(Properties& p, const std::string& key, const std::string& def,
-                   std::initializer_list<const char*> known) {
-    std::string v = p.get_string(key, def);
-    std::string list;
-    for (const char* k : known) {
-        if (v == k) return v;
-        list += (list.empty() ? "" : ", ") + std::string(k);
-    }
-    p.fail(key, "unknown value '" + v + "' (known: " + list + ")");
-}
 UVTransform read_to_uv(Properties& p) { return UVTransform::from(p.get_transform("to_uv")); }
 }  // namespace
 
@@ -75,17 +65,17 @@ uint32_t TextureBuilder::texture_or_constant(Properties& p, const std::string& k
 Texture build_image_texture(Properties& p, TextureBuilder& b) {
     ImageTexture t;
     std::string file = b.context().resolve(p.get_string("filename"));
-    std::string filter = choice(p, "filter", "anisotropic", {"anisotropic", "trilinear", "bilinear", "nearest"});
+    std::string filter = p.get_choice("filter", "anisotropic", "filter", {"anisotropic", "trilinear", "bilinear", "nearest"});
     t.filter = filter == "anisotropic" ? TextureFilter::Anisotropic
                : filter == "trilinear" ? TextureFilter::Trilinear
                : filter == "bilinear"  ? TextureFilter::Bilinear
                                        : TextureFilter::Nearest;
-    std::string wrap = choice(p, "wrap_mode", "repeat", {"repeat", "mirror", "clamp", "black"});
+    std::string wrap = p.get_choice("wrap_mode", "repeat", "wrap mode", {"repeat", "mirror", "clamp", "black"});
     t.wrap = wrap == "repeat" ? TextureWrap::Repeat
              : wrap == "mirror" ? TextureWrap::Mirror
              : wrap == "clamp"  ? TextureWrap::Clamp
                                 : TextureWrap::Black;
-    std::string cs = choice(p, "color_space", b.linear_images() ? "linear" : "auto", {"auto", "srgb", "linear"});
+    std::string cs = p.get_choice("color_space", b.linear_images() ? "linear" : "auto", "color space", {"auto", "srgb", "linear"});
     TextureColorSpace space = cs == "srgb" ? TextureColorSpace::SRGB
                               : cs == "linear" ? TextureColorSpace::Linear
                                                : TextureColorSpace::Auto;
@@ -109,7 +99,7 @@ Texture build_checkerboard_texture(Properties& p, TextureBuilder&) {
 
 Texture build_noise_texture(Properties& p, TextureBuilder&) {
     NoiseTexture t;
-    t.fbm = choice(p, "variant", "perlin", {"perlin", "fbm"}) == "fbm";
+    t.fbm = p.get_choice("variant", "perlin", "variant", {"perlin", "fbm"}) == "fbm";
     t.scale = p.get_float("scale", 1.f);
     if (!(t.scale > 0.f)) p.fail("scale", "value " + format_float(t.scale) + " must be > 0");
     t.octaves = p.get_int("octaves", 6);

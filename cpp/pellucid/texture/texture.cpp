@@ -181,7 +181,7 @@ bool texture_gradient_uv(const TextureList& list, uint32_t id, const TextureEval
             Vec3f g;
             float n = noise_value(t, ctx, &g);
             float k = 0.5f * (t.color1 - t.color0).average();
-            if (std::fabs(0.5f + 0.5f * n - 0.5f) > 0.5f) k = 0.f;  // clamped region: flat
+            if (std::fabs(n) > 1.f) k = 0.f;  // the colour mapping clamps there: flat
             Vec3f qu = t.to_local.vector(dpdu) * t.scale, qv = t.to_local.vector(dpdv) * t.scale;
             *dfdu = k * dot(g, qu);
             *dfdv = k * dot(g, qv);

@@ -48,8 +48,8 @@ ImageTextureHandle open_image_texture(const std::string& path, TextureColorSpace
 Spectrum lookup_image_texture(const ImageTextureHandle& h, TextureFilter filter, TextureWrap wrap, float s,
                               float t, float dsdx, float dtdx, float dsdy, float dtdy);
 
-/// Testing aid: write a tiled, MIP-mapped float image whose level k is the constant value
-/// `level_value(k)` (here: k itself), to check which level a lookup reads. Returns the level count.
+/// Testing aid: write a tiled, MIP-mapped float image whose level k holds the constant value k, to
+/// check which level a lookup reads. Returns the level count.
 int write_level_index_mipmap(const std::string& path, int size);
 /// Testing aid: write an image with `bits` per channel (8 or 16: integer PNG/TIFF; 32: float) from
 /// linear-float pixel values in [0, 1] (integer files store them as-is, no transfer curve).

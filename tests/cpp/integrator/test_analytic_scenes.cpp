@@ -12,27 +12,16 @@
 #include "pellucid/util/error.h"
 #include "pellucid/scene/json_io.h"
 #include "support/chi2.h"
+#include "support/scene_util.h"
 
 using namespace pellucid;
 
-namespace {
-std::shared_ptr<const Scene> scene_from(const std::string& json) {
-    SceneDesc d;
-    d.root = parse_json(json, "test");
-    d.source = "test";
-    return load_desc(d);
-}
+using pellucid::test::LogCapture;
+using pellucid::test::scene_from;
+using pellucid::test::z_two_sided;
 
-// Two-sided normal quantile for probability p (Acklam's rational approximation is overkill here:
-// bisection on erfc is exact enough for test thresholds).
-double z_for_two_sided(double alpha) {
-    double lo = 0, hi = 40;
-    for (int i = 0; i < 200; ++i) {
-        double mid = 0.5 * (lo + hi);
-        (std::erfc(mid / std::sqrt(2.0)) > alpha ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
+namespace {
+
 
 // Per-pixel z-test as Mitsuba 3's render tests do it (../shared/REFERENCE.md §2.2): each pixel's
 // own variance, two-sided α = 0.01 Šidák-corrected over the pixels, and at least 99.75 % of pixels
@@ -42,7 +31,7 @@ void expect_constant_image(const RenderResult& r, double expected, const char* w
     const Image& img = r.image;
     const Image& var = r.variance;
     size_t n = size_t(img.width) * img.height;
-    double z_max = z_for_two_sided(test::sidak_alpha(0.01, int(n * 3)));
+    double z_max = z_two_sided(test::sidak_alpha(0.01, int(n * 3)));
     double sum = 0, sum_var = 0;
     int fails = 0;
     for (size_t i = 0; i < n * 3; ++i) {
@@ -56,7 +45,7 @@ void expect_constant_image(const RenderResult& r, double expected, const char* w
     EXPECT_LE(fails, int(0.0025 * double(n * 3))) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")";
     double mean = sum / double(n * 3), se = std::sqrt(sum_var) / double(n * 3);
     EXPECT_EQ(fails, 0) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")";
-    EXPECT_LT(std::fabs(mean - expected), z_for_two_sided(1e-4) * se + 1e-6)
+    EXPECT_LT(std::fabs(mean - expected), z_two_sided(1e-4) * se + 1e-6)
         << what << ": image mean " << mean << " vs " << expected << " (standard error " << se << ")";
     EXPECT_EQ(r.stats.invalid_samples, 0u);
 }
@@ -119,7 +108,7 @@ TEST(RussianRoulette, UnbiasedInClosedSphere) {
         sum_var += r.variance.data[i];
     }
     double n = double(r.image.data.size()), mean = sum / n, se = std::sqrt(sum_var) / n;
-    EXPECT_LT(std::fabs(mean - 0.3 / 0.3), z_for_two_sided(1e-4) * se) << "mean " << mean << " se " << se;
+    EXPECT_LT(std::fabs(mean - 0.3 / 0.3), z_two_sided(1e-4) * se) << "mean " << mean << " se " << se;
 }
 
 INSTANTIATE_TEST_SUITE_P(Strategies, AnalyticScenes, ::testing::Values("mis", "nee", "bsdf"));
@@ -221,7 +210,7 @@ TEST(Strategies, AgreePixelByPixelOnGlossyAndDiffuse) {
     };
     auto compare = [](const RenderResult& a, const RenderResult& b, const char* what) {
         size_t n = a.image.data.size();
-        double z_max = z_for_two_sided(test::sidak_alpha(0.01, int(n)));
+        double z_max = z_two_sided(test::sidak_alpha(0.01, int(n)));
         int fails = 0;
         std::ostringstream worst;
         for (size_t i = 0; i < n; ++i) {

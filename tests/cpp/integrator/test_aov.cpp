@@ -14,24 +14,15 @@
 #include "pellucid/scene/json_io.h"
 #include "pellucid/util/error.h"
 #include "support/chi2.h"
+#include "support/scene_util.h"
 
 using namespace pellucid;
 
+using pellucid::test::LogCapture;
+using pellucid::test::scene_from;
+using pellucid::test::z_two_sided;
+
 namespace {
-std::shared_ptr<const Scene> scene_from(const std::string& json) {
-    SceneDesc d;
-    d.root = parse_json(json, "test");
-    d.source = "test";
-    return load_desc(d);
-}
-double z_two_sided(double alpha) {
-    double lo = 0, hi = 40;
-    for (int i = 0; i < 200; ++i) {
-        double mid = 0.5 * (lo + hi);
-        (std::erfc(mid / std::sqrt(2.0)) > alpha ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
 const char* kSharp = R"("film": {"width": 32, "height": 24, "filter": {"type": "box", "radius": 0.001}})";
 const char* kCamera = R"("camera": {"type": "perspective", "fov": 40,
     "to_world": [{"look_at": {"origin": [0.3, 0.2, 4], "target": [0, 0, 0], "up": [0, 1, 0]}}]})";

@@ -18,9 +18,14 @@
 #include "pellucid/util/error.h"
 #include "pellucid/util/log.h"
 #include "support/chi2.h"
+#include "support/scene_util.h"
 
 using namespace pellucid;
 namespace fs = std::filesystem;
+
+using pellucid::test::LogCapture;
+using pellucid::test::scene_from;
+using pellucid::test::z_two_sided;
 
 namespace {
 // A per-test scratch directory under the system temp dir.
@@ -56,29 +61,7 @@ std::string build_error(const SceneDesc& d) {
     return "";
 }
 
-struct LogCapture {
-    std::vector<std::string> warnings;
-    LogCapture() {
-        set_log_sink([this](LogLevel l, const std::string& m) {
-            if (l == LogLevel::Warning) warnings.push_back(m);
-        });
-    }
-    ~LogCapture() { set_log_sink(nullptr); }
-    bool has(const std::string& s) const {
-        for (const auto& w : warnings)
-            if (w.find(s) != std::string::npos) return true;
-        return false;
-    }
-};
 
-double z_two_sided(double alpha) {
-    double lo = 0, hi = 40;
-    for (int i = 0; i < 200; ++i) {
-        double mid = 0.5 * (lo + hi);
-        (std::erfc(mid / std::sqrt(2.0)) > alpha ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
 }  // namespace
 
 TEST(Envmap, MitsubaLatLongConvention) {

@@ -20,21 +20,18 @@
 #include "pellucid/sampling/rng.h"
 #include "pellucid/sampling/warp.h"
 #include "support/chi2.h"
+#include "support/scene_util.h"
 
 using namespace pellucid;
+
+using pellucid::test::LogCapture;
+using pellucid::test::scene_from;
+using pellucid::test::z_two_sided;
 
 namespace {
 constexpr int kPowerTests = 8;
 constexpr int kN = 200000;
 
-double z_two_sided(double alpha) {
-    double lo = 0, hi = 40;
-    for (int i = 0; i < 200; ++i) {
-        double mid = 0.5 * (lo + hi);
-        (std::erfc(mid / std::sqrt(2.0)) > alpha ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
 const double kZ = z_two_sided(test::sidak_alpha(1e-3, kPowerTests));
 
 struct Estimate {

@@ -12,9 +12,14 @@
 #include "pellucid/scene/properties.h"
 #include "pellucid/util/error.h"
 #include "pellucid/util/log.h"
+#include "support/scene_util.h"
 
 using namespace pellucid;
 namespace fs = std::filesystem;
+
+using pellucid::test::LogCapture;
+using pellucid::test::scene_from;
+using pellucid::test::z_two_sided;
 
 namespace {
 
@@ -76,16 +81,6 @@ std::string error_of(const std::string& xml, bool lenient = false, const std::st
     return "";
 }
 
-/// Captures warnings while alive.
-struct LogCapture {
-    std::vector<std::string> warnings;
-    LogCapture() {
-        set_log_sink([this](LogLevel l, const std::string& m) {
-            if (l == LogLevel::Warning) warnings.push_back(m);
-        });
-    }
-    ~LogCapture() { set_log_sink(nullptr); }
-};
 
 fs::path temp_dir(const std::string& name) {
     fs::path p = fs::temp_directory_path() / ("pellucid_mitsuba_" + name);

@@ -13,9 +13,14 @@
 #include "pellucid/scene/json_io.h"
 #include "pellucid/texture/texture.h"
 #include "pellucid/util/error.h"
+#include "support/scene_util.h"
 #include "bxdf/bxdf_cases.h"
 
 using namespace pellucid;
+
+using pellucid::test::LogCapture;
+using pellucid::test::scene_from;
+using pellucid::test::z_two_sided;
 
 namespace {
 std::string tmp_dir() {
@@ -24,13 +29,6 @@ std::string tmp_dir() {
     return d.string();
 }
 
-std::shared_ptr<const Scene> scene_from(const std::string& json, const std::string& base = ".") {
-    SceneDesc d;
-    d.root = parse_json(json, "test");
-    d.source = "test";
-    d.base_dir = base;
-    return load_desc(d);
-}
 
 // A hit on the z = 0 plane at the origin, with the plane's parameterisation p = (u, v, 0).
 SurfaceInteraction plane_hit() {
@@ -55,17 +53,17 @@ TEST(Bump, ConstantHeightLeavesNormalUnchanged) {
     TextureList list{ConstantTexture{Spectrum(0.37f)}};
     SurfaceInteraction si = plane_hit();
     for (float step : {1e-1f, 1e-3f, 1e-5f}) {
-        Normal3f n = bump_normal(list, 0, 2.f, ctx_of(si), si, step, step, false);
+        Normal3f n = bump_normal(list, 0, 2.f, ctx_of(si), si, si.shading.n, step, step, false);
         EXPECT_FLOAT_EQ(n.x, 0.f);
         EXPECT_FLOAT_EQ(n.y, 0.f);
         EXPECT_FLOAT_EQ(n.z, 1.f);
     }
 }
 
-// Height B(u, v) = s·noise(k·(u, v, 0)) on the plane z = 0: the analytic bumped normal is
+// An analytic height field, B(u, v) = s·(½ + ½·noise(k·(u, v, 0))) on the plane z = 0: the analytic bumped normal is
 // normalize(−∂B/∂u, −∂B/∂v, 1). Forward differences converge to it at first order: halving Δu
 // halves the error (ratio in [1.6, 2.4] where the error is well above float round-off).
-TEST(Bump, SinusoidalHeightFieldConvergesAtFirstOrder) {
+TEST(Bump, AnalyticHeightFieldConvergesAtFirstOrder) {
     NoiseTexture noise;
     noise.scale = 3.f;
     TextureList list{noise};
@@ -80,13 +78,15 @@ TEST(Bump, SinusoidalHeightFieldConvergesAtFirstOrder) {
         float dBdu = s * 0.5f * noise.scale * g.x, dBdv = s * 0.5f * noise.scale * g.y;  // texture value = ½ + ½n
         Vec3f exact = normalize(Vec3f(-dBdu, -dBdv, 1.f));
         // The analytic-gradient path gives it to round-off.
-        Normal3f na = bump_normal(list, 0, s, ctx_of(si), si, 1e-2f, 1e-2f, true);
+        Normal3f na = bump_normal(list, 0, s, ctx_of(si), si, si.shading.n, 1e-2f, 1e-2f, true);
         EXPECT_LT(length(na - exact), 1e-5f);
         double prev = 0.0;
         for (float du : {1e-2f, 5e-3f, 2.5e-3f, 1.25e-3f}) {
-            Normal3f n = bump_normal(list, 0, s, ctx_of(si), si, du, du, false);
+            Normal3f n = bump_normal(list, 0, s, ctx_of(si), si, si.shading.n, du, du, false);
             double err = length(n - exact);
-            EXPECT_LT(err, 0.5 * du * 3.f * 3.f) << "du=" << du;  // |B''|·Δu/2 bound with |B''| ≤ s·k²·O(10)
+            // A coarse sanity bound (error ∝ Δu with a modest constant); the halving ratio below is
+            // the real first-order check.
+            EXPECT_LT(err, 4.5 * du) << "du=" << du;
             if (prev > 0.0) {
                 double ratio = prev / err;
                 worst_ratio_dev = std::max(worst_ratio_dev, std::fabs(ratio - 2.0));
