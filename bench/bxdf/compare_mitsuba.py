@@ -70,6 +70,8 @@ MODELS = {
                                            "distribution": "beckmann", "alpha_u": 0.1, "alpha_v": 0.4}, "G"),
     "dielectric η=1.5": ({"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0},
                          {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0}, "same definition"),
+    "thindielectric η=1.5": ({"type": "thin_dielectric", "int_ior": 1.5, "ext_ior": 1.0},
+                             {"type": "thindielectric", "int_ior": 1.5, "ext_ior": 1.0}, "same definition"),
     "roughdielectric ggx α=0.3": ({"type": "rough_dielectric", "int_ior": 1.5, "ext_ior": 1.0, "alpha": 0.3},
                                   {"type": "roughdielectric", "int_ior": 1.5, "ext_ior": 1.0, "distribution": "ggx",
                                    "alpha": 0.3}, "G"),

@@ -27,7 +27,7 @@
 // lobe per side of the interface, split between reflection and transmission so that the pair
 // stays reciprocal). With E_e, E_i the single-scattering R+T albedos seen from the exterior and
 // interior (kulla_conty.h tables, Importance mode), Ē_e, Ē_i their averages, and x_e, x_i the
-// transmitted fractions of each side's lobe, the lobes (f·|cos θi| without the cos) are
+// transmitted fractions of each side's lobe, the lobes' f (eval adds the |cos θi|) are
 //   exterior → exterior: (1 − x_e) (1 − E_e(μo)) (1 − E_e(μi)) / (π (1 − Ē_e))
 //   exterior → interior:      x_e  (1 − E_e(μo)) (1 − E_i(μi)) / (π (1 − Ē_i))
 //   interior → interior: (1 − x_i) (1 − E_i(μo)) (1 − E_i(μi)) / (π (1 − Ē_i))
@@ -37,8 +37,9 @@
 // 1 up to the table's error. Reflection lobes are symmetric. Transmission obeys the η² rule
 // (f_rad(e→i) = f_imp(i→e), Veach 1997 eq. 5.14) iff
 //   x_e (1 − Ē_e) = η² x_i (1 − Ē_i)      (η = int_ior/ext_ior),
-// the energy balance of Kulla & Conty's dielectric slides: the two sides exchange energy in the
-// proportion that radiance compression by η² dictates. One degree of freedom remains; we let the
+// i.e. the two sides exchange energy in the proportion that radiance compression by η² dictates
+// (this constraint is our derivation from Veach's adjoint rule; the slides give the per-side
+// structure and the need for a reciprocal split, not this particular choice). One degree of freedom remains; we let the
 // less dense side L transmit like an average smooth interface, x_L = 1 − F_avg(η_ld) with
 // η_ld = max(η, 1/η) (the fraction a diffuse-like lobe refracts, cf. plastic.h), and solve
 // x_L (1 − Ē_L) = η_ld² x_D (1 − Ē_D) for the denser side's x_D; should x_D exceed 1 (never for
