@@ -96,11 +96,16 @@ def test_ladder_bookkeeping_and_csv(tmp_path: pathlib.Path) -> None:
 
 
 def test_time_budget_ladder(tmp_path: pathlib.Path) -> None:
-    rows = bench.run_ladder(FURNACE, tmp_path, "furnace", ["mis"], 0.5, None, budgets=[0.05, 0.2],
-                            threads=1, seed=0, with_flip=False, log=lambda s: None)
-    assert [r.budget_s for r in rows] == [0.05, 0.2]
-    assert rows[1].spp > rows[0].spp >= 1
-    assert all(r.seconds >= r.budget_s for r in rows)  # the loop stops after the pass that passes the budget
+    native = bench.run_ladder(FURNACE, tmp_path, "furnace", ["mis"], 0.5, None, budgets=[0.05, 0.2], threads=1,
+                              seed=0, with_flip=False, budget_mode="native", log=lambda s: None)
+    assert [r.budget_s for r in native] == [0.05, 0.2]
+    assert native[1].spp > native[0].spp >= 1
+    assert all(r.seconds >= r.budget_s for r in native)  # the loop stops after the pass that crosses the budget
+    calibrated = bench.run_ladder(FURNACE, tmp_path, "furnace", ["mis"], 0.5, None, budgets=[0.05, 0.2], threads=1,
+                                  seed=0, with_flip=False, log=lambda s: None)
+    assert calibrated[1].spp > calibrated[0].spp >= 1  # spp from the measured speed, growing with the budget
+    with pytest.raises(ValueError, match="budget_mode"):
+        bench.run_ladder(FURNACE, tmp_path, "furnace", ["mis"], 0.5, None, budgets=[0.05], budget_mode="fast")
 
 
 def test_main_writes_csv_chart_crops_and_summary(tmp_path: pathlib.Path) -> None:
