@@ -230,6 +230,8 @@ def cached_reference(scene: dict, base_dir: pathlib.Path, renderer: str, spp: in
     """A high-spp reference (mean, variance of the mean), rendered once and kept in cache_dir."""
     import pellucid
 
+    if renderer == "mitsuba":
+        spp = -(-spp // 16) * 16  # 16 passes (for the variance), so a multiple of 16
     files = {str(p): hashlib.sha256(p.read_bytes()).hexdigest() for p in _referenced_files(scene, base_dir)
              if p.exists()}
     settings = {"renderer": renderer, "spp": spp, "seed": seed, "files": files,
@@ -248,7 +250,7 @@ def cached_reference(scene: dict, base_dir: pathlib.Path, renderer: str, spp: in
     elif renderer == "mitsuba":
         if mi_py is None:
             raise RuntimeError("--reference-renderer mitsuba: Mitsuba is not set up (bench/peers/setup_mitsuba.sh)")
-        r = run_mitsuba(mi_py, scene, base_dir, "llvm_ad_rgb", -(-spp // 16) * 16, seed, threads, passes=16)
+        r = run_mitsuba(mi_py, scene, base_dir, "llvm_ad_rgb", spp, seed, threads, passes=16)
     else:
         raise ValueError(f"--reference-renderer: unknown {renderer!r} (known: ours, mitsuba)")
     pellucid.write_image(img_p, r.image)
@@ -500,7 +502,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     else:
         reference, ref_var, path = cached_reference(scene, base_dir, args.reference_renderer, args.reference_spp,
                                                     10_000 + args.seed, args.threads, cache_dir, mi_py)
-        ref_desc = (f"{args.reference_spp} spp by " +
+        ref_spp = args.reference_spp if args.reference_renderer == "ours" else -(-args.reference_spp // 16) * 16
+        ref_desc = (f"{ref_spp} spp by " +
                     ("pellucid mis" if args.reference_renderer == "ours" else "Mitsuba llvm_ad_rgb") +
                     f" (cached {pathlib.Path(path).name})")
 

@@ -164,3 +164,14 @@ def test_mitsuba_converter_handles_lights_spheres_and_envmaps(tmp_path: pathlib.
     assert np.allclose(corner, [0.4, 0.6, 0.8], rtol=1e-3)
     gold = r.image[8, 4]  # gold reflects red more than blue, and the point light adds to it
     assert gold[0] > gold[2] > 0.0
+
+
+def test_reference_is_rendered_once_and_cached(tmp_path: pathlib.Path) -> None:
+    logs = []
+    a, va, pa = bench.cached_reference(FURNACE, tmp_path, "ours", 8, 1, 1, tmp_path / "cache", None, logs.append)
+    b, vb, pb = bench.cached_reference(FURNACE, tmp_path, "ours", 8, 1, 1, tmp_path / "cache", None, logs.append)
+    assert pa == pb and np.array_equal(a, b) and np.array_equal(va, vb)
+    assert "rendering" in logs[0] and "cached" in logs[1]
+    assert abs(float(a.mean()) - 0.5) < 0.05 and float(va.max()) > 0.0
+    with pytest.raises(RuntimeError, match="Mitsuba is not set up"):
+        bench.cached_reference(FURNACE, tmp_path, "mitsuba", 8, 1, 1, tmp_path / "cache", None, logs.append)
