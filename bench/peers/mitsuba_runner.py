@@ -147,6 +147,15 @@ def _alpha(mat, d, what):
 
 
 def _bsdf(mat, what):
+    """pellucid material -> Mitsuba BSDF. pellucid's opaque materials reflect on both sides of a surface,
+    Mitsuba's on the front only, so they are wrapped in `twosided` (dielectrics are two-sided already)."""
+    d = _bsdf_one_sided(mat, what)
+    if d["type"] in ("dielectric", "roughdielectric", "thindielectric"):
+        return d
+    return {"type": "twosided", "bsdf": d}
+
+
+def _bsdf_one_sided(mat, what):
     t = mat.get("type")
     if t in ("lambertian", "diffuse"):
         return {"type": "diffuse", "reflectance": _rgb(mat.get("reflectance", 0.5), f"{what}.reflectance")}
@@ -347,7 +356,7 @@ def to_mitsuba_dict(scene_json: dict, base_dir: str = ".") -> dict:
         elif isinstance(m, dict):
             bsdf = bsdf_full = _bsdf(m, f"{what}.material")
         elif m is None:
-            bsdf = bsdf_full = {"type": "diffuse"}
+            bsdf = bsdf_full = {"type": "twosided", "bsdf": {"type": "diffuse"}}
         else:
             raise ValueError(f"{what}: bad material {m!r}")
         em = _emitter(s["emitter"], f"{what}.emitter") if s.get("emitter") else None

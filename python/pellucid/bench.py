@@ -51,6 +51,8 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
+from ._bench_figures import label as _label, plot_chart, plot_crops, tonemap  # noqa: F401 (re-exported)
+
 RELMSE_EPS = 1e-2
 OURS = ("bsdf", "nee", "mis", "direct")
 MITSUBA = ("scalar_rgb", "llvm_ad_rgb")
@@ -228,6 +230,8 @@ def cached_reference(scene: dict, base_dir: pathlib.Path, renderer: str, spp: in
     """A high-spp reference (mean, variance of the mean), rendered once and kept in cache_dir."""
     import pellucid
 
+    if renderer == "mitsuba":
+        spp = -(-spp // 16) * 16  # 16 passes (for the variance), so a multiple of 16
     files = {str(p): hashlib.sha256(p.read_bytes()).hexdigest() for p in _referenced_files(scene, base_dir)
              if p.exists()}
     settings = {"renderer": renderer, "spp": spp, "seed": seed, "files": files,
@@ -310,11 +314,18 @@ def parse_floats(spec: str, what: str) -> List[float]:
 def run_ladder(scene: dict, base_dir: pathlib.Path, name: str, methods: Sequence[str], reference,
                ref_variance: Optional[np.ndarray], budgets: Optional[Sequence[float]] = None,
                spp_ladder: Optional[Sequence[int]] = None, threads: int = 0, seed: int = 0,
-               mi_py: Optional[pathlib.Path] = None, with_flip: bool = True,
+               mi_py: Optional[pathlib.Path] = None, with_flip: bool = True, budget_mode: str = "calibrated",
                log: Callable[[str], None] = print) -> List[Row]:
-    """Render every method on every rung and measure it. Exactly one of budgets / spp_ladder."""
+    """Render every method on every rung and measure it. Exactly one of budgets / spp_ladder.
+
+    budget_mode "calibrated": every renderer turns a budget into spp from its measured samples/s (a 4-spp
+    probe, then the previous rung) and renders that spp, so all of them stop near the budget the same way;
+    "native": pellucid renders with its own time_budget (it stops after the pass that crosses the budget,
+    which can overshoot by up to the last pass), peers as in "calibrated"."""
     if (budgets is None) == (spp_ladder is None):
         raise ValueError("give exactly one of budgets and spp_ladder")
+    if budget_mode not in ("calibrated", "native"):
+        raise ValueError(f"budget_mode: unknown {budget_mode!r} (known: calibrated, native)")
     rungs = list(budgets if budgets is not None else spp_ladder)
     floor = ref_relmse_floor(reference, ref_variance) if np.ndim(reference) else 0.0
     W, H = int(scene["film"]["width"]), int(scene["film"]["height"])
@@ -325,21 +336,25 @@ def run_ladder(scene: dict, base_dir: pathlib.Path, name: str, methods: Sequence
         if peer and mi_py is None:
             log(f"{method}: Mitsuba 3 is not set up (bench/peers/setup_mitsuba.sh); skipped")
             continue
+        def render(spp=None, budget=None, s=seed):
+            if peer:
+                return run_mitsuba(mi_py, scene, base_dir, method, spp, s, threads)
+            return run_ours(scene, base_dir, method, s, threads, spp=spp, budget=budget)
+
         sps = None
-        if peer and budgets is not None:  # probe the peer's speed to turn seconds into spp
-            probe = run_mitsuba(mi_py, scene, base_dir, method, 4, seed + 999, threads)
+        if budgets is not None and (peer or budget_mode == "calibrated"):
+            probe = render(spp=4, s=seed + 999)  # speed probe: turns seconds into spp
             sps = probe.samples / probe.seconds
         for i, rung in enumerate(rungs):
             s = seed + 7919 * i
             try:
-                if peer:
-                    spp = int(rung) if budgets is None else max(1, int(round(rung * sps / (W * H))))
-                    r = run_mitsuba(mi_py, scene, base_dir, method, spp, s, threads)
+                if budgets is None:
+                    r = render(spp=int(rung), s=s)
+                elif sps is not None:
+                    r = render(spp=max(1, int(round(rung * sps / (W * H)))), s=s)
                     sps = r.samples / r.seconds
-                elif budgets is not None:
-                    r = run_ours(scene, base_dir, method, s, threads, budget=float(rung))
                 else:
-                    r = run_ours(scene, base_dir, method, s, threads, spp=int(rung))
+                    r = render(budget=float(rung), s=s)
             except Exception as e:  # a peer that cannot render this scene is reported, not fatal
                 if not peer:
                     raise
@@ -371,78 +386,6 @@ def read_csv(path: pathlib.Path) -> List[Dict[str, str]]:
         return list(csv.DictReader(f))
 
 
-# --------------------------------------------------------------------------------------- figures
-_STYLE = {"bsdf": ("tab:orange", "o"), "nee": ("tab:green", "s"), "mis": ("tab:blue", "D"),
-          "direct": ("tab:gray", "v"), "scalar_rgb": ("tab:red", "^"), "llvm_ad_rgb": ("tab:purple", "P")}
-
-
-def _label(method: str) -> str:
-    return f"Mitsuba 3 {method}" if method in MITSUBA else f"pellucid {method}"
-
-
-def plot_chart(rows: Sequence[Row], path: pathlib.Path, title: str) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    has_flip = any(r.flip is not None for r in rows)
-    fig, axes = plt.subplots(1, 2 if has_flip else 1, figsize=(11 if has_flip else 6.5, 4.6), squeeze=False)
-    for ax, key, ylabel in zip(axes[0], ("relmse", "flip"), ("relMSE  (x-r)²/(r²+0.01)", "mean HDR-FLIP")):
-        for m in dict.fromkeys(r.method for r in rows):
-            pts = sorted((r.seconds, getattr(r, key)) for r in rows if r.method == m and getattr(r, key) is not None)
-            if not pts:
-                continue
-            c, mk = _STYLE.get(m, (None, "x"))
-            ax.loglog(*zip(*pts), marker=mk, color=c, label=_label(m))
-        if key == "relmse" and rows and rows[0].ref_relmse_floor > 0:
-            ax.axhline(rows[0].ref_relmse_floor, color="k", ls=":", lw=1, label="reference noise floor")
-        ax.set_xlabel("render time [s]")
-        ax.set_ylabel(ylabel)
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=90)
-    plt.close(fig)
-
-
-def tonemap(img: np.ndarray, exposure: float = 1.0) -> np.ndarray:
-    """Clamp and sRGB-encode linear radiance to [0, 1]."""
-    x = np.clip(np.nan_to_num(np.asarray(img, np.float64) * exposure), 0.0, 1.0)
-    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
-
-
-def plot_crops(rows: Sequence[Row], reference, path: pathlib.Path, rung: int,
-               crop: Optional[Tuple[int, int, int, int]] = None, exposure: float = 1.0, title: str = "") -> None:
-    """A strip of crops at one rung (equal time when the ladder is in seconds), reference last."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    sel = [r for r in rows if r.rung == rung and r.image is not None]
-    if not sel:
-        return
-    H, W = sel[0].image.shape[:2]
-    x, y, w, h = crop if crop else (W // 4, H // 4, W // 2, H // 2)
-    tiles = [(f"{_label(r.method)}\n{r.seconds:.1f} s, {r.spp} spp\nrelMSE {r.relmse:.2e}", r.image) for r in sel]
-    if np.ndim(reference):
-        tiles.append(("reference", np.asarray(reference)))
-    fig, axes = plt.subplots(1, len(tiles), figsize=(2.3 * len(tiles), 2.3 * h / w + 0.9), squeeze=False)
-    for ax, (lab, im) in zip(axes[0], tiles):
-        ax.imshow(tonemap(im[y:y + h, x:x + w], exposure), interpolation="nearest")
-        ax.set_title(lab, fontsize=7)
-        ax.axis("off")
-    if title:
-        fig.suptitle(title, fontsize=9)
-    fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-
-
 # --------------------------------------------------------------------------------------- summary
 def equal_time_ratios(rows: Sequence[Row], rung: int, base: str = "mis") -> List[str]:
     """Lines comparing `base` with every other method at one rung; relMSE x seconds (inverse efficiency)
@@ -451,8 +394,8 @@ def equal_time_ratios(rows: Sequence[Row], rung: int, base: str = "mis") -> List
     if base not in by:
         return []
     b = by[base]
-    out = [f"| method | seconds | spp | samples/s | relMSE | relMSE x s | {base} samples/s ratio | "
-           f"{base} relMSE ratio (lower is better for {base}) |", "|---|---|---|---|---|---|---|---|"]
+    out = [f"| method | seconds | spp | samples/s | relMSE | relMSE x s | samples/s {base} / this | "
+           f"relMSE {base} / this (< 1: {base} better) |", "|---|---|---|---|---|---|---|---|"]
     def ratio(x: float, y: float) -> str:
         return f"{x / y:.2f}" if y > 0 else ("1.00" if x == y else "inf")
 
@@ -491,6 +434,11 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--cache-dir", default=None, help="reference cache (default: bench/cache)")
     p.add_argument("--out-dir", default="bench/results")
     p.add_argument("--name", default=None, help="output file stem (default: the scene's)")
+    p.add_argument("--budget-mode", choices=["calibrated", "native"], default="calibrated",
+                   help="calibrated: every renderer turns budgets into spp from its measured speed (default); "
+                        "native: pellucid uses its own time_budget")
+    p.add_argument("--filter", choices=["scene", "box", "gaussian"], default="scene",
+                   help="override the film's pixel filter for every renderer (box: each sample feeds one pixel)")
     p.add_argument("--threads", type=int, default=0, help="threads for every renderer (0 = all cores)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--crop", default=None, help="x,y,w,h of the crop strip (default: the central quarter)")
@@ -517,6 +465,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         except (OSError, json.JSONDecodeError) as e:
             raise pellucid.Error(f"{scene_path}: cannot read the scene ({e})") from None
         base_dir = scene_path.resolve().parent
+        if args.filter != "scene":
+            scene.setdefault("film", {})["filter"] = ({"type": "box", "radius": 0.5} if args.filter == "box"
+                                                      else {"type": "gaussian", "stddev": 0.5})
         pellucid.load_dict(scene, base_dir)  # fail early, with pellucid's message, on a bad scene
         name = args.name or scene_path.stem
         methods = parse_methods(args.methods)
@@ -551,13 +502,15 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     else:
         reference, ref_var, path = cached_reference(scene, base_dir, args.reference_renderer, args.reference_spp,
                                                     10_000 + args.seed, args.threads, cache_dir, mi_py)
-        ref_desc = (f"{args.reference_spp} spp by " +
+        ref_spp = args.reference_spp if args.reference_renderer == "ours" else -(-args.reference_spp // 16) * 16
+        ref_desc = (f"{ref_spp} spp by " +
                     ("pellucid mis" if args.reference_renderer == "ours" else "Mitsuba llvm_ad_rgb") +
                     f" (cached {pathlib.Path(path).name})")
 
     with_flip = not args.no_flip and flip_available()
     rows = run_ladder(scene, base_dir, name, methods, reference, ref_var, budgets=budgets, spp_ladder=spp_ladder,
-                      threads=args.threads, seed=args.seed, mi_py=mi_py, with_flip=with_flip)
+                      threads=args.threads, seed=args.seed, mi_py=mi_py, with_flip=with_flip,
+                      budget_mode=args.budget_mode)
     if not rows:
         print("pellucid bench: nothing was rendered", file=sys.stderr)
         return 1
@@ -574,6 +527,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     lines = [f"# {name}", "", "Regenerate with:", "", "    python -m pellucid bench " + " ".join(shlex.quote(a) for a in argv),
              "", f"- machine at start: {machine_at_start}; at end: {machine_note()}",
              f"- reference: {ref_desc}; its noise floor (relMSE): {rows[0].ref_relmse_floor:.3e}",
+             f"- film filter: {json.dumps(scene.get('film', {}).get('filter', 'default'))}; budget mode: "
+             f"{args.budget_mode if budgets else 'n/a'}",
              f"- ladder: {ladder}; threads: {args.threads or os.cpu_count()}; FLIP: {'yes' if with_flip else 'no (flip-evaluator not installed)'}",
              f"- wall time of the whole run: {time.perf_counter() - t_start:.0f} s", ""]
     for i in range(len(budgets or spp_ladder)):
@@ -585,8 +540,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             lines += ["Agreement: Mitsuba not set up; skipped.", ""]
         else:
             ours = run_ours(scene, base_dir, "mis", 20_000 + args.seed, args.threads, spp=args.agreement_spp)
-            theirs = run_mitsuba(mi_py, scene, base_dir, "llvm_ad_rgb", args.agreement_spp, 30_000 + args.seed,
-                                 args.threads, passes=16)
+            theirs = run_mitsuba(mi_py, scene, base_dir, "llvm_ad_rgb", -(-args.agreement_spp // 16) * 16,
+                                 30_000 + args.seed, args.threads, passes=16)
             frac, zc = z_test(ours.image, ours.variance, theirs.image, theirs.variance)
             verdict = "PASS" if frac >= 0.99 else "FAIL"
             msg = (f"Agreement with Mitsuba llvm_ad_rgb ({args.agreement_spp} spp each, Mitsuba's variance from 16 "
@@ -599,7 +554,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     summ_p.write_text("\n".join(lines))
     for p in (csv_p, chart_p, crops_p, summ_p):
         print("wrote", p)
-    print("\n".join(lines[8:]))
+    print("\n".join(lines))
     return 0
 
 

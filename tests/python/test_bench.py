@@ -96,11 +96,16 @@ def test_ladder_bookkeeping_and_csv(tmp_path: pathlib.Path) -> None:
 
 
 def test_time_budget_ladder(tmp_path: pathlib.Path) -> None:
-    rows = bench.run_ladder(FURNACE, tmp_path, "furnace", ["mis"], 0.5, None, budgets=[0.05, 0.2],
-                            threads=1, seed=0, with_flip=False, log=lambda s: None)
-    assert [r.budget_s for r in rows] == [0.05, 0.2]
-    assert rows[1].spp > rows[0].spp >= 1
-    assert all(r.seconds >= r.budget_s for r in rows)  # the loop stops after the pass that passes the budget
+    native = bench.run_ladder(FURNACE, tmp_path, "furnace", ["mis"], 0.5, None, budgets=[0.05, 0.2], threads=1,
+                              seed=0, with_flip=False, budget_mode="native", log=lambda s: None)
+    assert [r.budget_s for r in native] == [0.05, 0.2]
+    assert native[1].spp > native[0].spp >= 1
+    assert all(r.seconds >= r.budget_s for r in native)  # the loop stops after the pass that crosses the budget
+    calibrated = bench.run_ladder(FURNACE, tmp_path, "furnace", ["mis"], 0.5, None, budgets=[0.05, 0.2], threads=1,
+                                  seed=0, with_flip=False, log=lambda s: None)
+    assert calibrated[1].spp > calibrated[0].spp >= 1  # spp from the measured speed, growing with the budget
+    with pytest.raises(ValueError, match="budget_mode"):
+        bench.run_ladder(FURNACE, tmp_path, "furnace", ["mis"], 0.5, None, budgets=[0.05], budget_mode="fast")
 
 
 def test_main_writes_csv_chart_crops_and_summary(tmp_path: pathlib.Path) -> None:
@@ -159,3 +164,14 @@ def test_mitsuba_converter_handles_lights_spheres_and_envmaps(tmp_path: pathlib.
     assert np.allclose(corner, [0.4, 0.6, 0.8], rtol=1e-3)
     gold = r.image[8, 4]  # gold reflects red more than blue, and the point light adds to it
     assert gold[0] > gold[2] > 0.0
+
+
+def test_reference_is_rendered_once_and_cached(tmp_path: pathlib.Path) -> None:
+    logs = []
+    a, va, pa = bench.cached_reference(FURNACE, tmp_path, "ours", 8, 1, 1, tmp_path / "cache", None, logs.append)
+    b, vb, pb = bench.cached_reference(FURNACE, tmp_path, "ours", 8, 1, 1, tmp_path / "cache", None, logs.append)
+    assert pa == pb and np.array_equal(a, b) and np.array_equal(va, vb)
+    assert "rendering" in logs[0] and "cached" in logs[1]
+    assert abs(float(a.mean()) - 0.5) < 0.05 and float(va.max()) > 0.0
+    with pytest.raises(RuntimeError, match="Mitsuba is not set up"):
+        bench.cached_reference(FURNACE, tmp_path, "mitsuba", 8, 1, 1, tmp_path / "cache", None, logs.append)
