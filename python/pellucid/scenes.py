@@ -48,7 +48,8 @@ def cornell_box(**overrides: Any) -> SceneDict:
             "fov_axis": "smaller",
             "to_world": [{"look_at": {"origin": [0, 0, 3.9], "target": [0, 0, 0], "up": [0, 1, 0]}}],
         },
-        "film": {"width": 256, "height": 256, "filter": {"type": "gaussian", "stddev": 0.5}},
+        "film": {"width": 256, "height": 256, "filter": {"type": "gaussian", "stddev": 0.5},
+                 "reconstruction": "splatting"},
         "sampler": {"sample_count": 64, "seed": 0},
         "integrator": {"type": "path", "max_depth": 8, "rr_depth": 5},
         "materials": {

@@ -54,7 +54,10 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
     const bool adaptive = opts.time_budget > 0.0 || opts.target_rel_error > 0.0;
     const int total_spp = adaptive && opts.spp <= 0 ? (1 << 24) : spp;
 
-    Film film(W, H);
+    Film film(W, H, scene.film_splatting ? std::optional<Filter>(scene.filter) : std::nullopt);
+    // Tiles of one colour (tx mod P, ty mod P) are (P − 1)·kTile pixels apart, at least twice the
+    // splat margin, so their splats never overlap.
+    const int P = 1 + (2 * film.splat_margin() + kTile - 1) / kTile;
     const int tiles_x = (W + kTile - 1) / kTile, tiles_y = (H + kTile - 1) / kTile;
     std::atomic<uint64_t> invalid{0};
     std::atomic<int64_t> tiles_done{0};
@@ -70,8 +73,13 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
     while (done < total_spp && !stats.cancelled) {
         int s0 = done, s1 = std::min(total_spp, done + pass);
         int64_t n_tiles = int64_t(tiles_x) * tiles_y;
-        parallel_for(n_tiles, opts.threads, [&](int64_t t) {
+        for (int colour = 0; colour < P * P; ++colour) {
+        const int cx = colour % P, cy = colour / P;
+        const int64_t gx = (tiles_x - cx + P - 1) / P, gy = (tiles_y - cy + P - 1) / P;  // tiles of this colour
+        if (gx <= 0 || gy <= 0) continue;
+        parallel_for(gx * gy, opts.threads, [&](int64_t g) {
             if (cancelled()) return;
+            const int64_t t = (int64_t(cy) + (g / gx) * P) * tiles_x + int64_t(cx) + (g % gx) * P;
             int tx = int(t % tiles_x) * kTile, ty = int(t / tiles_x) * kTile;
             TileJob job{tx, ty, std::min(tx + kTile, W), std::min(ty + kTile, H), s0, s1, seed};
             uint64_t bad = tile_fn(job, film);
@@ -87,6 +95,7 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
                 store_max(opts.progress_out->fraction, std::min(1.0, frac));
             }
         });
+        }
         tiles_done = 0;
         if (cancelled()) {
             stats.cancelled = true;

@@ -55,7 +55,10 @@ struct TileJob {
 using TileFn = std::function<uint64_t(const TileJob&, Film&)>;
 
 /// Render with a per-tile function: tiles of 16×16 pixels run in parallel, in passes of samples.
-/// The std::function is called once per tile, never per sample or per ray.
+/// The std::function is called once per tile, never per sample or per ray. A splatting film
+/// (scene.film_splatting) writes past a tile's edge, so each pass then runs in P×P colour groups of
+/// tiles at least one splat radius apart: no two tiles running together touch the same pixel, and
+/// every pixel receives its splats in the same order for any thread count.
 RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const TileFn& tile_fn);
 
 /// Which estimates the film accepts: radiance must be finite and non-negative; signed outputs
@@ -69,13 +72,16 @@ enum class SampleValues { NonNegative, Signed };
 template <SampleValues kValues = SampleValues::NonNegative, class LiFn>
 uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, LiFn&& Li) {
     uint64_t bad = 0;
+    const bool splat = film.splats();
     const uint64_t width = uint64_t(scene.width);
     for (int y = job.y0; y < job.y1; ++y)
         for (int x = job.x0; x < job.x1; ++x) {
             const uint64_t pixel = uint64_t(y) * width + uint64_t(x);
             for (int s = job.s0; s < job.s1; ++s) {
                 PCG32 rng = PCG32::for_sample(pixel, uint64_t(s), job.seed);
-                Vec2f off = sample_filter(scene.filter, rng.next_2d());
+                // Splatting: uniform in the pixel; filter sampling: offset by the filter's density.
+                const Vec2f u_px = rng.next_2d();
+                const Vec2f off = splat ? u_px - Vec2f(0.5f) : sample_filter(scene.filter, u_px);
                 const float fx = float(x) + 0.5f + off.x, fy = float(y) + 0.5f + off.y;
                 // Differentials only where textures need footprints (two more rays' worth of setup).
                 Spectrum L = Li(scene.has_textures ? scene.camera.generate_ray_differential(fx, fy)
@@ -85,7 +91,8 @@ uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, LiFn&& 
                     ++bad;
                     continue;
                 }
-                film.add_sample(x, y, L);
+                if (splat) film.splat(x, y, fx, fy, L);
+                else film.add_sample(x, y, L);
             }
         }
     return bad;

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <cmath>
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -40,7 +41,7 @@ inline float next_float_down(float v) {
 }
 template <class T>
 constexpr T clamp(T v, T lo, T hi) { return v < lo ? lo : (v > hi ? hi : v); }
-inline float safe_sqrt(float x) { return std::sqrt(std::fmax(0.f, x)); }
+inline float safe_sqrt(float x) { return std::sqrt(std::max(0.f, x)); }  // NaN → 0, as fmax
 inline float safe_acos(float x) { return std::acos(clamp(x, -1.f, 1.f)); }
 inline float sqr(float x) { return x * x; }
 inline float radians(float deg) { return deg * (kPi / 180.f); }

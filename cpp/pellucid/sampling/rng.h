@@ -2,6 +2,7 @@
 // Statistically Good Algorithms for Random Number Generation", pcg32 = XSH RR 64/32).
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <algorithm>
 #include <cstdint>
 
 #include "pellucid/math/constants.h"
@@ -46,7 +47,7 @@ public:
         return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31));
     }
     /// Uniform float in [0, 1).
-    float next_float() { return std::fmin(float(next_u32()) * 0x1p-32f, kOneMinusEpsilon); }
+    float next_float() { return std::min(float(next_u32()) * 0x1p-32f, kOneMinusEpsilon); }  // std::min inlines; std::fmin is a libm call
     Vec2f next_2d() {
         float a = next_float();
         return Vec2f(a, next_float());

@@ -71,6 +71,8 @@ private:
             m_scene.filter = it->second(fp);
             fp.check_unqueried();
         }
+        m_scene.film_splatting =
+            p.get_choice("reconstruction", "filter_sampling", "reconstruction", {"filter_sampling", "splatting"}) == "splatting";
         p.check_unqueried();
     }
 

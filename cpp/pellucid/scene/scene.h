@@ -87,6 +87,7 @@ public:
     Distribution1D light_distribution;      ///< light selection (uniform or by power)
     PerspectiveCamera camera;
     Filter filter = GaussianFilter{};
+    bool film_splatting = false;  ///< film.reconstruction "splatting" (image/film.h), else filter sampling
     int width = 256, height = 256;
     int spp = 16;
     uint64_t seed = 0;
