@@ -225,7 +225,7 @@ private:
             m_scene.triangle_count += g.mesh.triangle_count();
             m_scene.meshes.push_back(std::move(g.mesh));
         }
-        m_scene.shapes.push_back(rec);
+        m_scene.shapes.push_back(std::move(rec));
     }
 
     // Per-face materials of an OBJ (issue #6): each usemtl name maps to the scene material its
