@@ -32,3 +32,23 @@ def test_obj_mesh_and_missing_file(tmp_path) -> None:
     d["shapes"][0] = {"type": "ply", "filename": "missing.ply"}
     with pytest.raises(pellucid.Error, match=r"shapes\[0\]\.filename: .*missing\.ply"):
         pellucid.load_dict(d, base_dir=tmp_path)
+
+
+def test_obj_usemtl_materials_from_a_dict(tmp_path) -> None:
+    """Per-face OBJ materials through the Python dict path: usemtl names map to scene materials,
+    the shape's `materials` renames them, an unknown name without a shape material is an error."""
+    (tmp_path / "two.obj").write_text("v -1 -1 0\nv 0 -1 0\nv 0 1 0\nv -1 1 0\nv 1 -1 0\nv 1 1 0\n"
+                                      "usemtl left\nf 1 2 3 4\nusemtl right\nf 2 5 6 3\n")
+    d = {"camera": {"type": "perspective", "fov": 30,
+                    "to_world": [{"look_at": {"origin": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0]}}]},
+         "film": {"width": 8, "height": 4, "filter": {"type": "box", "radius": 0.001}},
+         "integrator": {"type": "aov", "aov": "albedo"},
+         "materials": {"left": {"type": "lambertian", "reflectance": [0.8, 0.1, 0.1]},
+                       "blue": {"type": "lambertian", "reflectance": [0.1, 0.1, 0.8]}},
+         "shapes": [{"type": "obj", "filename": "two.obj", "materials": {"right": "blue"}}]}
+    img = np.array(pellucid.render(pellucid.load_dict(d, base_dir=tmp_path), spp=2))
+    np.testing.assert_allclose(img[:, :4], np.broadcast_to([0.8, 0.1, 0.1], img[:, :4].shape), atol=1e-5)
+    np.testing.assert_allclose(img[:, 4:], np.broadcast_to([0.1, 0.1, 0.8], img[:, 4:].shape), atol=1e-5)
+    del d["shapes"][0]["materials"]
+    with pytest.raises(pellucid.Error, match=r"shapes\[0\]: mesh 'two\.obj' face material 'right' is not a scene material"):
+        pellucid.load_dict(d, base_dir=tmp_path)

@@ -22,19 +22,29 @@ void TriangleMesh::transform(const Transform& t) {
         for (size_t i = 0; i + 2 < indices.size(); i += 3) std::swap(indices[i + 1], indices[i + 2]);
 }
 
-size_t TriangleMesh::remove_degenerate() {
+size_t TriangleMesh::remove_degenerate(std::vector<uint32_t>* per_face) {
+    const bool compact_faces = per_face && !per_face->empty();
+    PELLUCID_CHECK(!compact_faces || per_face->size() == triangle_count(), "one value per triangle");
     std::vector<uint32_t> kept;
     kept.reserve(indices.size());
     size_t removed = 0;
     for (size_t t = 0; t < triangle_count(); ++t) {
         float a = triangle_area(t);
-        if (a > 0.f && std::isfinite(a))
+        if (a > 0.f && std::isfinite(a)) {
+            if (compact_faces) (*per_face)[kept.size() / 3] = (*per_face)[t];
             kept.insert(kept.end(), indices.begin() + 3 * t, indices.begin() + 3 * t + 3);
-        else
+        } else {
             ++removed;
+        }
     }
     indices.swap(kept);
+    if (compact_faces) per_face->resize(triangle_count());
     return removed;
+}
+
+void TriangleMesh::flip_normals() {
+    for (size_t i = 0; i + 2 < indices.size(); i += 3) std::swap(indices[i + 1], indices[i + 2]);
+    for (auto& n : normals) n = -n;
 }
 
 void TriangleMesh::validate(const std::string& where) const {
@@ -80,23 +90,27 @@ TriangleMesh TriangleMesh::rectangle() {
 }
 
 TriangleMesh TriangleMesh::cube() {
+    // Mitsuba 3's cube (src/shapes/cube.cpp) maps every face onto [0,1]² in its own orientation. We
+    // describe it by the face normal n and the direction U in which u grows; v grows along
+    // V = U × n (so (U, V) is a mirrored frame seen from outside, on every face), and uv = (0, 0)
+    // sits at the corner n − U − V. tests/data/mitsuba/cube_uv.xml checks the layout against
+    // Mitsuba with an asymmetric texture on all six faces.
+    const Vec3f X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
+    const Vec3f faces[6][2] = {{-Y, Z}, {Y, -X}, {X, Y}, {Z, Y}, {-X, Y}, {-Z, -Y}};  // (n, U)
     TriangleMesh m;
-    // Six faces, four vertices each, so that every face has its own flat normal and uvs.
-    const Vec3f axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    for (int a = 0; a < 3; ++a)
-        for (int s = -1; s <= 1; s += 2) {
-            Vec3f n = axes[a] * float(s);
-            Vec3f u = axes[(a + 1) % 3], v = axes[(a + 2) % 3];
-            if (s < 0) std::swap(u, v);  // keep (u, v, n) right-handed so triangles face outward
-            uint32_t base = uint32_t(m.positions.size());
-            const float c[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-            for (auto& k : c) {
-                m.positions.push_back(n + u * k[0] + v * k[1]);
-                m.normals.push_back(n);
-                m.uvs.push_back(Vec2f(0.5f * (k[0] + 1), 0.5f * (k[1] + 1)));
-            }
-            m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base + 2, base + 3, base});
+    for (const auto& f : faces) {
+        const Vec3f n = f[0], U = f[1], V = cross(U, n);
+        const Point3f o = n - U - V;
+        const uint32_t base = uint32_t(m.positions.size());
+        const float corners[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};  // (u, v)
+        for (const auto& c : corners) {
+            m.positions.push_back(o + 2.f * c[0] * U + 2.f * c[1] * V);
+            m.normals.push_back(n);
+            m.uvs.emplace_back(c[0], c[1]);
         }
+        // U × V = −n, so the uv-counter-clockwise order faces inward: wind the other way.
+        m.indices.insert(m.indices.end(), {base, base + 2, base + 1, base, base + 3, base + 2});
+    }
     return m;
 }
 }  // namespace pellucid

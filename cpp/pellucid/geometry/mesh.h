@@ -20,14 +20,19 @@ struct TriangleMesh {
     float triangle_area(size_t tri) const;
     /// Apply a transform (normals with the inverse transpose).
     void transform(const Transform& t);
-    /// Drop triangles of zero (or non-finite) area; returns how many were removed.
-    size_t remove_degenerate();
+    /// Drop triangles of zero (or non-finite) area; returns how many were removed. `per_face`, if
+    /// given and non-empty, holds one value per triangle and is compacted alongside.
+    size_t remove_degenerate(std::vector<uint32_t>* per_face = nullptr);
+    /// Turn the surface inside out (Mitsuba's `flip_normals`): reverse every triangle's winding, so
+    /// the geometric normal flips, and negate the vertex normals; uvs (hence dp/du, dp/dv) stay.
+    void flip_normals();
     /// Throws pellucid::Error (prefixed by `where`) for out-of-range indices, bad sizes or NaNs.
     void validate(const std::string& where) const;
     /// Area-weighted vertex normals.
     void compute_smooth_normals();
 
     static TriangleMesh rectangle();  ///< [-1,1]² in the z = 0 plane, normal +z (Mitsuba's)
-    static TriangleMesh cube();       ///< [-1,1]³, outward normals, flat faces (Mitsuba's)
+    /// [-1,1]³, outward normals, flat faces, each face's uv over [0,1]² laid out as Mitsuba 3's cube.
+    static TriangleMesh cube();
 };
 }  // namespace pellucid

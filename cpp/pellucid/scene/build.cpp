@@ -6,6 +6,7 @@
 #include <map>
 #include <type_traits>
 
+#include "pellucid/geometry/mesh_io.h"
 #include "pellucid/image/image_io.h"
 #include "pellucid/material/builders.h"
 #include "pellucid/scene/registry.h"
@@ -194,6 +195,7 @@ private:
         Transform to_world = p.get_transform("to_world");
         ShapeRecord rec;
         rec.name = path;
+        const bool has_material = p.has("material");
         rec.material = resolve_material(p, path);
         const Node* emitter = p.get_node("emitter");
         p.check_unqueried();
@@ -206,7 +208,7 @@ private:
         } else {
             g.mesh.transform(to_world);
             g.mesh.validate(format_error(m_desc.source, path, ""));
-            size_t removed = g.mesh.remove_degenerate();
+            size_t removed = g.mesh.remove_degenerate(&g.face_material);
             if (removed)
                 log_warning(format_error(m_desc.source, path, "skipped " + std::to_string(removed) +
                                                                  " zero-area triangle(s)"));
@@ -216,6 +218,7 @@ private:
             }
             rec.kind = ShapeRecord::Kind::Mesh;
             rec.mesh_index = uint32_t(m_scene.meshes.size());
+            if (!g.face_material_names.empty()) resolve_face_materials(g, p, has_material, rec);
         }
         if (emitter) rec.light = build_area_light(*emitter, path_join(path, "emitter"), g);
         uint32_t id = g.is_sphere ? m_scene.accel.add_sphere(g.center, g.radius) : m_scene.accel.add_mesh(g.mesh);
@@ -224,7 +227,45 @@ private:
             m_scene.triangle_count += g.mesh.triangle_count();
             m_scene.meshes.push_back(std::move(g.mesh));
         }
-        m_scene.shapes.push_back(rec);
+        m_scene.shapes.push_back(std::move(rec));
+    }
+
+    // Per-face materials of an OBJ (issue #6): each usemtl name maps to the scene material its
+    // `materials` rename names, else to the scene material of that id, else to the shape's
+    // `material`; with no `material` on the shape an unresolved name that faces use is an error.
+    // Faces before any usemtl take the shape's material. The result is one id per triangle, read at
+    // hit time (Scene::intersect), or none at all when every face resolves to the same material.
+    void resolve_face_materials(const ShapeGeometry& g, Properties& p, bool has_material, ShapeRecord& rec) {
+        const std::vector<std::string>& names = g.face_material_names;
+        std::vector<bool> used(names.size(), false);
+        for (uint32_t f : g.face_material)
+            if (f != ObjMesh::kNoMaterial) used[f] = true;
+        std::vector<uint32_t> ids(names.size(), rec.material);
+        for (size_t i = 0; i < names.size(); ++i) {
+            std::string target = names[i];
+            bool renamed = false;
+            for (const auto& [from, to] : g.material_renames)
+                if (from == names[i]) {
+                    target = to;
+                    renamed = true;
+                }
+            auto it = m_materials.find(target);
+            if (it != m_materials.end()) ids[i] = it->second;
+            else if (renamed) p.fail(path_join("materials", names[i]), "no material '" + target + "'");
+            else if (!has_material && used[i])
+                p.fail("", "mesh '" + p.get_string("filename") + "' face material '" + names[i] +
+                               "' is not a scene material (define it under 'materials', rename it with the "
+                               "shape's 'materials', or give the shape a 'material')");
+        }
+        std::vector<uint32_t> per_face(g.face_material.size());
+        bool uniform = true;
+        for (size_t t = 0; t < per_face.size(); ++t) {
+            uint32_t f = g.face_material[t];
+            per_face[t] = f == ObjMesh::kNoMaterial ? rec.material : ids[f];
+            uniform = uniform && per_face[t] == per_face[0];
+        }
+        if (uniform) rec.material = per_face.empty() ? rec.material : per_face[0];
+        else rec.face_materials = std::move(per_face);
     }
 
     void to_sphere(ShapeGeometry& g, const Transform& t, Properties& p) {

@@ -657,6 +657,8 @@ private:
             set_default(out, "smooth_normals", Node::boolean(!(fnode && fnode->is_bool() && fnode->as_bool())));
             // Mitsuba flips OBJ texture v by default (OBJ's v points up, image rows go down).
             if (type == "obj") set_default(out, "flip_tex_coords", Node::boolean(true));
+            // Mitsuba ignores an OBJ's usemtl (one bsdf per shape): so do we for its scenes.
+            if (type == "obj") out.set("usemtl", Node::boolean(false));
         }
         std::optional<Node> material, emitter;
         for (pugi::xml_node o : c.objects) {

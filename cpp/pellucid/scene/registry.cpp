@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/scene/registry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -26,6 +27,11 @@ std::string join_names(const std::vector<std::string>& names) {
 
 namespace {
 // ---- shapes -------------------------------------------------------------------------------------
+// Mitsuba's `flip_normals` (every Mitsuba shape has it): applied in object space.
+void read_flip_normals(Properties& p, TriangleMesh& m) {
+    if (p.get_bool("flip_normals", false)) m.flip_normals();
+}
+
 ShapeGeometry build_mesh(Properties& p, const BuildContext&) {
     ShapeGeometry g;
     std::vector<float> pos = p.get_float_array("positions");
@@ -47,10 +53,13 @@ ShapeGeometry build_mesh(Properties& p, const BuildContext&) {
         g.mesh.indices.push_back(uint32_t(idx[i]));
     }
     if (p.get_bool("smooth_normals", false)) g.mesh.compute_smooth_normals();
+    read_flip_normals(p, g.mesh);
     return g;
 }
-// Meshes from files (geometry/mesh_io.h). Per-face OBJ materials are not mapped yet: the shape's
-// `material` applies to every face.
+// Meshes from files (geometry/mesh_io.h). An OBJ's `usemtl` names become per-face materials: the
+// builder keeps the names (renamed by the optional `materials` object) and scene/build.cpp maps
+// them to scene materials. `usemtl: false` ignores them (the Mitsuba importer sets it: Mitsuba
+// ignores usemtl).
 ShapeGeometry build_mesh_file(Properties& p, const BuildContext& ctx, bool obj) {
     ShapeGeometry g;
     MeshLoadOptions o;
@@ -58,23 +67,52 @@ ShapeGeometry build_mesh_file(Properties& p, const BuildContext& ctx, bool obj) 
     o.face_normals = p.get_bool("face_normals", false);
     o.smooth_normals = p.get_bool("smooth_normals", false);
     if (obj) o.flip_tex_coords = p.get_bool("flip_tex_coords", false);
+    const bool usemtl = obj && p.get_bool("usemtl", true);
+    const Node* renames = obj ? p.get_node("materials") : nullptr;
+    if (renames && !usemtl) p.fail("materials", "renames usemtl names, but 'usemtl' is false");
     try {
-        g.mesh = obj ? load_obj(file, o).mesh : load_ply(file, o);
+        if (obj) {
+            ObjMesh m = load_obj(file, o);
+            g.mesh = std::move(m.mesh);
+            if (usemtl) {
+                g.face_material_names = std::move(m.material_names);
+                g.face_material = std::move(m.face_material);
+            }
+        } else {
+            g.mesh = load_ply(file, o);
+        }
     } catch (const Error& e) {
         p.fail("filename", e.what());
     }
+    if (renames) {
+        if (!renames->is_object())
+            p.fail("materials", std::string("expected an object {\"usemtl name\": \"material id\"}, got a ") +
+                                    renames->kind_name());
+        for (const auto& [name, target] : renames->members()) {
+            const std::string key = path_join("materials", name);
+            if (!target.is_string()) p.fail(key, std::string("expected a material id (string), got a ") + target.kind_name());
+            const auto& names = g.face_material_names;
+            if (std::find(names.begin(), names.end(), name) == names.end())
+                p.fail(key, "mesh '" + p.get_string("filename") + "' has no usemtl '" + name + "' (its names: " +
+                                (names.empty() ? std::string("none") : join_names(names)) + ")");
+            g.material_renames.emplace_back(name, target.as_string());
+        }
+    }
+    read_flip_normals(p, g.mesh);
     return g;
 }
 ShapeGeometry build_obj(Properties& p, const BuildContext& ctx) { return build_mesh_file(p, ctx, true); }
 ShapeGeometry build_ply(Properties& p, const BuildContext& ctx) { return build_mesh_file(p, ctx, false); }
-ShapeGeometry build_rectangle(Properties&, const BuildContext&) {
+ShapeGeometry build_rectangle(Properties& p, const BuildContext&) {
     ShapeGeometry g;
     g.mesh = TriangleMesh::rectangle();
+    read_flip_normals(p, g.mesh);
     return g;
 }
-ShapeGeometry build_cube(Properties&, const BuildContext&) {
+ShapeGeometry build_cube(Properties& p, const BuildContext&) {
     ShapeGeometry g;
     g.mesh = TriangleMesh::cube();
+    read_flip_normals(p, g.mesh);
     return g;
 }
 // Mitsuba's `disk`: the unit disk in the z = 0 plane, normal +z, triangulated as a fan of

@@ -21,6 +21,13 @@ struct ShapeGeometry {
     Point3f center{0.f};
     float radius = 1.f;
     bool flip_normals = false;
+    /// Per-face materials (OBJ `usemtl`, resolved to scene materials by scene/build.cpp): the
+    /// distinct names, and per triangle an index into them or ObjMesh::kNoMaterial. Both empty
+    /// when the shape has one material.
+    std::vector<std::string> face_material_names;
+    std::vector<uint32_t> face_material;
+    /// The shape's `materials` renames: usemtl name -> scene material id.
+    std::vector<std::pair<std::string, std::string>> material_renames;
 };
 
 class TextureBuilder;

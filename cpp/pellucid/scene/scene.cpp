@@ -98,7 +98,7 @@ bool Scene::intersect(const Ray& ray, SurfaceInteraction& si) const {
     si.wo = -ray.d;
     si.shape_id = h.geom_id;
     si.prim_id = h.prim_id;
-    si.material_id = s.material;
+    si.material_id = s.face_materials.empty() ? s.material : s.face_materials[h.prim_id];
     si.light_id = s.light;
     return true;
 }

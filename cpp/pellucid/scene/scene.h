@@ -26,6 +26,7 @@ struct ShapeRecord {
     float radius = 1.f;
     bool flip_normals = false;
     uint32_t material = 0;
+    std::vector<uint32_t> face_materials;  ///< per triangle (OBJ usemtl); empty = `material` everywhere
     int32_t light = -1;
     std::string name;  ///< key path in the scene description, for messages
 };

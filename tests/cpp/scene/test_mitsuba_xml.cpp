@@ -149,7 +149,7 @@ TEST(MitsubaXml, ShapesMaterialsAndAreaEmitters) {
   "materials": {"white": {"type": "lambertian", "reflectance": [0.8, 0.7, 0.6]}},
   "shapes": [
     {"type": "obj", "filename": "meshes/bunny.obj", "face_normals": true, "smooth_normals": false,
-     "flip_tex_coords": true, "material": "white"},
+     "flip_tex_coords": true, "usemtl": false, "material": "white"},
     {"type": "ply", "filename": "a.ply", "face_normals": false, "smooth_normals": true, "material": "white"},
     {"type": "sphere", "center": [1, 2, 3], "radius": 0.5,
      "material": {"type": "lambertian", "reflectance": 0.25}},
@@ -374,7 +374,7 @@ TEST(MitsubaXml, IncludesResolveRelativeToTheirFile) {
     SceneDesc d = read_mitsuba_xml_file((dir / "main.xml").string(), false);
     EXPECT_EQ(d.source, (dir / "main.xml").string());
     EXPECT_TRUE(same(d.root, parse_json(R"({"materials": {"grey": {"type": "lambertian"}}, "shapes": [
-        {"type": "obj", "filename": "parts/meshes/a.obj", "face_normals": false, "smooth_normals": true, "flip_tex_coords": true,
+        {"type": "obj", "filename": "parts/meshes/a.obj", "face_normals": false, "smooth_normals": true, "flip_tex_coords": true, "usemtl": false,
          "material": "grey"},
         {"type": "sphere", "radius": 3, "material": "grey"}]})", "e")));
     fs::remove_all(dir);

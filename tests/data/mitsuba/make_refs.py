@@ -2,11 +2,11 @@
 
 Run with the peer venv (bench/peers/setup_mitsuba.sh), from anywhere:
 
-    /work/main/bench/.venv-mitsuba/bin/python tests/data/mitsuba/make_refs.py [--passes 16] [--spp 256]
+    /work/main/bench/.venv-mitsuba/bin/python tests/data/mitsuba/make_refs.py [--passes 16] [--spp 256] [scene ...]
 
-For each scene of SCENES it renders `passes` independent passes (seeds 0..passes-1) of `spp`
-samples per pixel with Mitsuba's llvm_ad_rgb variant (scalar_rgb when LLVM is unavailable) and
-writes ref/<scene>.exr (the mean of the passes) and ref/<scene>.var.exr (the variance of that mean,
+For each scene named (default: all of SCENES) it renders `passes` independent passes (seeds
+0..passes-1) of `spp` samples per pixel with Mitsuba's llvm_ad_rgb variant (scalar_rgb when LLVM is
+unavailable) and writes ref/<scene>.exr (the mean of the passes) and ref/<scene>.var.exr (the variance of that mean,
 sample variance over passes / passes). The test imports `render_reference` from this file when
 `mitsuba` is importable in the test's own interpreter, so the direct and committed paths agree.
 """
@@ -18,7 +18,7 @@ import pathlib
 import sys
 
 HERE = pathlib.Path(__file__).resolve().parent
-SCENES = ["cornell_mini", "glass", "metals", "textures"]
+SCENES = ["cornell_mini", "cube_uv", "glass", "metals", "textures"]
 PASSES, SPP = 16, 256
 
 # Dr.Jit's LLVM backend needs a recent libLLVM (as bench/peers/mitsuba_runner.py).
@@ -56,12 +56,16 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--passes", type=int, default=PASSES)
     ap.add_argument("--spp", type=int, default=SPP)
+    ap.add_argument("scenes", nargs="*", metavar="scene", help=f"scenes to render (default: {', '.join(SCENES)})")
     args = ap.parse_args()
+    unknown = sorted(set(args.scenes) - set(SCENES))
+    if unknown:
+        ap.error(f"unknown scene(s) {', '.join(unknown)} (known: {', '.join(SCENES)})")
     import mitsuba as mi
 
     variant = set_variant()
     (HERE / "ref").mkdir(exist_ok=True)
-    for name in SCENES:
+    for name in args.scenes or SCENES:
         mean, var = render_reference(name, args.passes, args.spp)
         mi.Bitmap(mean).write(str(HERE / "ref" / f"{name}.exr"))
         mi.Bitmap(var).write(str(HERE / "ref" / f"{name}.var.exr"))
