@@ -88,6 +88,21 @@ TEST(Sampler, SobolDirectionNumbersMatchJoeKuo) {
     EXPECT_EQ(sobol::sample_bits(6, 0), 0x60000000u);  // van der Corput: 6 = 110b -> 0.011b
 }
 
+TEST(Sampler, FastSobolEqualsTheDefinition) {
+    // sample_2d (no table, reversals cancelled), which the Sampler uses, against Burley's Listing 5
+    // with the table.
+    PCG32 rng(4, 5);
+    for (int t = 0; t < 20000; ++t) {
+        uint32_t index = t < 1000 ? uint32_t(t) : rng.next_u32();
+        sobol::GroupSeeds g{rng.next_u32(), {rng.next_u32(), rng.next_u32()}};
+        EXPECT_EQ(sobol::reverse_bits(sobol::dim1_reversed(index)), sobol::sample_bits(index, 1)) << index;
+        uint32_t x0, x1;
+        sobol::sample_2d(index, g, &x0, &x1);
+        ASSERT_EQ(x0, sobol::shuffled_scrambled(index, 0, g)) << index;
+        ASSERT_EQ(x1, sobol::shuffled_scrambled(index, 1, g)) << index;
+    }
+}
+
 TEST(Sampler, NestedUniformScrambleIsOwenScrambling) {
     // Owen scrambling maps every dyadic interval [i/2^m, (i+1)/2^m) onto one dyadic interval of the
     // same size: the top m bits of the output depend only on the top m bits of the input.
