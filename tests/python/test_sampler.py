@@ -70,7 +70,7 @@ def test_bench_method_sampler_suffix() -> None:
 
 def test_bench_renders_mis_sobol(tmp_path) -> None:
     # A tiny scene on the spp ladder: the sobol rows exist, are labelled, and sobol's error is lower
-    # than independent's at 64 spp on this smooth, directly lit scene (measured ratio ~0.3; 0.8 is
+    # than independent's at 64 spp on this smooth, directly lit scene (measured ratio 0.36; 0.8 is
     # far outside the run-to-run noise of a 24x24 image).
     scene = pellucid.scenes.cornell_box(film={"width": 24, "height": 24},
                                         integrator={"max_depth": 2}, sampler={"sample_count": 4, "seed": 0})

@@ -12,8 +12,8 @@
 //   b + 4, b + 5           BSDF direction                           2D
 //   b + 6                  Russian roulette                         1D
 // A skipped branch (no NEE on a specular surface, no roulette before rr_depth) leaves its
-// dimensions unused. The sampler's Sobol part covers 64 dimensions (9 vertices); deeper vertices
-// draw from the sample's PCG32 stream. The independent sampler ignores set_dimension and consumes
+// dimensions unused. The sampler's Sobol part covers 64 dimensions (8 vertices and most of the
+// 9th); later ones draw from the sample's PCG32 stream. The independent sampler ignores set_dimension and consumes
 // its stream in call order (the pre-Sampler order, so its images are unchanged).
 #include "pellucid/integrator/path.h"
 
