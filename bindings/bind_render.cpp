@@ -20,8 +20,9 @@ void bind_render(py::module_& m) {
                    ", fraction=" + std::to_string(p.fraction.load()) + ")";
         });
     m.def("render_full", [](const Scene& scene, int spp, int64_t seed, int threads, double time_budget,
-                            double target_rel_error, bool progress, RenderProgress* monitor) {
-        RenderOptions o{spp, seed, threads, time_budget, target_rel_error, progress, &g_cancel, monitor};
+                            double target_rel_error, bool progress, RenderProgress* monitor,
+                            const std::string& sampler) {
+        RenderOptions o{spp, seed, threads, time_budget, target_rel_error, progress, &g_cancel, monitor, sampler};
         g_cancel = false;
         RenderResult r;
         {
@@ -37,10 +38,11 @@ void bind_render(py::module_& m) {
         return py::make_tuple(image_to_array(std::move(r.image)), image_to_array(std::move(r.variance)), stats);
     }, py::arg("scene"), py::arg("spp") = -1, py::arg("seed") = -1, py::arg("threads") = 0,
        py::arg("time_budget") = 0.0, py::arg("target_rel_error") = 0.0, py::arg("progress") = false,
-       py::arg("monitor") = py::none(),
+       py::arg("monitor") = py::none(), py::arg("sampler") = "",
        "Render; returns (image, variance, stats). Use pellucid.render for the documented API.");
-    m.def("render_aov", [](const Scene& scene, const std::string& aov, int spp, int64_t seed, int threads) {
-        RenderOptions o{spp, seed, threads, 0.0, 0.0, false, &g_cancel};
+    m.def("render_aov", [](const Scene& scene, const std::string& aov, int spp, int64_t seed, int threads,
+                           const std::string& sampler) {
+        RenderOptions o{spp, seed, threads, 0.0, 0.0, false, &g_cancel, nullptr, sampler};
         g_cancel = false;
         RenderResult r;
         {
@@ -49,6 +51,7 @@ void bind_render(py::module_& m) {
         }
         return py::make_tuple(image_to_array(std::move(r.image)), image_to_array(std::move(r.variance)));
     }, py::arg("scene"), py::arg("aov"), py::arg("spp") = -1, py::arg("seed") = -1, py::arg("threads") = 0,
+       py::arg("sampler") = "",
        "Render one AOV; returns (image, variance). Use pellucid.aov.render_aov for the documented API.");
     m.def("cancel", [] { g_cancel = true; }, "Ask the running render to stop after its current tiles.");
 }

@@ -49,7 +49,7 @@ TYPE_MAP: List[Tuple[str, str]] = [
 OVERRIDES = {
     "set_log_sink": "(fn: Optional[Callable[[int, str], None]]) -> None",
     "render_full": ("(scene: Scene, spp: int = ..., seed: int = ..., threads: int = ..., time_budget: float = ..., "
-                    "target_rel_error: float = ..., progress: bool = ..., monitor: Optional[RenderProgress] = ...)"
+                    "target_rel_error: float = ..., progress: bool = ..., monitor: Optional[RenderProgress] = ..., sampler: str = ...)"
                     " -> Tuple[NDArray[np.float32], NDArray[np.float32], Dict[str, Any]]"),
     "record_parameters": "(d: Dict[str, Any], base_dir: str = ...) -> List[Tuple[str, str, List[str]]]",
     "load_dict": "(d: Dict[str, Any], base_dir: str = ...) -> Scene",

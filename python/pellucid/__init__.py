@@ -31,6 +31,7 @@ __all__ = [
     "Comparison",
     "Error",
     "Image",
+    "SAMPLERS",
     "Scene",
     "bsdf",
     "cancel",
@@ -44,6 +45,9 @@ __all__ = [
     "write_image",
     "__version__",
 ]
+
+#: Sampler types accepted by ``render(..., sampler=...)`` and the JSON ``sampler.type``.
+SAMPLERS: Tuple[str, ...] = ("independent", "sobol")
 
 _log = _logging.getLogger("pellucid")
 
@@ -127,6 +131,7 @@ def render_with_stats(
     time_budget: Optional[float] = None,
     target_rel_error: Optional[float] = None,
     progress: bool = False,
+    sampler: Optional[str] = None,
 ):
     """Render and return ``(image, variance, stats)``.
 
@@ -136,11 +141,17 @@ def render_with_stats(
 
     ``progress=True`` shows a tqdm bar (a widget in Jupyter) when tqdm is installed, else the
     renderer's own text bar on a terminal's stderr.
+
+    ``sampler`` (``"independent"`` or ``"sobol"``) overrides the scene's ``sampler.type``. With
+    ``"sobol"`` the samples of a pixel are stratified, so ``variance`` (computed as if they were
+    independent) overestimates the error of the mean.
     """
     if spp is not None and (not isinstance(spp, int) or isinstance(spp, bool) or spp < 1):
         raise Error(f"spp: value {spp!r} must be an integer >= 1")
     if seed is not None and (not isinstance(seed, int) or seed < 0):
         raise Error(f"seed: value {seed!r} must be an integer >= 0")
+    if sampler is not None and sampler not in SAMPLERS:
+        raise Error(f"sampler: unknown sampler {sampler!r} (known: {', '.join(SAMPLERS)})")
     kwargs: Dict[str, Any] = dict(
         scene=scene,
         spp=-1 if spp is None else spp,
@@ -148,6 +159,7 @@ def render_with_stats(
         threads=threads,
         time_budget=time_budget or 0.0,
         target_rel_error=target_rel_error or 0.0,
+        sampler=sampler or "",
     )
     tqdm = _tqdm() if progress else None
     if tqdm is not None:
@@ -165,6 +177,7 @@ def render(
     time_budget: Optional[float] = None,
     target_rel_error: Optional[float] = None,
     progress: bool = False,
+    sampler: Optional[str] = None,
 ) -> Image:
     """Render ``scene`` and return the image: an :class:`Image` (a numpy.ndarray subclass), float32
     (H, W, 3) linear radiance that views the renderer's memory (no copy). The GIL is released
@@ -172,6 +185,7 @@ def render(
 
     ``spp`` and ``seed`` default to the scene's sampler; ``threads=0`` uses every core. The same
     scene and seed give the same image at any thread count. ``progress=True`` shows a tqdm bar.
+    ``sampler`` (``"independent"`` or ``"sobol"``) overrides the scene's ``sampler.type``.
     """
-    image, _, _ = render_with_stats(scene, spp, seed, threads, time_budget, target_rel_error, progress)
+    image, _, _ = render_with_stats(scene, spp, seed, threads, time_budget, target_rel_error, progress, sampler)
     return image

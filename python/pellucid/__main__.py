@@ -1,4 +1,4 @@
-"""Command line: ``python -m pellucid render SCENE -o OUT [--spp N] [--seed S] [--threads T]``
+"""Command line: ``python -m pellucid render SCENE -o OUT [--spp N] [--seed S] [--threads T] [--sampler S]``
 and ``python -m pellucid bench ...`` (the benchmarks of ``pellucid.bench``).
 
 ``render`` takes the same flags as the C++ ``pellucid-render`` and gives the same image for the
@@ -27,6 +27,8 @@ def _build_parser() -> argparse.ArgumentParser:
     r.add_argument("--spp", type=int, default=None, help="samples per pixel (default: the scene's)")
     r.add_argument("--seed", type=int, default=None, help="random seed (default: the scene's)")
     r.add_argument("--threads", type=int, default=0, help="worker threads (0 = all cores)")
+    r.add_argument("--sampler", choices=list(pellucid.SAMPLERS), default=None,
+                   help="override the scene's sampler type (sobol: Owen-scrambled Sobol, lower error at equal spp)")
     r.add_argument("--time-budget", type=float, default=None, help="stop after about this many seconds")
     r.add_argument("--lenient", action="store_true",
                    help="Mitsuba XML: unsupported elements are warnings (skipped), not errors")
@@ -62,7 +64,7 @@ def _render(args: argparse.Namespace) -> int:
         try:
             result["out"] = pellucid.render_with_stats(
                 scene, spp=args.spp, seed=args.seed, threads=args.threads,
-                time_budget=args.time_budget, progress=not args.quiet and sys.stderr.isatty())
+                time_budget=args.time_budget, sampler=args.sampler, progress=not args.quiet and sys.stderr.isatty())
         except BaseException as e:  # re-raised in the main thread
             result["error"] = e
 

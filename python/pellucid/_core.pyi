@@ -21,9 +21,9 @@ def record_parameters(d: Dict[str, Any], base_dir: str = ...) -> List[Tuple[str,
 
 def registry_types() -> Dict[str, List[str]]: """Registered type names per family (materials, shapes, ...)."""
 
-def render_aov(scene: Scene, aov: str, spp: int = ..., seed: int = ..., threads: int = ...) -> Tuple[NDArray[np.float32], NDArray[np.float32]]: """Render one AOV; returns (image, variance). Use pellucid.aov.render_aov for the documented API."""
+def render_aov(scene: Scene, aov: str, spp: int = ..., seed: int = ..., threads: int = ..., sampler: str = ...) -> Tuple[NDArray[np.float32], NDArray[np.float32]]: """Render one AOV; returns (image, variance). Use pellucid.aov.render_aov for the documented API."""
 
-def render_full(scene: Scene, spp: int = ..., seed: int = ..., threads: int = ..., time_budget: float = ..., target_rel_error: float = ..., progress: bool = ..., monitor: Optional[RenderProgress] = ...) -> Tuple[NDArray[np.float32], NDArray[np.float32], Dict[str, Any]]: """Render; returns (image, variance, stats). Use pellucid.render for the documented API."""
+def render_full(scene: Scene, spp: int = ..., seed: int = ..., threads: int = ..., time_budget: float = ..., target_rel_error: float = ..., progress: bool = ..., monitor: Optional[RenderProgress] = ..., sampler: str = ...) -> Tuple[NDArray[np.float32], NDArray[np.float32], Dict[str, Any]]: """Render; returns (image, variance, stats). Use pellucid.render for the documented API."""
 
 def set_log_sink(fn: Optional[Callable[[int, str], None]]) -> None: """Route log messages to fn(level: int, message: str); None restores stderr."""
 

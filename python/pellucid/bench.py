@@ -1,7 +1,8 @@
 """Speed-against-accuracy harness: error against render time for pellucid's strategies and peers.
 SPDX-License-Identifier: Apache-2.0
 
-    python -m pellucid bench SCENE.json [--methods bsdf,nee,mis,scalar_rgb,llvm_ad_rgb]
+    python -m pellucid bench SCENE.json [--methods bsdf,nee,mis,mis+sobol,scalar_rgb,llvm_ad_rgb]
+        [--sampler independent|sobol]
         [--budgets 1,2,5,10 | --spp-ladder 4,16,64] [--reference IMAGE | --reference-constant V]
         [--reference-renderer ours|mitsuba] [--reference-spp 4096] [--out-dir bench/results]
         [--name NAME] [--threads T] [--seed S] [--agreement-spp N]
@@ -18,7 +19,10 @@ each image against a reference and writes, under ``--out-dir``:
 Methods: ``bsdf``, ``nee``, ``mis``, ``direct`` (pellucid's ``integrator.strategy``, rendered in
 this process with ``time_budget``) and the peers ``scalar_rgb``, ``llvm_ad_rgb`` (Mitsuba 3, run
 in a subprocess with the peer's own Python, bench/peers/mitsuba_runner.py; Mitsuba is never
-imported here). A peer renders a fixed spp, so each budget is turned into an spp from the peer's
+imported here). A pellucid method may name its sampler after a ``+``: ``mis+sobol`` renders
+``mis`` with the Owen-scrambled Sobol sampler, ``mis+independent`` with i.i.d. samples; a bare
+``mis`` uses ``--sampler`` when given (and is then reported as ``mis+SAMPLER``), else the scene's
+sampler. The reference is always rendered with the scene's sampler. A peer renders a fixed spp, so each budget is turned into an spp from the peer's
 measured samples/s (a probe render, refined after every rung); the time recorded is the time the
 render took, never the budget. Peers that are not installed are skipped with a note.
 
@@ -55,6 +59,7 @@ from ._bench_figures import label as _label, plot_chart, plot_crops, tonemap  # 
 
 RELMSE_EPS = 1e-2
 OURS = ("bsdf", "nee", "mis", "direct")
+SAMPLERS = ("independent", "sobol")
 MITSUBA = ("scalar_rgb", "llvm_ad_rgb")
 CSV_FIELDS = ("scene", "method", "renderer", "rung", "budget_s", "spp", "seconds", "samples_per_second",
               "relmse", "rmse", "flip", "ref_relmse_floor", "threads", "seed")
@@ -183,17 +188,26 @@ def run_mitsuba(py: pathlib.Path, scene: dict, base_dir: pathlib.Path, variant: 
     return Render(img, var, spp, float(st["seconds"]), float(st["width"] * st["height"] * spp))
 
 
+def split_method(method: str) -> Tuple[str, Optional[str]]:
+    """``"mis+sobol"`` -> ``("mis", "sobol")``; ``"mis"`` -> ``("mis", None)`` (the scene's sampler)."""
+    strategy, _, sampler = method.partition("+")
+    return strategy, (sampler or None)
+
+
 def run_ours(scene: dict, base_dir: pathlib.Path, strategy: str, seed: int, threads: int,
-             spp: Optional[int] = None, budget: Optional[float] = None, warm: bool = True) -> Render:
-    """Render with pellucid in this process, the strategy set in integrator.strategy."""
+             spp: Optional[int] = None, budget: Optional[float] = None, warm: bool = True,
+             sampler: Optional[str] = None) -> Render:
+    """Render with pellucid in this process, the strategy set in integrator.strategy and the sampler
+    type `sampler` (None: the scene's)."""
     import pellucid
 
     d = json.loads(json.dumps(scene))
     d.setdefault("integrator", {"type": "path"})["strategy"] = strategy
     sc = pellucid.load_dict(d, base_dir)
     if warm:  # untimed, as the peers get (page in the BVH and the code)
-        pellucid.render_with_stats(sc, spp=1, seed=seed + 1_000_003, threads=threads)
-    img, var, st = pellucid.render_with_stats(sc, spp=spp, seed=seed, threads=threads, time_budget=budget)
+        pellucid.render_with_stats(sc, spp=1, seed=seed + 1_000_003, threads=threads, sampler=sampler)
+    img, var, st = pellucid.render_with_stats(sc, spp=spp, seed=seed, threads=threads, time_budget=budget,
+                                              sampler=sampler)
     return Render(np.array(img), np.array(var), int(st["spp"]), float(st["seconds"]), float(st["samples"]))
 
 
@@ -286,18 +300,31 @@ class Row:
         return {k: f(getattr(self, k)) for k in CSV_FIELDS}
 
 
-def parse_methods(spec: str) -> List[str]:
+def parse_methods(spec: str, sampler: Optional[str] = None) -> List[str]:
+    """Method names from a comma list. pellucid methods take an optional ``+SAMPLER`` suffix
+    (``mis+sobol``); bare ones get ``+sampler`` when `sampler` is given (``--sampler``)."""
+    if sampler is not None and sampler not in SAMPLERS:
+        raise ValueError(f"--sampler: unknown sampler {sampler!r} (known: {', '.join(SAMPLERS)})")
     known = OURS + MITSUBA
     out = []
     for m in (x.strip() for x in spec.split(",") if x.strip()):
-        if m == "ours":
-            out += ["bsdf", "nee", "mis"]
-        elif m == "mitsuba":
-            out += list(MITSUBA)
-        elif m in known:
-            out.append(m)
+        base, plus, suffix = m.partition("+")
+        if plus:
+            if base not in OURS and base != "ours":
+                raise ValueError(f"--methods: {m!r}: only pellucid methods ({', '.join(OURS)}, ours) take a +sampler")
+            if suffix not in SAMPLERS:
+                raise ValueError(f"--methods: {m!r}: unknown sampler {suffix!r} (known: {', '.join(SAMPLERS)})")
+        if base == "ours":
+            names = ["bsdf", "nee", "mis"]
+        elif base == "mitsuba" and not plus:
+            names = list(MITSUBA)
+        elif base in known:
+            names = [base]
         else:
-            raise ValueError(f"--methods: unknown method {m!r} (known: {', '.join(known)}, ours, mitsuba)")
+            raise ValueError(f"--methods: unknown method {m!r} (known: {', '.join(known)}, ours, mitsuba; "
+                             f"pellucid methods may end in +{'/+'.join(SAMPLERS)})")
+        s = suffix if plus else sampler
+        out += [f"{n}+{s}" if s and n in OURS else n for n in names]
     return list(dict.fromkeys(out))
 
 
@@ -339,7 +366,8 @@ def run_ladder(scene: dict, base_dir: pathlib.Path, name: str, methods: Sequence
         def render(spp=None, budget=None, s=seed):
             if peer:
                 return run_mitsuba(mi_py, scene, base_dir, method, spp, s, threads)
-            return run_ours(scene, base_dir, method, s, threads, spp=spp, budget=budget)
+            strategy, sampler = split_method(method)
+            return run_ours(scene, base_dir, strategy, s, threads, spp=spp, budget=budget, sampler=sampler)
 
         sps = None
         if budgets is not None and (peer or budget_mode == "calibrated"):
@@ -391,6 +419,8 @@ def equal_time_ratios(rows: Sequence[Row], rung: int, base: str = "mis") -> List
     """Lines comparing `base` with every other method at one rung; relMSE x seconds (inverse efficiency)
     corrects for the small differences between the times actually taken."""
     by = {r.method: r for r in rows if r.rung == rung}
+    if base not in by:  # e.g. only mis+sobol was run: compare with the first pellucid method
+        base = next((m for m, r in by.items() if r.renderer == "pellucid"), base)
     if base not in by:
         return []
     b = by[base]
@@ -421,7 +451,10 @@ def _parser() -> argparse.ArgumentParser:
                                 epilog="See bench/README.md.")
     p.add_argument("scene", help="scene file (.json)")
     p.add_argument("--methods", default="bsdf,nee,mis,scalar_rgb,llvm_ad_rgb",
-                   help="comma list of bsdf, nee, mis, direct, scalar_rgb, llvm_ad_rgb (or 'ours', 'mitsuba')")
+                   help="comma list of bsdf, nee, mis, direct, scalar_rgb, llvm_ad_rgb (or 'ours', 'mitsuba'); "
+                        "pellucid methods may name a sampler: mis+sobol, mis+independent")
+    p.add_argument("--sampler", choices=list(SAMPLERS), default=None,
+                   help="sampler of the pellucid methods without a +sampler suffix (default: the scene's)")
     g = p.add_mutually_exclusive_group()
     g.add_argument("--budgets", default=None, help="time budgets in seconds (default 0.5,1,2,5,10)")
     g.add_argument("--spp-ladder", default=None, help="sample counts instead of time budgets, e.g. 4,16,64")
@@ -470,7 +503,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                                                       else {"type": "gaussian", "stddev": 0.5})
         pellucid.load_dict(scene, base_dir)  # fail early, with pellucid's message, on a bad scene
         name = args.name or scene_path.stem
-        methods = parse_methods(args.methods)
+        methods = parse_methods(args.methods, args.sampler)
         budgets = spp_ladder = None
         if args.spp_ladder:
             spp_ladder = [int(x) for x in parse_floats(args.spp_ladder, "--spp-ladder")]

@@ -25,7 +25,7 @@ const char* AovIntegrator::name(Kind kind) {
 
 std::string AovIntegrator::to_string() const { return std::string("AovIntegrator[aov=") + name(m_kind) + "]"; }
 
-Spectrum AovIntegrator::Li(const Scene& scene, const RayDifferential& ray, PCG32& rng) const {
+Spectrum AovIntegrator::Li(const Scene& scene, const RayDifferential& ray, Sampler& sampler) const {
     SurfaceInteraction si;
     if (!scene.intersect(ray, si)) return Spectrum(0.f);
     if (scene.has_textures) scene.compute_footprint(si, ray);  // textured albedo, filtered like renders
@@ -35,9 +35,11 @@ Spectrum AovIntegrator::Li(const Scene& scene, const RayDifferential& ray, PCG32
         case Kind::Albedo: {
             // One-sample estimate of ρ(wo) = ∫ f(wo, wi) |cos θi| dωi: E[weight] = ρ (the BSDF's
             // sample weight is f·|cos θi|/pdf, bxdf/bxdf_types.h).
+            // Dimensions: the pixel offset (0, 1), then the lobe (2) and the direction (3, 4).
             BSDF bsdf = scene.bsdf(si);
-            float u_lobe = rng.next_float();
-            Vec2f u = rng.next_2d();
+            sampler.set_dimension(Sampler::kPixelDims);
+            float u_lobe = sampler.get_1d();
+            Vec2f u = sampler.get_2d();
             auto bs = bsdf.sample(si.wo, u_lobe, u);
             return bs ? bs->weight : Spectrum(0.f);
         }
@@ -47,9 +49,10 @@ Spectrum AovIntegrator::Li(const Scene& scene, const RayDifferential& ray, PCG32
 
 RenderResult AovIntegrator::render(const Scene& scene, const RenderOptions& opts) const {
     // Normals are signed: the film takes every finite sample.
+    const SamplerType type = sampler_type(scene, opts);
     return render_loop(scene, opts, [&](const TileJob& job, Film& film) {
         return render_tile<SampleValues::Signed>(
-            scene, job, film, [&](const RayDifferential& r, PCG32& rng) { return Li(scene, r, rng); });
+            scene, job, film, type, [&](const RayDifferential& r, Sampler& u) { return Li(scene, r, u); });
     });
 }
 }  // namespace pellucid

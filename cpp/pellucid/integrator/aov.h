@@ -14,7 +14,7 @@
 #include <string>
 
 #include "pellucid/integrator/integrator.h"
-#include "pellucid/sampling/rng.h"
+#include "pellucid/sampling/sampler.h"
 
 namespace pellucid {
 
@@ -29,7 +29,7 @@ public:
     RenderResult render(const Scene& scene, const RenderOptions& opts) const override;
     std::string to_string() const override;
     /// The AOV value of one camera ray.
-    Spectrum Li(const Scene& scene, const RayDifferential& ray, PCG32& rng) const;
+    Spectrum Li(const Scene& scene, const RayDifferential& ray, Sampler& sampler) const;
 
 private:
     Kind m_kind;

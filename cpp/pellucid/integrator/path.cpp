@@ -1,5 +1,20 @@
 // Path tracing with NEE and MIS (Veach 1997, ch. 9; the power heuristic, eq. 9.13).
 // SPDX-License-Identifier: Apache-2.0
+//
+// Sample dimensions (sampling/sampler.h). Every path vertex uses the same layout, whichever branches
+// run, so that with the sobol sampler a dimension always feeds the same decision and the points of
+// that decision stay stratified over a pixel's samples:
+//   0, 1                   pixel filter offset (render_tile)
+//   vertex v = depth - 1 (0 at the first hit), base b = 2 + 7 v:
+//   b                      light selection (NEE)                    1D
+//   b + 1, b + 2           point on the light (NEE)                 2D
+//   b + 3                  BSDF lobe selection                      1D
+//   b + 4, b + 5           BSDF direction                           2D
+//   b + 6                  Russian roulette                         1D
+// A skipped branch (no NEE on a specular surface, no roulette before rr_depth) leaves its
+// dimensions unused. The sampler's Sobol part covers 64 dimensions (8 vertices and most of the
+// 9th); later ones draw from the sample's PCG32 stream. The independent sampler ignores set_dimension and consumes
+// its stream in call order (the pre-Sampler order, so its images are unchanged).
 #include "pellucid/integrator/path.h"
 
 #include <algorithm>
@@ -18,8 +33,9 @@ std::unique_ptr<Integrator> make_integrator(const Scene& scene) {
 }
 
 RenderResult PathIntegrator::render(const Scene& scene, const RenderOptions& opts) const {
+    const SamplerType type = sampler_type(scene, opts);
     return render_loop(scene, opts, [&](const TileJob& job, Film& film) {
-        return render_tile(scene, job, film, [&](const RayDifferential& r, PCG32& rng) { return Li(scene, r, rng); });
+        return render_tile(scene, job, film, type, [&](const RayDifferential& r, Sampler& u) { return Li(scene, r, u); });
     });
 }
 
@@ -29,6 +45,9 @@ std::string PathIntegrator::to_string() const {
 }
 
 namespace {
+constexpr int kVertexDims = 7;  ///< dimensions per path vertex (the layout at the top of this file)
+constexpr int kLightSelectDim = 0, kLobeDim = 3, kRouletteDim = 6;
+
 // Light contribution of one area/environment hit found by BSDF sampling, MIS-weighted against the
 // light-sampling strategy that could have produced the same direction.
 float bsdf_hit_weight(bool use_mis, bool use_nee, bool specular, float bsdf_pdf, float light_pdf) {
@@ -38,7 +57,7 @@ float bsdf_hit_weight(bool use_mis, bool use_nee, bool specular, float bsdf_pdf,
 }
 }  // namespace
 
-Spectrum PathIntegrator::Li(const Scene& scene, RayDifferential ray, PCG32& rng) const {
+Spectrum PathIntegrator::Li(const Scene& scene, RayDifferential ray, Sampler& sampler) const {
     const bool use_nee = m_use_nee && !scene.lights.empty();
     const bool use_mis = m_use_mis;
     Spectrum L(0.f), beta(1.f);
@@ -76,11 +95,13 @@ Spectrum PathIntegrator::Li(const Scene& scene, RayDifferential ray, PCG32& rng)
         if (flags == BxDFFlags::None) break;
         const Vec3f wo = si.wo;
         LightSampleContext ctx{si.p, si.ng};
+        const int dim0 = Sampler::kPixelDims + kVertexDims * (depth - 1);
 
         // Next-event estimation: one light (uniformly or by power), one point on it.
         if (use_nee && is_non_specular(flags)) {
-            float u_light = rng.next_float();
-            Vec2f u = rng.next_2d();
+            sampler.set_dimension(dim0 + kLightSelectDim);
+            float u_light = sampler.get_1d();
+            Vec2f u = sampler.get_2d();
             float pmf;
             size_t li = scene.sample_light(u_light, &pmf);
             auto ls = std::visit([&](const auto& l) { return l.sample_li(ctx, u); }, scene.lights[li]);
@@ -98,8 +119,9 @@ Spectrum PathIntegrator::Li(const Scene& scene, RayDifferential ray, PCG32& rng)
         }
 
         // Continue the path by sampling the BSDF.
-        float u_lobe = rng.next_float();
-        Vec2f u = rng.next_2d();
+        sampler.set_dimension(dim0 + kLobeDim);
+        float u_lobe = sampler.get_1d();
+        Vec2f u = sampler.get_2d();
         auto bs = bsdf.sample(wo, u_lobe, u);
         if (!bs) break;
         beta *= bs->weight;
@@ -117,7 +139,8 @@ Spectrum PathIntegrator::Li(const Scene& scene, RayDifferential ray, PCG32& rng)
         // path.cpp): survive with q = min(max β·η², 0.95) from rr_depth on.
         if (depth >= m_s.rr_depth) {
             float q = std::min(beta.max_component() * eta_scale, 0.95f);
-            if (!(rng.next_float() < q)) break;
+            sampler.set_dimension(dim0 + kRouletteDim);
+            if (!(sampler.get_1d() < q)) break;
             beta /= q;
         }
         if (beta.is_black()) break;

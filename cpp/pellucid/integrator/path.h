@@ -22,7 +22,7 @@ public:
     RenderResult render(const Scene& scene, const RenderOptions& opts) const override;
     std::string to_string() const override;
     /// Radiance arriving along -ray.d at ray.o (one sample).
-    Spectrum Li(const Scene& scene, RayDifferential ray, PCG32& rng) const;
+    Spectrum Li(const Scene& scene, RayDifferential ray, Sampler& sampler) const;
 
 private:
     IntegratorSettings m_s;

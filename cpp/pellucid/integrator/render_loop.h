@@ -9,7 +9,7 @@
 #include "pellucid/image/film.h"
 #include "pellucid/image/image.h"
 #include "pellucid/math/spectrum.h"
-#include "pellucid/sampling/rng.h"
+#include "pellucid/sampling/sampler.h"
 #include "pellucid/scene/scene.h"
 
 namespace pellucid {
@@ -30,6 +30,7 @@ struct RenderOptions {
     bool progress = false;        ///< draw a progress bar on stderr if stderr is a terminal
     const std::atomic<bool>* cancel = nullptr;  ///< set to true to stop after the current tiles
     RenderProgress* progress_out = nullptr;     ///< if set, updated after every tile
+    std::string sampler;          ///< "" = the scene's sampler type; else "independent" | "sobol"
 };
 
 struct RenderStats {
@@ -65,12 +66,18 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
 /// (normals, for the AOV integrator) only finite.
 enum class SampleValues { NonNegative, Signed };
 
-/// The per-sample loop every integrator instantiates with its own estimator Li(ray, rng): every
-/// (pixel, sample index, seed) has its own PCG32 stream, so images are bit-identical for any thread
-/// count. Rejected samples (NaN, infinite, or negative under SampleValues::NonNegative) are counted
-/// and kept out of the film.
+/// The sampler type of a render: RenderOptions::sampler if set (an unknown name throws
+/// pellucid::Error), else the scene's.
+inline SamplerType sampler_type(const Scene& scene, const RenderOptions& opts) {
+    return opts.sampler.empty() ? scene.sampler : parse_sampler_type(opts.sampler, "sampler");
+}
+
+/// The per-sample loop every integrator instantiates with its own estimator Li(ray, sampler): every
+/// (pixel, sample index, seed) has its own Sampler (sampling/sampler.h), so images are bit-identical
+/// for any thread count. Rejected samples (NaN, infinite, or negative under SampleValues::NonNegative)
+/// are counted and kept out of the film.
 template <SampleValues kValues = SampleValues::NonNegative, class LiFn>
-uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, LiFn&& Li) {
+uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, SamplerType type, LiFn&& Li) {
     uint64_t bad = 0;
     const bool splat = film.splats();
     const uint64_t width = uint64_t(scene.width);
@@ -78,15 +85,15 @@ uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, LiFn&& 
         for (int x = job.x0; x < job.x1; ++x) {
             const uint64_t pixel = uint64_t(y) * width + uint64_t(x);
             for (int s = job.s0; s < job.s1; ++s) {
-                PCG32 rng = PCG32::for_sample(pixel, uint64_t(s), job.seed);
+                Sampler sampler(type, pixel, uint64_t(s), job.seed);
                 // Splatting: uniform in the pixel; filter sampling: offset by the filter's density.
-                const Vec2f u_px = rng.next_2d();
+                const Vec2f u_px = sampler.get_pixel_2d();
                 const Vec2f off = splat ? u_px - Vec2f(0.5f) : sample_filter(scene.filter, u_px);
                 const float fx = float(x) + 0.5f + off.x, fy = float(y) + 0.5f + off.y;
                 // Differentials only where textures need footprints (two more rays' worth of setup).
                 Spectrum L = Li(scene.has_textures ? scene.camera.generate_ray_differential(fx, fy)
                                                    : RayDifferential(scene.camera.generate_ray(fx, fy)),
-                                rng);
+                                sampler);
                 if (!L.is_finite() || (kValues == SampleValues::NonNegative && L.has_negative())) {
                     ++bad;
                     continue;

@@ -80,8 +80,8 @@ private:
     void build_sampler(const Node* n) {
         if (!n) return;
         Properties p(*n, m_desc.source, "sampler");
-        if (p.has("type") && p.type() != "independent")
-            p.fail("type", "unknown sampler '" + p.get_string("type") + "' (known: independent)");
+        m_scene.sampler = parse_sampler_type(
+            p.get_choice("type", "independent", "sampler", {"independent", "sobol"}), "sampler.type");
         m_scene.spp = p.get_int("sample_count", 16);
         if (m_scene.spp < 1 || m_scene.spp > (1 << 24))
             p.fail("sample_count", "value " + std::to_string(m_scene.spp) + " is out of range [1, 16777216]");

@@ -793,10 +793,10 @@ private:
             unsupported(n, "unsupported sampler plugin '" + type + "'");
             return;
         }
-        if (type != "independent")
-            log_warning(where(n) + ": sampler '" + type + "' is read as 'independent' (same sample_count)");
+        // Mitsuba's stratified / low-discrepancy samplers become our Owen-scrambled Sobol sampler:
+        // a different point set (docs/mitsuba-import.md), the same estimate in expectation.
         Collected c = collect(n);
-        Node s = make("independent", n);
+        Node s = make(type == "independent" ? "independent" : "sobol", n);
         map_params(s, c, "sampler plugin '" + type + "'", {{"sample_count", "sample_count"}, {"seed", "seed"}},
                    {"jitter", "dimension"});
         set_default(s, "sample_count", Node::number(4, true));  // Mitsuba's default

@@ -234,7 +234,7 @@ std::map<std::string, std::vector<std::string>> registry_types() {
     out["emitters"] = {"area"};
     out["cameras"] = {"perspective"};
     out["integrators"] = {"aov", "path"};
-    out["samplers"] = {"independent"};
+    out["samplers"] = {"independent", "sobol"};
     return out;
 }
 }  // namespace pellucid

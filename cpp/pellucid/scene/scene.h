@@ -16,6 +16,7 @@
 #include "pellucid/material/textured.h"
 #include "pellucid/texture/texture.h"
 #include "pellucid/sampling/distribution_1d.h"
+#include "pellucid/sampling/sampler.h"
 
 namespace pellucid {
 
@@ -92,6 +93,7 @@ public:
     int width = 256, height = 256;
     int spp = 16;
     uint64_t seed = 0;
+    SamplerType sampler = SamplerType::Independent;  ///< sampler.type (sampling/sampler.h)
     IntegratorSettings integrator;
     std::string source;
     uint64_t triangle_count = 0;
