@@ -32,18 +32,22 @@ void expect_constant_image(const RenderResult& r, double expected, const char* w
     const Image& var = r.variance;
     size_t n = size_t(img.width) * img.height;
     double z_max = z_two_sided(test::sidak_alpha(0.01, int(n * 3)));
-    double sum = 0, sum_var = 0;
+    double sum = 0;
     int fails = 0;
     for (size_t i = 0; i < n * 3; ++i) {
         sum += img.data[i];
-        sum_var += var.data[i];
         // Float rounding of a path's sum (~1e-6 relative) bounds how exact a zero-variance
         // estimator (NEE inside a closed sphere) can be.
         double d = std::fabs(img.data[i] - expected), s2 = var.data[i] + std::pow(1e-6 * expected, 2);
         if (d / std::sqrt(s2) > z_max) ++fails;
     }
     EXPECT_LE(fails, int(0.0025 * double(n * 3))) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")";
-    double mean = sum / double(n * 3), se = std::sqrt(sum_var) / double(n * 3);
+    // The image mean's standard error from the spread of the pixel values: every pixel has the same
+    // expectation, so their spread measures the real per-pixel variance, heavy tails included,
+    // where the film's per-sample variance misses the rare large samples it has not seen.
+    double mean = sum / double(n * 3), spread = 0;
+    for (size_t i = 0; i < n * 3; ++i) spread += (img.data[i] - mean) * (img.data[i] - mean);
+    double se = std::sqrt(spread / double(n * 3 - 1) / double(n * 3));
     EXPECT_EQ(fails, 0) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")";
     EXPECT_LT(std::fabs(mean - expected), z_two_sided(1e-4) * se + 1e-6)
         << what << ": image mean " << mean << " vs " << expected << " (standard error " << se << ")";
@@ -83,9 +87,12 @@ TEST_P(AnalyticScenes, ClosedSphereFromInside) {
 
 TEST_P(AnalyticScenes, ClosedMeshBoxFromInside) {
     // The same law on a closed cube built from triangles, light sampled by area on every face. A
-    // mirroring scale keeps normals outward, so the emitter is two-sided.
+    // mirroring scale keeps normals outward, so the emitter is two-sided. NEE near the cube's edges
+    // samples light points at distance → 0 (G ∝ 1/d²): a heavy-tailed estimator whose per-pixel
+    // sample variance is unreliable at 256 spp (over 20 seeds its image means spread 2.1× wider than
+    // the film's variance predicts); 1024 spp makes the per-pixel test valid again.
     auto scene = scene_from(std::string(R"({"camera": {"type": "perspective", "fov": 60},
-        "film": {"width": 20, "height": 20}, "sampler": {"sample_count": 256, "seed": 5},
+        "film": {"width": 20, "height": 20}, "sampler": {"sample_count": 1024, "seed": 5},
         "integrator": {"type": "path", "rr_depth": 40, "strategy": ")") + GetParam() + R"("},
         "materials": {"m": {"type": "lambertian", "reflectance": 0.25}},
         "shapes": [{"type": "cube", "to_world": [{"scale": -3}], "material": "m",
