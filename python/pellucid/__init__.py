@@ -23,11 +23,13 @@ import numpy as _np
 from . import _core
 from . import materials, scenes
 from ._core import Error, Scene, cancel
+from .aov import AOVS, render_aov
 from .bsdf import bsdf
 from .image import Comparison, Image
 
 __version__: str = _core.__version__
 __all__ = [
+    "AOVS",
     "Comparison",
     "Error",
     "Image",
@@ -40,6 +42,7 @@ __all__ = [
     "materials",
     "read_image",
     "render",
+    "render_aov",
     "render_with_stats",
     "scenes",
     "write_image",

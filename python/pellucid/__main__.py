@@ -29,6 +29,8 @@ def _build_parser() -> argparse.ArgumentParser:
     r.add_argument("--threads", type=int, default=0, help="worker threads (0 = all cores)")
     r.add_argument("--sampler", choices=list(pellucid.SAMPLERS), default=None,
                    help="override the scene's sampler type (sobol: Owen-scrambled Sobol, lower error at equal spp)")
+    r.add_argument("--aov", choices=list(pellucid.AOVS), default=None,
+                   help="render this AOV of the first hit instead of the scene's integrator (as pellucid-render --aov)")
     r.add_argument("--time-budget", type=float, default=None, help="stop after about this many seconds")
     r.add_argument("--lenient", action="store_true",
                    help="Mitsuba XML: unsupported elements are warnings (skipped), not errors")
@@ -58,6 +60,13 @@ def _render(args: argparse.Namespace) -> int:
     if not (0 <= args.threads <= 4096):
         raise pellucid.Error("--threads: value must be in [0, 4096]")
     scene = pellucid.load_file(args.scene, lenient=args.lenient)
+    if args.aov is not None:
+        image = pellucid.render_aov(scene, args.aov, spp=args.spp, seed=args.seed, threads=args.threads)
+        for out in args.output:
+            pellucid.write_image(out, image)
+            if not args.quiet:
+                print(f"wrote {out}", file=sys.stderr)
+        return 0
     result = {}
 
     def work() -> None:

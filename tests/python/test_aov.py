@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -82,3 +83,16 @@ def test_cli_aov_flag(tmp_path, tiny_scene_path) -> None:
     bad = subprocess.run([str(CLI), str(tiny_scene_path), "-o", str(out), "--aov", "uv"],
                          capture_output=True, text=True, timeout=120)
     assert bad.returncode == 2 and "--aov: unknown aov 'uv'" in bad.stderr
+
+
+def test_python_cli_aov_flag_matches_the_cpp_cli(tmp_path, tiny_scene_path) -> None:
+    """`python -m pellucid render --aov` takes the same flag as pellucid-render and gives the same image."""
+    assert pellucid.render_aov is render_aov and pellucid.AOVS == AOVS
+    out = tmp_path / "normal.exr"
+    r = subprocess.run([sys.executable, "-m", "pellucid", "render", str(tiny_scene_path), "-o", str(out),
+                        "--aov", "normal", "--spp", "2", "--seed", "4", "-q"], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert np.array_equal(pellucid.read_image(str(out)), render_aov(str(tiny_scene_path), "normal", spp=2, seed=4))
+    bad = subprocess.run([sys.executable, "-m", "pellucid", "render", str(tiny_scene_path), "-o", str(out),
+                          "--aov", "uv"], capture_output=True, text=True, timeout=120)
+    assert bad.returncode == 2 and "--aov" in bad.stderr

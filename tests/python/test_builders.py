@@ -30,7 +30,8 @@ def test_cornell_box_is_the_json_scene_and_renders_identically() -> None:
 
 def test_overrides_merge_without_touching_the_defaults() -> None:
     d = scenes.cornell_box(film={"width": 64}, integrator={"max_depth": 3}, sampler=None)
-    assert d["film"] == {"width": 64, "height": 256, "filter": {"type": "gaussian", "stddev": 0.5}}
+    assert d["film"] == {"width": 64, "height": 256, "filter": {"type": "gaussian", "stddev": 0.5},
+                         "reconstruction": "splatting"}
     assert d["integrator"] == {"type": "path", "max_depth": 3, "rr_depth": 5}
     assert "sampler" not in d
     assert scenes.cornell_box()["film"]["width"] == 256  # fresh dict each call
