@@ -15,24 +15,24 @@ bench() { "$PY" -m pellucid.bench "$@"; }
 what="${1:-all}"
 
 if [[ $what == cornell || $what == all ]]; then
-  bench scenes/cornell_box.json --methods bsdf,nee,mis,scalar_rgb,llvm_ad_rgb --budgets 0.5,1,2,5,10 \
+  bench scenes/cornell_box.json --methods bsdf,nee,mis,mis+sobol,scalar_rgb,llvm_ad_rgb --budgets 0.5,1,2,5,10 \
     --reference-spp 4096 --threads "$THREADS" --out-dir bench/results --name cornell_box
 fi
 if [[ $what == cornell_box_filter || $what == all ]]; then
   # The same box with a box pixel filter for every renderer: each sample feeds one pixel, so per-pixel
   # noise compares the light transport alone (Mitsuba splats a gaussian sample over ~3x3 pixels,
   # pellucid importance-samples the filter; that alone gives Mitsuba ~3x lower per-pixel relMSE per spp).
-  bench scenes/cornell_box.json --methods bsdf,nee,mis,scalar_rgb,llvm_ad_rgb --budgets 0.5,1,2,5,10 \
+  bench scenes/cornell_box.json --methods bsdf,nee,mis,mis+sobol,scalar_rgb,llvm_ad_rgb --budgets 0.5,1,2,5,10 \
     --reference-spp 4096 --threads "$THREADS" --out-dir bench/results --name cornell_box_boxfilter --filter box
 fi
 if [[ $what == veach || $what == all ]]; then
-  bench scenes/veach_mis.json --methods bsdf,nee,mis,scalar_rgb,llvm_ad_rgb --budgets 0.5,1,2,5,10 \
+  bench scenes/veach_mis.json --methods bsdf,nee,mis,mis+sobol,scalar_rgb,llvm_ad_rgb --budgets 0.5,1,2,5,10 \
     --reference-spp 4096 --threads "$THREADS" --out-dir bench/results --name veach_mis \
     --crop 0,100,320,140 --agreement-spp 256
 fi
 if [[ $what == env || $what == all ]]; then
   # Needs the envmap light (branch h-env) merged.
-  bench scenes/env_spheres.json --methods bsdf,nee,mis,scalar_rgb,llvm_ad_rgb --budgets 0.5,1,2,5,10 \
+  bench scenes/env_spheres.json --methods bsdf,nee,mis,mis+sobol,scalar_rgb,llvm_ad_rgb --budgets 0.5,1,2,5,10 \
     --reference-spp 4096 --threads "$THREADS" --out-dir bench/results --name env_spheres \
     --crop 60,50,200,100 --agreement-spp 256
 fi
