@@ -7,8 +7,9 @@
 // (bxdf/bsdf.h) evaluates the local BxDF in the shading frame and kills "leaking" directions, those
 // on different sides of the ng- and ns-horizons; its pdf() is 0 there, as sample() never returns
 // them. So the wrapper's sampler is the local sampler with the leaking mass moved into failures:
-// its density over the returned directions is exactly pdf(), and ∫ pdf dω = 1 − (the local
-// sampler's smooth mass that leaks) − (its delta mass). That unnormalised density is the correct
+// its density over the returned directions is exactly pdf(), and ∫ pdf dω = ∫ pdf_local dω − (the
+// local sampler's smooth mass that leaks); ∫ pdf_local dω is 1 minus the local delta mass and
+// failures. That unnormalised density is the correct
 // one for MIS and for f/p estimators: it is the density with which the strategy produces each
 // direction, and the dropped directions carry f = 0. The χ² below therefore counts failures as one
 // cell expecting the missing mass, and the normalisation test computes that mass independently.
