@@ -20,7 +20,11 @@ public:
     /// reflection is scaled by Chiang et al. 2019 ("Taming the Shadow Terminator", eq. 4),
     /// G = min(1, |n0·wi| / (|ns·wi|·|n0·ns|)), factor −G³ + G² + G, with n0 the unperturbed normal.
     /// It is 1 where the two normals agree and falls smoothly to 0 where light grazes the
-    /// unperturbed surface. (Not energy-preserving by design; the property suite runs without it.)
+    /// unperturbed surface. G is a shadowing term of the *light* direction: wi under radiance
+    /// transport, wo under importance transport, so that the adjoint relation
+    /// eval(Importance, wo, wi)/|ng·wi| = eval(Radiance, wi, wo)/|ng·wo| (Veach 1997, eq. 5.14)
+    /// holds with it too. The factor is in [0, 1]: it only removes energy (it is not
+    /// energy-preserving by design), and is exactly 1 where the shading normal is n0.
     void soften_terminator(const Normal3f& n0) {
         m_soften = true;
         m_n0 = n0;
@@ -36,7 +40,7 @@ public:
         if (wo.z == 0.f || leaks(wo_w, wi_w, wo, wi)) return Spectrum(0.f);
         Spectrum f = pellucid::eval(m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, wi);
         if (mode == TransportMode::Importance) f *= shading_correction(wo_w, wi_w, wo, wi);
-        if (m_soften) f *= terminator(wo, wi, wi_w);
+        if (m_soften) f *= mode == TransportMode::Radiance ? terminator(wo, wi, wi_w) : terminator(wi, wo, wo_w);
         return f;
     }
     float pdf(const Vec3f& wo_w, const Vec3f& wi_w, TransportMode mode = TransportMode::Radiance) const {
@@ -56,7 +60,8 @@ public:
         s->wi = m_frame.to_world(wi_local);
         if (leaks(wo_w, s->wi, wo, wi_local)) return std::nullopt;
         if (mode == TransportMode::Importance) s->weight *= shading_correction(wo_w, s->wi, wo, wi_local);
-        if (m_soften) s->weight *= terminator(wo, wi_local, s->wi);
+        if (m_soften)
+            s->weight *= mode == TransportMode::Radiance ? terminator(wo, wi_local, s->wi) : terminator(wi_local, wo, wo_w);
         return s;
     }
     Vec3f to_local(const Vec3f& v) const { return m_frame.to_local(v); }
@@ -74,9 +79,11 @@ private:
         return den > 0.f ? num / den : 0.f;
     }
 
-    float terminator(const Vec3f& wo, const Vec3f& wi, const Vec3f& wi_w) const {
-        if (wo.z * wi.z <= 0.f) return 1.f;  // transmission: no terminator
-        float cos_s = std::fabs(wi.z), cos_0 = std::fabs(dot(m_n0, wi_w)), n0_ns = std::fabs(dot(m_n0, m_frame.n));
+    // Chiang et al. 2019, eq. 4, for the light direction `light` (local; light_w in world) seen
+    // from `other` (local).
+    float terminator(const Vec3f& other, const Vec3f& light, const Vec3f& light_w) const {
+        if (other.z * light.z <= 0.f) return 1.f;  // transmission: no terminator
+        float cos_s = std::fabs(light.z), cos_0 = std::fabs(dot(m_n0, light_w)), n0_ns = std::fabs(dot(m_n0, m_frame.n));
         if (!(cos_s * n0_ns > 0.f)) return 1.f;
         float g = std::min(1.f, cos_0 / (cos_s * n0_ns));
         return g * (1.f + g * (1.f - g));  // −g³ + g² + g

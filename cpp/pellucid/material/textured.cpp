@@ -71,14 +71,16 @@ Normal3f bump_normal(const TextureList& textures, uint32_t height, float scale, 
     // and normal n' = normalize(∂F'/∂u × ∂F'/∂v) (Blinn 1978, eq. 4; the seeds' definition).
     // ∂B/∂u: the texture's analytic gradient where it has one, else a forward difference of step
     // Δu (first order: error O(Δu)).
-    float B = height_at(textures, height, scale, ctx, si, 0.f, 0.f);
-    float dBdu, dBdv;
-    if (!(allow_analytic && texture_gradient_uv(textures, height, ctx, si.dpdu, si.dpdv, &dBdu, &dBdv))) {
-        dBdu = (height_at(textures, height, scale, ctx, si, du, 0.f) - B) / du;
-        dBdv = (height_at(textures, height, scale, ctx, si, 0.f, dv) - B) / dv;
-    } else {
+    float B, dBdu, dBdv;
+    Spectrum value;
+    if (allow_analytic && texture_gradient_uv(textures, height, ctx, si.dpdu, si.dpdv, &dBdu, &dBdv, &value)) {
+        B = scale * value.average();  // the value from the same evaluation as the gradient
         dBdu *= scale;
         dBdv *= scale;
+    } else {
+        B = height_at(textures, height, scale, ctx, si, 0.f, 0.f);
+        dBdu = (height_at(textures, height, scale, ctx, si, du, 0.f) - B) / du;
+        dBdv = (height_at(textures, height, scale, ctx, si, 0.f, dv) - B) / dv;
     }
     Vec3f dpdu = si.dpdu + dBdu * n + B * si.dndu;
     Vec3f dpdv = si.dpdv + dBdv * n + B * si.dndv;

@@ -171,15 +171,20 @@ Spectrum eval_texture(const TextureList& list, uint32_t id, const TextureEvalCon
 }
 
 bool texture_gradient_uv(const TextureList& list, uint32_t id, const TextureEvalContext& ctx, const Vec3f& dpdu,
-                         const Vec3f& dpdv, float* dfdu, float* dfdv) {
+                         const Vec3f& dpdv, float* dfdu, float* dfdv, Spectrum* value) {
     return std::visit([&](const auto& t) -> bool {
         using T = std::decay_t<decltype(t)>;
         if constexpr (std::is_same_v<T, ConstantTexture>) {
             *dfdu = *dfdv = 0.f;
+            if (value) *value = t.value;
             return true;
         } else if constexpr (std::is_same_v<T, NoiseTexture>) {
             Vec3f g;
-            float n = noise_value(t, ctx, &g);
+            float n = noise_value(t, ctx, &g);  // the same n as without the gradient
+            if (value) {
+                float a = clamp(0.5f + 0.5f * n, 0.f, 1.f);  // as eval_texture
+                *value = t.color0 * (1.f - a) + t.color1 * a;
+            }
             float k = 0.5f * (t.color1 - t.color0).average();
             if (std::fabs(n) > 1.f) k = 0.f;  // the colour mapping clamps there: flat
             Vec3f qu = t.to_local.vector(dpdu) * t.scale, qv = t.to_local.vector(dpdv) * t.scale;
@@ -187,7 +192,8 @@ bool texture_gradient_uv(const TextureList& list, uint32_t id, const TextureEval
             *dfdv = k * dot(g, qv);
             return true;
         } else if constexpr (std::is_same_v<T, ScaleTexture>) {
-            if (!texture_gradient_uv(list, t.texture, ctx, dpdu, dpdv, dfdu, dfdv)) return false;
+            if (!texture_gradient_uv(list, t.texture, ctx, dpdu, dpdv, dfdu, dfdv, value)) return false;
+            if (value) *value = *value * t.scale;
             float s = t.scale.average();
             *dfdu *= s;
             *dfdv *= s;

@@ -94,8 +94,10 @@ Spectrum eval_texture(const TextureList& list, uint32_t id, const TextureEvalCon
 /// Analytic gradient of the texture's channel average with respect to (u, v), where the texture
 /// provides one (noise: ∇n·∂p/∂u; constant: 0; scale of such a texture). Returns false otherwise;
 /// bump mapping then takes finite differences.
+/// `value`, when given, receives eval_texture(list, id, ctx) (bit-identical) from the same
+/// evaluation, so that bump mapping evaluates a noise once, not twice.
 bool texture_gradient_uv(const TextureList& list, uint32_t id, const TextureEvalContext& ctx, const Vec3f& dpdu,
-                         const Vec3f& dpdv, float* dfdu, float* dfdv);
+                         const Vec3f& dpdv, float* dfdu, float* dfdv, Spectrum* value = nullptr);
 
 /// Perlin's improved noise in [-1, 1] (roughly) and its gradient.
 float perlin_noise(const Vec3f& p, Vec3f* gradient = nullptr);

@@ -172,7 +172,10 @@ Spectrum lookup_image_texture(const ImageTextureHandle& h, TextureFilter filter,
     float r[3] = {0.f, 0.f, 0.f};
     auto* handle = static_cast<OIIO::TextureSystem::TextureHandle*>(h.handle);
     int n = h.channels >= 3 ? 3 : 1;
-    ts->texture(handle, ts->get_perthread_info(), opt, s, t, dsdx, dtdx, dsdy, dtdy, n, r);
+    // OIIO's per-thread state, fetched once per thread (get_perthread_info is a virtual call and
+    // a thread-specific-storage lookup; the pointer stays valid for the thread's lifetime).
+    thread_local OIIO::TextureSystem::Perthread* thread_info = ts->get_perthread_info();
+    ts->texture(handle, thread_info, opt, s, t, dsdx, dtdx, dsdy, dtdy, n, r);
     if (n == 1) return Spectrum(r[0]);
     return Spectrum(r[0], r[1], r[2]);
 }

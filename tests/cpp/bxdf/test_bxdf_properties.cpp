@@ -3,13 +3,11 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <iomanip>
-#include <thread>
 
 #include "bxdf/bxdf_cases.h"
 #include "pellucid/sampling/rng.h"
-#include "support/chi2.h"
+#include "support/sphere_chi2.h"
 
 namespace pellucid::test {
 namespace {
@@ -32,127 +30,13 @@ struct VariantTypes<std::variant<Ts...>> {
 };
 using AllBxDFs = VariantTypes<BxDF>::type;
 
-constexpr int kThetaBins = 32, kPhiBins = 64;  // equal-area cells: uniform in cos θ and φ
-constexpr int kChi2Samples = 1000000;
-constexpr int kChunks = 4;  // fixed work split: results do not depend on the thread count
-
-int cell_of(const Vec3f& w) {
-    int it = clamp(int((w.z + 1.f) * 0.5f * kThetaBins), 0, kThetaBins - 1);
-    float phi = std::atan2(w.y, w.x);
-    if (phi < 0.f) phi += 2.f * kPi;
-    int ip = clamp(int(phi * kInv2Pi * kPhiBins), 0, kPhiBins - 1);
-    return it * kPhiBins + ip;
-}
-
-struct DeltaDir {
-    Vec3f w;
-    double p;
-};
-
-template <class T>
-struct Histogram {
-    std::vector<double> obs = std::vector<double>(kThetaBins * kPhiBins + 1, 0.0);  // last: failed
-    std::vector<DeltaDir> deltas;
-    std::string error;
-};
-
-template <class T>
-void sample_chunk(const T& b, const BxDFContext& ctx, const Vec3f& wo, uint64_t seed, int chunk, int n,
-                  Histogram<T>& h) {
-    PCG32 rng(seed, 2 * uint64_t(chunk) + 1);
-    for (int k = 0; k < n; ++k) {
-        float ul = rng.next_float();
-        Vec2f u = rng.next_2d();
-        auto s = b.sample(ctx, wo, ul, u);
-        if (!s) {
-            h.obs.back() += 1;
-            continue;
-        }
-        h.obs[cell_of(s->wi)] += 1;
-        if (!s->is_specular()) continue;
-        bool known = false;
-        for (const auto& d : h.deltas)
-            if (length2(d.w - s->wi) < 1e-10f) known = true;
-        if (!known) h.deltas.push_back({s->wi, double(s->pdf)});
-    }
-}
-
-// Sample in kChunks fixed chunks (threads only change who runs a chunk) and merge.
-template <class T>
-Histogram<T> sample_histogram(const T& b, const BxDFContext& ctx, const Vec3f& wo, uint64_t seed) {
-    std::vector<Histogram<T>> parts(kChunks);
-    std::vector<std::thread> threads;
-    std::atomic<int> next{0};
-    unsigned nt = std::max(1u, std::min(unsigned(kChunks), std::thread::hardware_concurrency()));
-    for (unsigned t = 0; t < nt; ++t)
-        threads.emplace_back([&] {
-            for (int c; (c = next++) < kChunks;) sample_chunk(b, ctx, wo, seed, c, kChi2Samples / kChunks, parts[c]);
-        });
-    for (auto& t : threads) t.join();
-    Histogram<T> h;
-    for (auto& p : parts) {
-        for (size_t i = 0; i < h.obs.size(); ++i) h.obs[i] += p.obs[i];
-        for (const auto& d : p.deltas) {
-            bool known = false;
-            for (const auto& e : h.deltas) known |= length2(d.w - e.w) < 1e-10f;
-            if (!known) h.deltas.push_back(d);
-        }
-    }
-    return h;
-}
-
-// N × ∫_cell pdf dω over the cell (cos θ ∈ [z0, z1], φ ∈ [p0, p1]) with an n × n Gauss rule on each
-// of sub × sub sub-cells.
-template <class T>
-double cell_integral(const T& b, const BxDFContext& ctx, const Vec3f& wo, int it, int ip, int sub, int n) {
-    double z0 = -1.0 + 2.0 * it / kThetaBins, dz = 2.0 / kThetaBins / sub;
-    double p0 = 2.0 * M_PI * ip / kPhiBins, dp = 2.0 * M_PI / kPhiBins / sub, sum = 0.0;
-    auto pdf = [&](double z, double phi) {
-        double s = std::sqrt(std::max(0.0, 1.0 - z * z));
-        return double(b.pdf(ctx, wo, Vec3f(float(s * std::cos(phi)), float(s * std::sin(phi)), float(z))));
-    };
-    for (int a = 0; a < sub; ++a)
-        for (int c = 0; c < sub; ++c)
-            sum += integrate_2d_gauss(pdf, z0 + a * dz, z0 + (a + 1) * dz, p0 + c * dp, p0 + (c + 1) * dp, n);
-    return sum;
-}
-
-/// Mitsuba-0.6-style χ² (REFERENCE.md §2.3): smooth density integrated per cell, plus discrete
-/// probability × N for each distinct delta direction, plus a 'failed' cell expecting the missing mass.
+/// χ² of sample() against pdf() and the delta probabilities, on the sphere around the local z axis
+/// (support/sphere_chi2.h: 32 × 64 equal-area cells, 10⁶ samples).
 template <class T>
 Chi2Result run_chi2(const T& b, TransportMode mode, const Vec3f& wo, uint64_t seed) {
     BxDFContext ctx{mode, BxDFFlags::All};
-    Histogram<T> h = sample_histogram(b, ctx, wo, seed);
-    const double n = double(kChunks) * (kChi2Samples / kChunks);
-    std::vector<double> expected(h.obs.size(), 0.0), delta(h.obs.size(), 0.0);
-    for (const auto& d : h.deltas) delta[cell_of(d.w)] += d.p * n;
-    for (int it = 0; it < kThetaBins; ++it)
-        for (int ip = 0; ip < kPhiBins; ++ip) {
-            int k = it * kPhiBins + ip;
-            expected[k] = n * cell_integral(b, ctx, wo, it, ip, 1, 6) + delta[k];
-            // A cell that disagrees with the observation by > 4σ is re-integrated with a 32 × 32
-            // composite 3-point rule: the pdf may be discontinuous inside a cell (e.g. the
-            // rough-dielectric transmission cut-off where the generalised half vector reaches the
-            // horizon), which one 6 × 6 rule cannot see. This only makes the expectation more accurate.
-            if (sqr(float(h.obs[k] - expected[k])) > 16.0 * std::max(expected[k], 1.0))
-                expected[k] = n * cell_integral(b, ctx, wo, it, ip, 32, 3) + delta[k];
-        }
-    double mass = 0.0;
-    for (size_t i = 0; i + 1 < expected.size(); ++i) mass += expected[i];
-    expected.back() = std::max(0.0, n - mass);
-    // A distribution concentrated in one cell (a pure mirror) leaves no degrees of freedom: then the
-    // observation must match exactly.
-    int nonzero = 0;
-    for (double e : expected) nonzero += e > 0.5;
-    if (nonzero <= 1) {
-        Chi2Result r;
-        r.p_value = 1.0;
-        for (size_t i = 0; i < expected.size(); ++i)
-            if (std::fabs(h.obs[i] - expected[i]) > 1e-6 * n) r.p_value = 0.0;
-        r.message = "single-cell distribution";
-        return r;
-    }
-    return chi2_test(h.obs, expected);
+    return sphere_chi2([&](float ul, const Vec2f& u) { return b.sample(ctx, wo, ul, u); },
+                       [&](const Vec3f& wi) { return b.pdf(ctx, wo, wi); }, seed);
 }
 
 template <class T>

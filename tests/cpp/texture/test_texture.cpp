@@ -14,7 +14,6 @@
 #include "pellucid/texture/texture.h"
 #include "pellucid/util/error.h"
 #include "support/scene_util.h"
-#include "bxdf/bxdf_cases.h"
 
 using namespace pellucid;
 
@@ -215,59 +214,7 @@ TEST(NormalMap, FlatMapChangesNothing) {
     }
 }
 
-// The property suite on bumped surfaces: every BxDF of the variant, with every parameter case of
-// the property suite (tests/cpp/bxdf/bxdf_cases.h), placed on a frame whose normal is bumped 22°
-// off the geometric normal, through the BSDF wrapper, with and without terminator softening:
-// sample weights equal eval/pdf, pdf equals sample's pdf, and the mean weight with the η² radiance
-// scaling removed (the directional albedo) is ≤ 1 + 5 SE (20k samples per direction, fixed seed).
-namespace {
-template <class T>
-void check_bumped_contract(const T& bxdf, const std::string& name, PCG32& rng) {
-    Normal3f ng(0, 0, 1);
-    Frame f = Frame::from_xz(Vec3f(1, 0, 0), normalize(Vec3f(0.35f, -0.2f, 1.f)));
-    for (bool soften : {false, true}) {
-        BSDF b(BxDF(bxdf), f, ng);
-        if (soften) b.soften_terminator(ng);
-        for (Vec3f wo : {normalize(Vec3f(0.2f, 0.1f, 1.f)), normalize(Vec3f(-0.8f, 0.3f, 0.4f)),
-                         normalize(Vec3f(0.3f, -0.4f, -0.8f))}) {
-            double sum = 0.0, sum2 = 0.0;
-            const int n = 20000;
-            for (int i = 0; i < n; ++i) {
-                auto s = b.sample(wo, rng.next_float(), rng.next_2d());
-                if (!s) continue;
-                double w = s->weight.max_component();
-                // Radiance crossing into a medium of relative IOR η is scaled by 1/η²; energy is
-                // the weight with that factor removed.
-                double we = has_flag(s->lobe, BxDFFlags::Transmission) ? w * double(s->eta) * s->eta : w;
-                sum += we;
-                sum2 += we * we;
-                if (s->is_specular()) continue;
-                float pdf = b.pdf(wo, s->wi);
-                ASSERT_NEAR(pdf, s->pdf, 2e-3f * s->pdf + 1e-6f) << name;
-                ASSERT_NEAR(b.eval(wo, s->wi).max_component() / pdf, w, 2e-3 * w + 1e-5) << name;
-            }
-            double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
-            EXPECT_LE(mean, 1.0 + 5.0 * se + 1e-4) << name << " soften " << soften;
-        }
-    }
-}
-template <class V>
-struct AllCases;
-template <class... Ts>
-struct AllCases<std::variant<Ts...>> {
-    static void run(PCG32& rng) {
-        auto one = [&](auto cases) {
-            for (const auto& c : cases) check_bumped_contract(c.bxdf, c.name, rng);
-        };
-        (one(pellucid::test::BxDFCases<Ts>::cases()), ...);
-    }
-};
-}  // namespace
-
-TEST(Bump, PropertySuiteContractOnBumpedFrames) {
-    PCG32 rng(11, 3);
-    AllCases<BxDF>::run(rng);
-}
+// The property suite on bumped surfaces: tests/cpp/material/test_bumped_properties.cpp.
 
 TEST(ImageTexture, BadInputNamesThePath) {
     std::string dir = tmp_dir();
