@@ -12,48 +12,17 @@
 #include "pellucid/util/error.h"
 #include "pellucid/scene/json_io.h"
 #include "support/chi2.h"
+#include "support/render_checks.h"
 #include "support/scene_util.h"
 
 using namespace pellucid;
 
 using pellucid::test::LogCapture;
+using pellucid::test::expect_constant_image;
 using pellucid::test::scene_from;
 using pellucid::test::z_two_sided;
 
 namespace {
-
-
-// Per-pixel z-test as Mitsuba 3's render tests do it (../shared/REFERENCE.md §2.2): each pixel's
-// own variance, two-sided α = 0.01 Šidák-corrected over the pixels, and at least 99.75 % of pixels
-// must pass (heavy-tailed estimators, e.g. NEE near the edges of a box, make per-pixel sample
-// variances unreliable one by one). The image mean is tested separately at α = 1e-4.
-void expect_constant_image(const RenderResult& r, double expected, const char* what) {
-    const Image& img = r.image;
-    const Image& var = r.variance;
-    size_t n = size_t(img.width) * img.height;
-    double z_max = z_two_sided(test::sidak_alpha(0.01, int(n * 3)));
-    double sum = 0;
-    int fails = 0;
-    for (size_t i = 0; i < n * 3; ++i) {
-        sum += img.data[i];
-        // Float rounding of a path's sum (~1e-6 relative) bounds how exact a zero-variance
-        // estimator (NEE inside a closed sphere) can be.
-        double d = std::fabs(img.data[i] - expected), s2 = var.data[i] + std::pow(1e-6 * expected, 2);
-        if (d / std::sqrt(s2) > z_max) ++fails;
-    }
-    EXPECT_LE(fails, int(0.0025 * double(n * 3))) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")";
-    // The image mean's standard error from the spread of the pixel values: every pixel has the same
-    // expectation, so their spread measures the real per-pixel variance, heavy tails included,
-    // where the film's per-sample variance misses the rare large samples it has not seen.
-    double mean = sum / double(n * 3), spread = 0;
-    for (size_t i = 0; i < n * 3; ++i) spread += (img.data[i] - mean) * (img.data[i] - mean);
-    double se = std::sqrt(spread / double(n * 3 - 1) / double(n * 3));
-    EXPECT_EQ(fails, 0) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")";
-    EXPECT_LT(std::fabs(mean - expected), z_two_sided(1e-4) * se + 1e-6)
-        << what << ": image mean " << mean << " vs " << expected << " (standard error " << se << ")";
-    EXPECT_EQ(r.stats.invalid_samples, 0u);
-}
-
 const char* kCamera = R"("camera": {"type": "perspective", "fov": 40,
     "to_world": [{"look_at": {"origin": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0]}}]})";
 }  // namespace

@@ -28,6 +28,7 @@
 #include "pellucid/sampling/rng.h"
 #include "pellucid/sampling/warp.h"
 #include "support/sphere_chi2.h"
+#include "support/surface_util.h"
 
 namespace pellucid::test {
 namespace {
@@ -41,24 +42,6 @@ struct BumpFrame {
 
 float tilt_deg(const Frame& f) { return safe_acos(dot(f.n, kNg)) * 180.f / kPi; }
 
-// A hit on the plane z = 0 with p = (u, v, 0), the viewer along the normal.
-SurfaceInteraction plane_hit(const Vec2f& uv) {
-    SurfaceInteraction si;
-    si.p = Point3f(uv.x, uv.y, 0.f);
-    si.uv = uv;
-    si.ng = kNg;
-    si.dpdu = Vec3f(1, 0, 0);
-    si.dpdv = Vec3f(0, 1, 0);
-    si.shading = Frame::from_xz(si.dpdu, si.ng);
-    si.wo = kNg;
-    return si;
-}
-TextureEvalContext ctx_of(const SurfaceInteraction& si) {
-    TextureEvalContext c;
-    c.p = si.p;
-    c.uv = si.uv;
-    return c;
-}
 
 Frame tilted(float deg, float azimuth) {
     float t = deg * kPi / 180.f;

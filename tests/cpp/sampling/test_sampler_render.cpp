@@ -14,30 +14,15 @@
 #include "pellucid/scene/mitsuba_xml.h"
 #include "pellucid/util/error.h"
 #include "support/chi2.h"
+#include "support/render_checks.h"
 #include "support/scene_util.h"
 
 using namespace pellucid;
+using pellucid::test::expect_constant_image;
 using pellucid::test::scene_from;
 using pellucid::test::z_two_sided;
 
 namespace {
-void expect_constant_image(const RenderResult& r, double expected, const std::string& what) {
-    const size_t n = r.image.data.size();
-    const double z_max = z_two_sided(test::sidak_alpha(0.01, int(n)));
-    double sum = 0, sum_var = 0;
-    int fails = 0;
-    for (size_t i = 0; i < n; ++i) {
-        sum += r.image.data[i];
-        sum_var += r.variance.data[i];
-        double d = std::fabs(r.image.data[i] - expected), s2 = r.variance.data[i] + std::pow(1e-6 * expected, 2);
-        if (d / std::sqrt(s2) > z_max) ++fails;
-    }
-    EXPECT_EQ(fails, 0) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")";
-    double mean = sum / double(n), se = std::sqrt(sum_var) / double(n);
-    EXPECT_LT(std::fabs(mean - expected), z_two_sided(1e-4) * se + 1e-6)
-        << what << ": image mean " << mean << " vs " << expected << " (standard error " << se << ")";
-    EXPECT_EQ(r.stats.invalid_samples, 0u) << what;
-}
 
 const char* kCamera = R"("camera": {"type": "perspective", "fov": 40,
     "to_world": [{"look_at": {"origin": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0]}}]})";

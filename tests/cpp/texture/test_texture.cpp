@@ -14,12 +14,15 @@
 #include "pellucid/texture/texture.h"
 #include "pellucid/util/error.h"
 #include "support/scene_util.h"
+#include "support/surface_util.h"
 
 using namespace pellucid;
 
 using pellucid::test::LogCapture;
 using pellucid::test::scene_from;
 using pellucid::test::z_two_sided;
+using pellucid::test::ctx_of;
+using pellucid::test::plane_hit;
 
 namespace {
 std::string tmp_dir() {
@@ -29,23 +32,6 @@ std::string tmp_dir() {
 }
 
 
-// A hit on the z = 0 plane at the origin, with the plane's parameterisation p = (u, v, 0).
-SurfaceInteraction plane_hit() {
-    SurfaceInteraction si;
-    si.p = Point3f(0.f);
-    si.ng = Normal3f(0, 0, 1);
-    si.dpdu = Vec3f(1, 0, 0);
-    si.dpdv = Vec3f(0, 1, 0);
-    si.shading = Frame::from_xz(si.dpdu, si.ng);
-    si.wo = Vec3f(0, 0, 1);
-    return si;
-}
-TextureEvalContext ctx_of(const SurfaceInteraction& si) {
-    TextureEvalContext c;
-    c.p = si.p;
-    c.uv = si.uv;
-    return c;
-}
 }  // namespace
 
 TEST(Bump, ConstantHeightLeavesNormalUnchanged) {
