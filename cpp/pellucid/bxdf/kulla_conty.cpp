@@ -23,20 +23,29 @@ float node(int i) { return float(i) / float(GGXAlbedoTable::kN - 1); }
 float node_mu(int i) { return sqr(node(i)); }
 }  // namespace
 
-double GGXAlbedoTable::integrate_E(double mu, double alpha, int n) {
-    if (alpha <= 0.0) return 1.0;
+namespace {
+// Both tables integrate over visible normals: with wm ~ D_wo (Heitz 2018), the albedo of a microfacet
+// BSDF is E[Σ_lobes F_lobe·G(wo, wi)/G1(wo)], here by an n × n midpoint rule in the VNDF's
+// parameterisation. `per_normal(d, wo, wm)` returns Σ F·G for one visible normal.
+template <class PerNormal>
+double vndf_midpoint_mean(double mu, double alpha, int n, PerNormal&& per_normal) {
     GGX d{float(alpha)};
     mu = std::max(double(kMinMu), std::min(1.0, mu));
     Vec3f wo(float(std::sqrt(1.0 - mu * mu)), 0.f, float(mu));
-    double g1 = d.G1(wo), sum = 0.0;
+    double sum = 0.0;
     for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            Vec3f wm = d.sample_visible(wo, Vec2f((i + 0.5f) / n, (j + 0.5f) / n));
-            Vec3f wi = reflect(wo, wm);
-            if (wi.z <= 0.f) continue;
-            sum += d.G(wo, wi) / g1;
-        }
-    return sum / (double(n) * n);
+        for (int j = 0; j < n; ++j)
+            sum += per_normal(d, wo, d.sample_visible(wo, Vec2f((i + 0.5f) / n, (j + 0.5f) / n)));
+    return sum / (double(n) * n * d.G1(wo));
+}
+}  // namespace
+
+double GGXAlbedoTable::integrate_E(double mu, double alpha, int n) {
+    if (alpha <= 0.0) return 1.0;
+    return vndf_midpoint_mean(mu, alpha, n, [](const GGX& d, const Vec3f& wo, const Vec3f& wm) {
+        Vec3f wi = reflect(wo, wm);
+        return wi.z > 0.f ? double(d.G(wo, wi)) : 0.0;
+    });
 }
 
 GGXAlbedoTable::GGXAlbedoTable() : GGXAlbedoTable(kGGXAlbedoData) {}
@@ -136,21 +145,14 @@ float DT::node_eta(int k) { return 1.f + (kMaxEta - 1.f) * sqr(float(k) / float(
 
 double DT::integrate_E(double mu, double alpha, double eta_rel, int n) {
     if (alpha <= 0.0) return 1.0;  // smooth interface: lossless
-    GGX d{float(alpha)};
-    mu = std::max(double(kMinMu), std::min(1.0, mu));
-    Vec3f wo(float(std::sqrt(1.0 - mu * mu)), 0.f, float(mu));
-    double g1 = d.G1(wo), sum = 0.0;
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            Vec3f wm = d.sample_visible(wo, Vec2f((i + 0.5f) / n, (j + 0.5f) / n));
-            double F = fresnel_dielectric_d(dot(wo, wm), eta_rel);
-            Vec3f wr = reflect(wo, wm), wt;
-            if (wr.z > 0.f) sum += F * d.G(wo, wr) / g1;
-            float etap;
-            if (F < 1.0 && refract(wo, wm, float(eta_rel), &etap, &wt) && wt.z < 0.f)
-                sum += (1.0 - F) * d.G(wo, wt) / g1;
-        }
-    return sum / (double(n) * n);
+    return vndf_midpoint_mean(mu, alpha, n, [eta_rel](const GGX& d, const Vec3f& wo, const Vec3f& wm) {
+        double F = fresnel_dielectric_d(dot(wo, wm), eta_rel), sum = 0.0;
+        Vec3f wr = reflect(wo, wm), wt;
+        if (wr.z > 0.f) sum += F * d.G(wo, wr);
+        float etap;
+        if (F < 1.0 && refract(wo, wm, float(eta_rel), &etap, &wt) && wt.z < 0.f) sum += (1.0 - F) * d.G(wo, wt);
+        return sum;
+    });
 }
 
 DT::GGXDielectricAlbedoTable() {

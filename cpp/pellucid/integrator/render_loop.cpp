@@ -74,27 +74,26 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
         int s0 = done, s1 = std::min(total_spp, done + pass);
         int64_t n_tiles = int64_t(tiles_x) * tiles_y;
         for (int colour = 0; colour < P * P; ++colour) {
-        const int cx = colour % P, cy = colour / P;
-        const int64_t gx = (tiles_x - cx + P - 1) / P, gy = (tiles_y - cy + P - 1) / P;  // tiles of this colour
-        if (gx <= 0 || gy <= 0) continue;
-        parallel_for(gx * gy, opts.threads, [&](int64_t g) {
-            if (cancelled()) return;
-            const int64_t t = (int64_t(cy) + (g / gx) * P) * tiles_x + int64_t(cx) + (g % gx) * P;
-            int tx = int(t % tiles_x) * kTile, ty = int(t / tiles_x) * kTile;
-            TileJob job{tx, ty, std::min(tx + kTile, W), std::min(ty + kTile, H), s0, s1, seed};
-            uint64_t bad = tile_fn(job, film);
-            invalid += bad;
-            int64_t k = ++tiles_done;
-            double frac = opts.time_budget > 0.0
-                              ? elapsed() / opts.time_budget
-                              : (double(s0) * n_tiles + double(s1 - s0) * double(k)) / (double(total_spp) * n_tiles);
-            bar.update(std::min(1.0, frac), elapsed());
-            if (opts.progress_out) {
-                uint64_t n = uint64_t(job.x1 - job.x0) * uint64_t(job.y1 - job.y0) * uint64_t(s1 - s0);
-                opts.progress_out->samples.fetch_add(n, std::memory_order_relaxed);
-                store_max(opts.progress_out->fraction, std::min(1.0, frac));
-            }
-        });
+            const int cx = colour % P, cy = colour / P;
+            const int64_t gx = (tiles_x - cx + P - 1) / P, gy = (tiles_y - cy + P - 1) / P;  // tiles of this colour
+            if (gx <= 0 || gy <= 0) continue;
+            parallel_for(gx * gy, opts.threads, [&](int64_t g) {
+                if (cancelled()) return;
+                const int tx = (cx + int(g % gx) * P) * kTile, ty = (cy + int(g / gx) * P) * kTile;
+                TileJob job{tx, ty, std::min(tx + kTile, W), std::min(ty + kTile, H), s0, s1, seed};
+                uint64_t bad = tile_fn(job, film);
+                invalid += bad;
+                int64_t k = ++tiles_done;
+                double frac = opts.time_budget > 0.0
+                                  ? elapsed() / opts.time_budget
+                                  : (double(s0) * n_tiles + double(s1 - s0) * double(k)) / (double(total_spp) * n_tiles);
+                bar.update(std::min(1.0, frac), elapsed());
+                if (opts.progress_out) {
+                    uint64_t n = uint64_t(job.x1 - job.x0) * uint64_t(job.y1 - job.y0) * uint64_t(s1 - s0);
+                    opts.progress_out->samples.fetch_add(n, std::memory_order_relaxed);
+                    store_max(opts.progress_out->fraction, std::min(1.0, frac));
+                }
+            });
         }
         tiles_done = 0;
         if (cancelled()) {

@@ -252,6 +252,14 @@ Material build_conductor(Properties& p, const BuildContext& ctx) {
     return ConductorMaterial(q);
 }
 
+// Kulla-Conty energy compensation: our albedo tables are tabulated for GGX only.
+bool read_multiple_scattering(Properties& p, const MicrofacetParams& m) {
+    bool on = p.get_bool("multiple_scattering", false);
+    if (on && m.distribution != MicrofacetType::GGX)
+        p.fail("multiple_scattering", "requires distribution 'ggx' (the Kulla-Conty tables are GGX only)");
+    return on;
+}
+
 Material build_rough_conductor(Properties& p, const BuildContext& ctx) {
     RoughConductorParams q;
     Binder b(p, ctx, q);
@@ -259,9 +267,7 @@ Material build_rough_conductor(Properties& p, const BuildContext& ctx) {
     read_conductor_ior(b, q.ior);
     q.specular_reflectance = Spectrum(1.f);
     b.colour("specular_reflectance", q.specular_reflectance);
-    q.multiple_scattering = p.get_bool("multiple_scattering", false);
-    if (q.multiple_scattering && q.microfacet.distribution != MicrofacetType::GGX)
-        p.fail("multiple_scattering", "requires distribution 'ggx' (the Kulla-Conty table is GGX only)");
+    q.multiple_scattering = read_multiple_scattering(p, q.microfacet);
     return RoughConductorMaterial(q);
 }
 
@@ -282,9 +288,7 @@ Material build_rough_dielectric(Properties& p, const BuildContext& ctx) {
     Binder b(p, ctx, q);
     read_microfacet(b, q.microfacet);
     read_dielectric(b, q.dielectric);
-    q.multiple_scattering = p.get_bool("multiple_scattering", false);
-    if (q.multiple_scattering && q.microfacet.distribution != MicrofacetType::GGX)
-        p.fail("multiple_scattering", "requires distribution 'ggx' (the Kulla-Conty tables are GGX only)");
+    q.multiple_scattering = read_multiple_scattering(p, q.microfacet);
     return RoughDielectricMaterial(q);
 }
 

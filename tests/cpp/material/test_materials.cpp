@@ -98,7 +98,7 @@ TEST(Materials, ErrorsNameKeyPathParameterAndValue) {
     EXPECT_EQ(material_error(R"({"type": "rough_plastic", "distribution": "blinn"})"),
               "scene.json: materials.m.distribution: unknown distribution 'blinn' (known: ggx, beckmann)");
     EXPECT_EQ(material_error(R"({"type": "rough_conductor", "distribution": "beckmann", "multiple_scattering": true})"),
-              "scene.json: materials.m.multiple_scattering: requires distribution 'ggx' (the Kulla-Conty table is "
+              "scene.json: materials.m.multiple_scattering: requires distribution 'ggx' (the Kulla-Conty tables are "
               "GGX only)");
     EXPECT_EQ(material_error(R"({"type": "rough_conductor", "alpha": 0.1, "roughness": 0.3})"),
               "scene.json: materials.m.roughness: give only one of alpha, alpha_u/alpha_v, roughness");
