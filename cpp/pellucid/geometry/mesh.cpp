@@ -15,6 +15,54 @@ float TriangleMesh::triangle_area(size_t tri) const {
     return 0.5f * length(cross(b - a, c - a));
 }
 
+FlatTriangle TriangleMesh::flat_triangle(size_t tri) const {
+    const uint32_t i0 = indices[3 * tri], i1 = indices[3 * tri + 1], i2 = indices[3 * tri + 2];
+    const Point3f &p0 = positions[i0], &p1 = positions[i1], &p2 = positions[i2];
+    FlatTriangle f;
+    f.ng = normalize(cross(p1 - p0, p2 - p0));
+    // dp/du, dp/dv from the uv parameterisation (pbrt-v4 §6.5.3); without uvs the triangle's own
+    // (0,0), (1,0), (1,1).
+    const Vec2f uv0 = uvs.empty() ? Vec2f(0, 0) : uvs[i0], uv1 = uvs.empty() ? Vec2f(1, 0) : uvs[i1],
+                uv2 = uvs.empty() ? Vec2f(1, 1) : uvs[i2];
+    const Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+    const Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
+    const float det = duv02.x * duv12.y - duv02.y * duv12.x;
+    const bool degenerate_uv = std::fabs(det) < 1e-9f;
+    if (!degenerate_uv) {
+        const float inv = 1.f / det;
+        f.dpdu = (duv12.y * dp02 - duv02.y * dp12) * inv;
+        f.dpdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
+    }
+    if (degenerate_uv || length2(cross(f.dpdu, f.dpdv)) == 0.f) {
+        const Frame fr = Frame::from_z(f.ng);
+        f.dpdu = fr.s;
+        f.dpdv = fr.t;
+    }
+    f.shading = Frame::from_xz(f.dpdu, f.ng);
+    return f;
+}
+
+void TriangleMesh::precompute_flat() {
+    flat.clear();
+    const size_t n = triangle_count();
+    for (size_t i = 0; i < n && !normals.empty(); ++i) {
+        const Normal3f& n0 = normals[indices[3 * i]];
+        if (!(n0 == normals[indices[3 * i + 1]] && n0 == normals[indices[3 * i + 2]]) || !(length2(n0) > 0.f)) return;
+    }
+    flat.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        FlatTriangle f = flat_triangle(i);
+        if (!normals.empty()) {
+            // As a hit on a smooth triangle would compute them (Scene::intersect): the shading normal
+            // is the (constant) vertex normal and the geometric normal turns to its side.
+            const Normal3f ns = normalize(normals[indices[3 * i]]);
+            if (dot(ns, f.ng) < 0.f) f.ng = -f.ng;
+            f.shading = Frame::from_xz(f.dpdu, ns);
+        }
+        flat[i] = f;
+    }
+}
+
 void TriangleMesh::transform(const Transform& t) {
     for (auto& p : positions) p = t.point(p);
     for (auto& n : normals) n = normalize(t.normal(n));

@@ -16,6 +16,7 @@ AreaLight::AreaLight(const TriangleMesh& mesh, const Spectrum& radiance, bool tw
     std::vector<float> areas(n);
     m_tri.reserve(3 * n);
     m_tri_n.reserve(n);
+    m_tri_err.reserve(n);
     for (size_t t = 0; t < n; ++t) {
         const Point3f& a = mesh.positions[mesh.indices[3 * t]];
         const Point3f& b = mesh.positions[mesh.indices[3 * t + 1]];
@@ -31,6 +32,7 @@ AreaLight::AreaLight(const TriangleMesh& mesh, const Spectrum& radiance, bool tw
             if (dot(ns, ng) < 0.f) ng = -ng;
         }
         m_tri_n.push_back(ng);
+        m_tri_err.push_back(gamma(6) * (abs(a) + abs(b) + abs(c)));
         m_area += areas[t];
     }
     m_tri_dist = Distribution1D(areas);
@@ -52,7 +54,7 @@ std::optional<LightLiSample> AreaLight::sample_li(const LightSampleContext& ctx,
         const Point3f* v = &m_tri[3 * t];
         s.p_light = v[0] * (1.f - b.x - b.y) + v[1] * b.x + v[2] * b.y;
         s.n_light = m_tri_n[t];
-        s.p_error = gamma(6) * (abs(v[0]) + abs(v[1]) + abs(v[2]));
+        s.p_error = m_tri_err[t];
     } else {
         Vec3f to_c = m_center - ctx.p;
         float d2 = length2(to_c);

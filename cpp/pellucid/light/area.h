@@ -45,6 +45,7 @@ private:
     // Mesh emitter: triangle corners (3 per triangle) and face normals, area distribution.
     std::vector<Point3f> m_tri;
     std::vector<Normal3f> m_tri_n;
+    std::vector<Vec3f> m_tri_err;  ///< error bound of a sampled point, per triangle (its vertices are fixed)
     Distribution1D m_tri_dist;
     // Sphere emitter.
     Point3f m_center{0.f};

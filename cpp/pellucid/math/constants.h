@@ -13,6 +13,7 @@ constexpr float kInvPi = 0.31830988618379067154f;
 constexpr float kInv2Pi = 0.15915494309189533577f;
 constexpr float kInv4Pi = 0.07957747154594766788f;
 constexpr float kPiOver2 = 1.57079632679489661923f;
+constexpr float kPiOver4 = 0.78539816339744830962f;
 constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr float kMachineEpsilon = std::numeric_limits<float>::epsilon() * 0.5f;

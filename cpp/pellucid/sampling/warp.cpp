@@ -9,31 +9,6 @@
 
 namespace pellucid {
 
-Vec2f square_to_uniform_disk_concentric(Vec2f u) {
-    // Shirley & Chiu 1997 concentric map.
-    Vec2f o = 2.f * u - Vec2f(1.f);
-    if (o.x == 0.f && o.y == 0.f) return Vec2f(0.f);
-    float r, theta;
-    if (std::fabs(o.x) > std::fabs(o.y)) {
-        r = o.x;
-        theta = (kPi / 4.f) * (o.y / o.x);
-    } else {
-        r = o.y;
-        theta = kPiOver2 - (kPi / 4.f) * (o.x / o.y);
-    }
-    return r * Vec2f(std::cos(theta), std::sin(theta));
-}
-float square_to_uniform_disk_concentric_pdf(Vec2f p) {
-    return (p.x * p.x + p.y * p.y <= 1.f) ? kInvPi : 0.f;
-}
-
-Vec3f square_to_cosine_hemisphere(Vec2f u) {
-    Vec2f d = square_to_uniform_disk_concentric(u);
-    float z = safe_sqrt(1.f - d.x * d.x - d.y * d.y);
-    return Vec3f(d.x, d.y, z);
-}
-float square_to_cosine_hemisphere_pdf(const Vec3f& w) { return w.z > 0.f ? w.z * kInvPi : 0.f; }
-
 Vec3f square_to_uniform_hemisphere(Vec2f u) {
     float z = u.x;
     float r = safe_sqrt(1.f - z * z);
@@ -58,18 +33,6 @@ Vec3f square_to_uniform_cone(Vec2f u, float cos_theta_max) {
 }
 float square_to_uniform_cone_pdf(const Vec3f& w, float cos_theta_max) {
     return w.z >= cos_theta_max ? 1.f / (2.f * kPi * (1.f - cos_theta_max)) : 0.f;
-}
-
-Vec2f square_to_uniform_triangle(Vec2f u) {
-    float b0, b1;
-    if (u.x < u.y) {
-        b0 = u.x / 2.f;
-        b1 = u.y - b0;
-    } else {
-        b1 = u.y / 2.f;
-        b0 = u.x - b1;
-    }
-    return Vec2f(b0, b1);
 }
 
 float sample_tent(float u, float r) {

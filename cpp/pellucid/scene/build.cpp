@@ -224,6 +224,7 @@ private:
         uint32_t id = g.is_sphere ? m_scene.accel.add_sphere(g.center, g.radius) : m_scene.accel.add_mesh(g.mesh);
         PELLUCID_CHECK(id == m_scene.shapes.size(), "geometry ids must be dense");
         if (!g.is_sphere) {
+            g.mesh.precompute_flat();
             m_scene.triangle_count += g.mesh.triangle_count();
             m_scene.meshes.push_back(std::move(g.mesh));
         }

@@ -14,44 +14,35 @@ void fill_triangle(const TriangleMesh& m, const RayHit& h, SurfaceInteraction& s
     si.p = b0 * p0 + b1 * p1 + b2 * p2;
     // Barycentric interpolation error bound (pbrt-v4 §6.8.5, eq. 6.31).
     si.p_error = gamma(7) * (abs(b0 * p0) + abs(b1 * p1) + abs(b2 * p2));
-    Vec3f e1 = p1 - p0, e2 = p2 - p0;
-    si.ng = normalize(cross(e1, e2));
-    Vec2f uv0(0, 0), uv1(1, 0), uv2(1, 1);
-    if (!m.uvs.empty()) {
-        uv0 = m.uvs[i0];
-        uv1 = m.uvs[i1];
-        uv2 = m.uvs[i2];
-    }
-    si.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
-    // dp/du, dp/dv from the uv parameterisation (pbrt-v4 §6.5.3).
-    Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
-    Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
-    float det = duv02.x * duv12.y - duv02.y * duv12.x;
-    bool degenerate_uv = std::fabs(det) < 1e-9f;
-    if (!degenerate_uv) {
-        float inv = 1.f / det;
-        si.dpdu = (duv12.y * dp02 - duv02.y * dp12) * inv;
-        si.dpdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
-    }
-    if (degenerate_uv || length2(cross(si.dpdu, si.dpdv)) == 0.f) {
-        Frame f = Frame::from_z(si.ng);
-        si.dpdu = f.s;
-        si.dpdv = f.t;
-    }
-    Normal3f ns = si.ng;
+    si.uv = m.uvs.empty() ? Vec2f(b1 + b2, b2) : b0 * m.uvs[i0] + b1 * m.uvs[i1] + b2 * m.uvs[i2];
     si.dndu = si.dndv = Vec3f(0.f);
-    if (!m.normals.empty()) {
-        Normal3f n = b0 * m.normals[i0] + b1 * m.normals[i1] + b2 * m.normals[i2];
-        if (length2(n) > 0.f) {
-            ns = normalize(n);
-            if (dot(ns, si.ng) < 0.f) si.ng = -si.ng;  // geometric normal follows the shading side
-            // ∂n/∂u, ∂n/∂v of the interpolated normal, by the same uv solve as dp/du (pbrt-v4 §6.5.3).
-            if (!degenerate_uv) {
-                float inv = 1.f / det;
-                Vec3f dn02 = m.normals[i0] - m.normals[i2], dn12 = m.normals[i1] - m.normals[i2];
-                si.dndu = (duv12.y * dn02 - duv02.y * dn12) * inv;
-                si.dndv = (duv02.x * dn12 - duv12.x * dn02) * inv;
-            }
+    if (!m.flat.empty()) {  // flat shading: every other quantity is constant over the triangle
+        const FlatTriangle& f = m.flat[h.prim_id];
+        si.ng = f.ng;
+        si.dpdu = f.dpdu;
+        si.dpdv = f.dpdv;
+        si.shading = f.shading;
+        return;
+    }
+    const FlatTriangle f = m.flat_triangle(h.prim_id);
+    si.ng = f.ng;
+    si.dpdu = f.dpdu;
+    si.dpdv = f.dpdv;
+    Normal3f ns = si.ng;
+    const Normal3f n = m.normals.empty() ? Normal3f(0.f) : b0 * m.normals[i0] + b1 * m.normals[i1] + b2 * m.normals[i2];
+    if (length2(n) > 0.f) {
+        ns = normalize(n);
+        if (dot(ns, si.ng) < 0.f) si.ng = -si.ng;  // geometric normal follows the shading side
+        // ∂n/∂u, ∂n/∂v of the interpolated normal, by the same uv solve as dp/du (pbrt-v4 §6.5.3).
+        const Vec2f uv0 = m.uvs.empty() ? Vec2f(0, 0) : m.uvs[i0], uv1 = m.uvs.empty() ? Vec2f(1, 0) : m.uvs[i1],
+                    uv2 = m.uvs.empty() ? Vec2f(1, 1) : m.uvs[i2];
+        const Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+        const float det = duv02.x * duv12.y - duv02.y * duv12.x;
+        if (std::fabs(det) >= 1e-9f) {
+            float inv = 1.f / det;
+            Vec3f dn02 = m.normals[i0] - m.normals[i2], dn12 = m.normals[i1] - m.normals[i2];
+            si.dndu = (duv12.y * dn02 - duv02.y * dn12) * inv;
+            si.dndv = (duv02.x * dn12 - duv12.x * dn02) * inv;
         }
     }
     si.shading = Frame::from_xz(si.dpdu, ns);
