@@ -133,4 +133,67 @@ bool EmbreeScene::occluded(const Ray& ray) const {
     rtcOccluded1(m_impl->scene, &ctx, &r);
     return r.tfar < 0.f;
 }
+
+namespace {
+// Lanes past n stay invalid (valid[i] = 0); Embree reads no other field of an invalid lane, but
+// they hold a harmless ray anyway.
+template <class RayK>
+void fill_packet(int n, const Ray* const* rays, RayK& r, int* valid) {
+    for (int i = 0; i < EmbreeScene::kPacketSize; ++i) {
+        const bool on = i < n;
+        const Ray& ray = *rays[on ? i : 0];
+        valid[i] = on ? -1 : 0;
+        r.org_x[i] = ray.o.x;
+        r.org_y[i] = ray.o.y;
+        r.org_z[i] = ray.o.z;
+        r.dir_x[i] = ray.d.x;
+        r.dir_y[i] = ray.d.y;
+        r.dir_z[i] = ray.d.z;
+        r.tnear[i] = 0.f;
+        r.tfar[i] = ray.tmax;
+        r.mask[i] = ~0u;
+        r.flags[i] = 0;
+        r.time[i] = 0.f;
+    }
+}
+}  // namespace
+
+void EmbreeScene::intersect_packet(int n, const Ray* const* rays, RayHit* hits) const {
+    static_assert(kPacketSize == 16, "the packet calls below are the 16-wide ones");
+    if (n <= 0) return;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[16];
+    fill_packet(n, rays, rh.ray, valid);
+    for (int i = 0; i < 16; ++i) {
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, m_impl->scene, &ctx, &rh);
+    for (int i = 0; i < n; ++i) {
+        RayHit& hit = hits[i];
+        if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
+            hit.geom_id = ~0u;
+            continue;
+        }
+        hit.t = rh.ray.tfar[i];
+        hit.geom_id = rh.hit.geomID[i];
+        hit.prim_id = rh.hit.primID[i];
+        hit.u = rh.hit.u[i];
+        hit.v = rh.hit.v[i];
+        hit.ng = Vec3f(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
+    }
+}
+
+void EmbreeScene::occluded_packet(int n, const Ray* const* rays, bool* occluded) const {
+    if (n <= 0) return;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    alignas(64) RTCRay16 r;
+    alignas(64) int valid[16];
+    fill_packet(n, rays, r, valid);
+    rtcOccluded16(valid, m_impl->scene, &ctx, &r);
+    for (int i = 0; i < n; ++i) occluded[i] = r.tfar[i] < 0.f;
+}
 }  // namespace pellucid

@@ -38,6 +38,15 @@ public:
     /// Any hit in (0, ray.tmax].
     bool occluded(const Ray& ray) const;
 
+    /// Rays per packet of intersect_packet/occluded_packet (Embree's widest, rtcIntersect16).
+    static constexpr int kPacketSize = 16;
+    /// intersect() for n ≤ kPacketSize rays at once, traced as one packet: Embree tests a BVH node
+    /// against all of them in SIMD, which amortises the traversal of incoherent rays too. hits[i]
+    /// is filled as intersect() fills it; returns nothing, hits[i].hit() tells.
+    void intersect_packet(int n, const Ray* const* rays, RayHit* hits) const;
+    /// occluded() for n ≤ kPacketSize rays at once.
+    void occluded_packet(int n, const Ray* const* rays, bool* occluded) const;
+
 private:
     struct Impl;
     std::unique_ptr<Impl> m_impl;

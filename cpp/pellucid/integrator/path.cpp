@@ -18,6 +18,7 @@
 #include "pellucid/integrator/path.h"
 
 #include <algorithm>
+#include <vector>
 
 #include "pellucid/integrator/aov.h"
 #include "pellucid/sampling/mis.h"
@@ -32,9 +33,100 @@ std::unique_ptr<Integrator> make_integrator(const Scene& scene) {
     throw Error("integrator.type: unknown integrator '" + scene.integrator.type + "'");
 }
 
+namespace {
+/// render_tile for the path tracer with its rays traced in packets. Up to kSlots paths are in flight;
+/// each round traces all their rays a packet at a time and advances every path one vertex
+/// (PathIntegrator::vertex), then traces the shadow rays NEE left, a packet at a time. A finished
+/// path's slot takes the tile's next (pixel, sample), so packets stay full until the tile runs out.
+/// Each path keeps its own Sampler, and the estimates reach the film in render_tile's order (pixel
+/// by pixel, sample by sample), so the image equals the one-path-at-a-time loop's bit for bit.
+uint64_t render_tile_packets(const PathIntegrator& integrator, const Scene& scene, const TileJob& job, Film& film,
+                             SamplerType type) {
+    constexpr int kPacket = EmbreeScene::kPacketSize, kSlots = 4 * kPacket;
+    struct Slot {
+        PathIntegrator::PathState st;
+        Sampler sampler;
+        int64_t k = 0;  ///< index into `done`
+    };
+    struct Estimate {
+        Spectrum L;
+        float fx, fy;
+    };
+    const int tile_w = job.x1 - job.x0, n_samples = job.s1 - job.s0;
+    const int64_t n_paths = int64_t(tile_w) * (job.y1 - job.y0) * n_samples;
+    thread_local std::vector<Estimate> done;  // grows to the largest tile pass, then is reused
+    done.resize(size_t(n_paths));
+    const bool splat = film.splats();
+    int64_t next = 0;
+    auto start = [&](Slot& slot) {
+        if (next >= n_paths) return false;
+        const int64_t k = next++, px = k / n_samples;
+        const int x = job.x0 + int(px % tile_w), y = job.y0 + int(px / tile_w);
+        slot.k = k;
+        slot.sampler = Sampler(type, uint64_t(y) * uint64_t(scene.width) + uint64_t(x),
+                               uint64_t(job.s0 + int(k % n_samples)), job.seed);
+        slot.st = PathIntegrator::PathState{};
+        slot.st.ray = camera_sample(scene, splat, x, y, slot.sampler, &done[k].fx, &done[k].fy);
+        return true;
+    };
+
+    Slot slots[kSlots];
+    int active[kSlots], shadowed[kSlots], n_active = 0;
+    bool alive[kSlots];
+    for (int i = 0; i < kSlots && start(slots[i]); ++i) active[n_active++] = i;
+    SurfaceInteraction si[kPacket];
+    const Ray* rays[kPacket];
+    bool flag[kPacket];
+    while (n_active > 0) {
+        for (int b = 0; b < n_active; b += kPacket) {
+            const int n = std::min(kPacket, n_active - b);
+            for (int i = 0; i < n; ++i) rays[i] = &slots[active[b + i]].st.ray;
+            scene.intersect_packet(n, rays, si, flag);
+            for (int i = 0; i < n; ++i) {
+                Slot& s = slots[active[b + i]];
+                alive[b + i] = integrator.vertex(scene, s.st, flag[i], si[i], s.sampler);
+            }
+        }
+        int n_shadowed = 0;
+        for (int j = 0; j < n_active; ++j)
+            if (slots[active[j]].st.has_shadow) shadowed[n_shadowed++] = active[j];
+        for (int b = 0; b < n_shadowed; b += kPacket) {
+            const int n = std::min(kPacket, n_shadowed - b);
+            for (int i = 0; i < n; ++i) rays[i] = &slots[shadowed[b + i]].st.shadow;
+            scene.occluded_packet(n, rays, flag);
+            for (int i = 0; i < n; ++i) {
+                PathIntegrator::PathState& st = slots[shadowed[b + i]].st;
+                if (!flag[i]) st.L += st.Ld;
+                st.has_shadow = false;
+            }
+        }
+        int m = 0;
+        for (int j = 0; j < n_active; ++j) {
+            Slot& s = slots[active[j]];
+            if (alive[j]) {
+                active[m++] = active[j];
+                continue;
+            }
+            done[s.k].L = s.st.L;
+            if (start(s)) active[m++] = active[j];
+        }
+        n_active = m;
+    }
+
+    uint64_t bad = 0;
+    for (int64_t k = 0; k < n_paths; ++k) {
+        const int64_t px = k / n_samples;
+        const int x = job.x0 + int(px % tile_w), y = job.y0 + int(px / tile_w);
+        if (!film_add<SampleValues::NonNegative>(film, x, y, done[k].fx, done[k].fy, done[k].L)) ++bad;
+    }
+    return bad;
+}
+}  // namespace
+
 RenderResult PathIntegrator::render(const Scene& scene, const RenderOptions& opts) const {
     const SamplerType type = sampler_type(scene, opts);
     return render_loop(scene, opts, [&](const TileJob& job, Film& film) {
+        if (m_s.packets) return render_tile_packets(*this, scene, job, film, type);
         return render_tile(scene, job, film, type, [&](const RayDifferential& r, Sampler& u) { return Li(scene, r, u); });
     });
 }
@@ -58,93 +150,101 @@ float bsdf_hit_weight(bool use_mis, bool use_nee, bool specular, float bsdf_pdf,
 }  // namespace
 
 Spectrum PathIntegrator::Li(const Scene& scene, RayDifferential ray, Sampler& sampler) const {
+    PathState st;
+    st.ray = ray;
+    SurfaceInteraction si;
+    for (;;) {
+        const bool hit = scene.intersect(st.ray, si);
+        const bool more = vertex(scene, st, hit, si, sampler);
+        if (st.has_shadow && !scene.occluded(st.shadow)) st.L += st.Ld;
+        if (!more) return st.L;
+    }
+}
+
+// Not inlined, so that Li and the packet driver run the same instructions (same image, bit for bit).
+[[gnu::noinline]] bool PathIntegrator::vertex(const Scene& scene, PathState& st, bool hit, SurfaceInteraction& si,
+                                              Sampler& sampler) const {
     const bool use_nee = m_use_nee && !scene.lights.empty();
     const bool use_mis = m_use_mis;
-    Spectrum L(0.f), beta(1.f);
-    bool specular = true;  // the camera ray counts as a delta "bounce"
-    float prev_pdf = 0.f, eta_scale = 1.f;
-    LightSampleContext prev_ctx;
-    SurfaceInteraction si;
-
-    for (int depth = 1;; ++depth) {  // depth = number of path segments, including this ray
-        if (!scene.intersect(ray, si)) {
-            for (uint32_t li : scene.infinite_lights) {
-                InfiniteHit env = infinite_hit(scene.lights[li], prev_ctx, ray.d);
-                float lpdf = scene.light_pmf(li) * env.pdf;
-                L += beta * env.Le * bsdf_hit_weight(use_mis, use_nee, specular, prev_pdf, lpdf);
-            }
-            break;
+    const int depth = st.depth;  // number of path segments, including st.ray
+    st.has_shadow = false;
+    if (!hit) {
+        for (uint32_t li : scene.infinite_lights) {
+            InfiniteHit env = infinite_hit(scene.lights[li], st.prev_ctx, st.ray.d);
+            float lpdf = scene.light_pmf(li) * env.pdf;
+            st.L += st.beta * env.Le * bsdf_hit_weight(use_mis, use_nee, st.specular, st.prev_pdf, lpdf);
         }
-        if (si.light_id >= 0) {
-            Spectrum Le = scene.emitted(si);
-            if (!Le.is_black()) {
-                float lpdf = 0.f;
-                if (!specular) {
-                    const auto& al = std::get<AreaLight>(scene.lights[size_t(si.light_id)]);
-                    lpdf = scene.light_pmf(size_t(si.light_id)) * al.pdf_li(prev_ctx, ray.d, si.p, si.ng);
-                }
-                L += beta * Le * bsdf_hit_weight(use_mis, use_nee, specular, prev_pdf, lpdf);
-            }
-        }
-        if (m_max_depth >= 0 && depth >= m_max_depth) break;
-
-        // The pixel footprint, for texture filtering and bump steps (and to carry differentials on).
-        if (scene.has_textures) scene.compute_footprint(si, ray);
-        BSDF bsdf = scene.bsdf(si);
-        BxDFFlags flags = bsdf.flags();
-        if (flags == BxDFFlags::None) break;
-        const Vec3f wo = si.wo;
-        LightSampleContext ctx{si.p, si.ng};
-        const int dim0 = Sampler::kPixelDims + kVertexDims * (depth - 1);
-
-        // Next-event estimation: one light (uniformly or by power), one point on it.
-        if (use_nee && is_non_specular(flags)) {
-            sampler.set_dimension(dim0 + kLightSelectDim);
-            float u_light = sampler.get_1d();
-            Vec2f u = sampler.get_2d();
-            float pmf;
-            size_t li = scene.sample_light(u_light, &pmf);
-            auto ls = std::visit([&](const auto& l) { return l.sample_li(ctx, u); }, scene.lights[li]);
-            if (ls && ls->pdf > 0.f) {
-                Spectrum f = bsdf.eval(wo, ls->wi);
-                if (!f.is_black()) {
-                    Ray shadow = ls->infinite ? si.spawn_ray(ls->wi) : si.spawn_ray_to(ls->p_light, ls->n_light, ls->p_error);
-                    if (!scene.occluded(shadow)) {
-                        float light_pdf = pmf * ls->pdf;
-                        float w = (ls->delta || !use_mis) ? 1.f : power_heuristic(light_pdf, bsdf.pdf(wo, ls->wi));
-                        L += beta * f * ls->L * (w / light_pdf);
-                    }
-                }
-            }
-        }
-
-        // Continue the path by sampling the BSDF.
-        sampler.set_dimension(dim0 + kLobeDim);
-        float u_lobe = sampler.get_1d();
-        Vec2f u = sampler.get_2d();
-        auto bs = bsdf.sample(wo, u_lobe, u);
-        if (!bs) break;
-        beta *= bs->weight;
-        prev_pdf = bs->pdf;
-        specular = bs->is_specular();
-        if (has_flag(bs->lobe, BxDFFlags::Transmission)) eta_scale *= sqr(bs->eta);
-        prev_ctx = ctx;
-        if (scene.has_textures && specular && ray.has_differentials)
-            ray = scene.specular_differentials(si, ray, si.spawn_ray(bs->wi), has_flag(bs->lobe, BxDFFlags::Transmission),
-                                               bs->eta);
-        else
-            ray = RayDifferential(si.spawn_ray(bs->wi));
-
-        // Russian roulette on the throughput with the η² factor removed (pbrt-v4 §13.4.1 / Mitsuba 3
-        // path.cpp): survive with q = min(max β·η², 0.95) from rr_depth on.
-        if (depth >= m_s.rr_depth) {
-            float q = std::min(beta.max_component() * eta_scale, 0.95f);
-            sampler.set_dimension(dim0 + kRouletteDim);
-            if (!(sampler.get_1d() < q)) break;
-            beta /= q;
-        }
-        if (beta.is_black()) break;
+        return false;
     }
-    return L;
+    if (si.light_id >= 0) {
+        Spectrum Le = scene.emitted(si);
+        if (!Le.is_black()) {
+            float lpdf = 0.f;
+            if (!st.specular) {
+                const auto& al = std::get<AreaLight>(scene.lights[size_t(si.light_id)]);
+                lpdf = scene.light_pmf(size_t(si.light_id)) * al.pdf_li(st.prev_ctx, st.ray.d, si.p, si.ng);
+            }
+            st.L += st.beta * Le * bsdf_hit_weight(use_mis, use_nee, st.specular, st.prev_pdf, lpdf);
+        }
+    }
+    if (m_max_depth >= 0 && depth >= m_max_depth) return false;
+
+    // The pixel footprint, for texture filtering and bump steps (and to carry differentials on).
+    if (scene.has_textures) scene.compute_footprint(si, st.ray);
+    BSDF bsdf = scene.bsdf(si);
+    BxDFFlags flags = bsdf.flags();
+    if (flags == BxDFFlags::None) return false;
+    const Vec3f wo = si.wo;
+    LightSampleContext ctx{si.p, si.ng};
+    const int dim0 = Sampler::kPixelDims + kVertexDims * (depth - 1);
+
+    // Next-event estimation: one light (uniformly or by power), one point on it. The shadow ray is
+    // left to the caller, which may trace it in a packet with other paths'.
+    if (use_nee && is_non_specular(flags)) {
+        sampler.set_dimension(dim0 + kLightSelectDim);
+        float u_light = sampler.get_1d();
+        Vec2f u = sampler.get_2d();
+        float pmf;
+        size_t li = scene.sample_light(u_light, &pmf);
+        auto ls = std::visit([&](const auto& l) { return l.sample_li(ctx, u); }, scene.lights[li]);
+        if (ls && ls->pdf > 0.f) {
+            Spectrum f = bsdf.eval(wo, ls->wi);
+            if (!f.is_black()) {
+                float light_pdf = pmf * ls->pdf;
+                float w = (ls->delta || !use_mis) ? 1.f : power_heuristic(light_pdf, bsdf.pdf(wo, ls->wi));
+                st.Ld = st.beta * f * ls->L * (w / light_pdf);
+                st.shadow = ls->infinite ? si.spawn_ray(ls->wi) : si.spawn_ray_to(ls->p_light, ls->n_light, ls->p_error);
+                st.has_shadow = true;
+            }
+        }
+    }
+
+    // Continue the path by sampling the BSDF.
+    sampler.set_dimension(dim0 + kLobeDim);
+    float u_lobe = sampler.get_1d();
+    Vec2f u = sampler.get_2d();
+    auto bs = bsdf.sample(wo, u_lobe, u);
+    if (!bs) return false;
+    st.beta *= bs->weight;
+    st.prev_pdf = bs->pdf;
+    st.specular = bs->is_specular();
+    if (has_flag(bs->lobe, BxDFFlags::Transmission)) st.eta_scale *= sqr(bs->eta);
+    st.prev_ctx = ctx;
+    if (scene.has_textures && st.specular && st.ray.has_differentials)
+        st.ray = scene.specular_differentials(si, st.ray, si.spawn_ray(bs->wi), has_flag(bs->lobe, BxDFFlags::Transmission),
+                                              bs->eta);
+    else
+        st.ray = RayDifferential(si.spawn_ray(bs->wi));
+    st.depth = depth + 1;
+
+    // Russian roulette on the throughput with the η² factor removed (pbrt-v4 §13.4.1 / Mitsuba 3
+    // path.cpp): survive with q = min(max β·η², 0.95) from rr_depth on.
+    if (depth >= m_s.rr_depth) {
+        float q = std::min(st.beta.max_component() * st.eta_scale, 0.95f);
+        sampler.set_dimension(dim0 + kRouletteDim);
+        if (!(sampler.get_1d() < q)) return false;
+        st.beta /= q;
+    }
+    return !st.beta.is_black();
 }
 }  // namespace pellucid

@@ -76,6 +76,31 @@ inline SamplerType sampler_type(const Scene& scene, const RenderOptions& opts) {
 /// (pixel, sample index, seed) has its own Sampler (sampling/sampler.h), so images are bit-identical
 /// for any thread count. Rejected samples (NaN, infinite, or negative under SampleValues::NonNegative)
 /// are counted and kept out of the film.
+/// The camera ray of sample `sampler` in pixel (x, y), from the sample's dimensions 0 and 1; (fx, fy)
+/// receives its film position. Splatting films take a uniform position in the pixel, the others an
+/// offset drawn from the filter. Differentials only where textures need footprints.
+inline RayDifferential camera_sample(const Scene& scene, bool splat, int x, int y, Sampler& sampler, float* fx, float* fy) {
+    const Vec2f u_px = sampler.get_pixel_2d();
+    const Vec2f off = splat ? u_px - Vec2f(0.5f) : sample_filter(scene.filter, u_px);
+    *fx = float(x) + 0.5f + off.x;
+    *fy = float(y) + 0.5f + off.y;
+    return scene.has_textures ? scene.camera.generate_ray_differential(*fx, *fy)
+                              : RayDifferential(scene.camera.generate_ray(*fx, *fy));
+}
+
+/// Hand one estimate to the film, or reject it (NaN, infinite, or negative under
+/// SampleValues::NonNegative); returns false if rejected.
+template <SampleValues kValues>
+bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L) {
+    if (!L.is_finite() || (kValues == SampleValues::NonNegative && L.has_negative())) return false;
+    if (film.splats()) film.splat(x, y, fx, fy, L);
+    else film.add_sample(x, y, L);
+    return true;
+}
+
+/// The per-sample loop every integrator instantiates with its own estimator Li(ray, sampler): every
+/// (pixel, sample index, seed) has its own Sampler (sampling/sampler.h), so images are bit-identical
+/// for any thread count. Rejected samples are counted and kept out of the film.
 template <SampleValues kValues = SampleValues::NonNegative, class LiFn>
 uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, SamplerType type, LiFn&& Li) {
     uint64_t bad = 0;
@@ -86,20 +111,9 @@ uint64_t render_tile(const Scene& scene, const TileJob& job, Film& film, Sampler
             const uint64_t pixel = uint64_t(y) * width + uint64_t(x);
             for (int s = job.s0; s < job.s1; ++s) {
                 Sampler sampler(type, pixel, uint64_t(s), job.seed);
-                // Splatting: uniform in the pixel; filter sampling: offset by the filter's density.
-                const Vec2f u_px = sampler.get_pixel_2d();
-                const Vec2f off = splat ? u_px - Vec2f(0.5f) : sample_filter(scene.filter, u_px);
-                const float fx = float(x) + 0.5f + off.x, fy = float(y) + 0.5f + off.y;
-                // Differentials only where textures need footprints (two more rays' worth of setup).
-                Spectrum L = Li(scene.has_textures ? scene.camera.generate_ray_differential(fx, fy)
-                                                   : RayDifferential(scene.camera.generate_ray(fx, fy)),
-                                sampler);
-                if (!L.is_finite() || (kValues == SampleValues::NonNegative && L.has_negative())) {
-                    ++bad;
-                    continue;
-                }
-                if (splat) film.splat(x, y, fx, fy, L);
-                else film.add_sample(x, y, L);
+                float fx, fy;
+                const RayDifferential ray = camera_sample(scene, splat, x, y, sampler, &fx, &fy);
+                if (!film_add<kValues>(film, x, y, fx, fy, Li(ray, sampler))) ++bad;
             }
         }
     return bad;

@@ -163,6 +163,8 @@ public:
     /// Dimensions 0 and 1 are the pixel (filter) offset.
     static constexpr int kPixelDims = 2;
 
+    /// A placeholder (independent, pixel 0, sample 0, seed 0), to be assigned a real one.
+    Sampler() : Sampler(SamplerType::Independent, 0, 0, 0) {}
     Sampler(SamplerType type, uint64_t pixel, uint64_t sample_index, uint64_t seed)
         : m_rng(PCG32::for_sample(pixel, sample_index, seed)), m_type(type), m_index(uint32_t(sample_index)),
           m_pixel_hash(mix_bits(pixel * 0xBF58476D1CE4E5B9ULL ^ mix_bits(seed ^ 0x94D049BB133111EBULL))) {}

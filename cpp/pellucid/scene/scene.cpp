@@ -48,6 +48,19 @@ void fill_triangle(const TriangleMesh& m, const RayHit& h, SurfaceInteraction& s
     si.shading = Frame::from_xz(si.dpdu, ns);
 }
 
+/// The root of |o + t·d − c|² = r² nearest the kernel's t, in double: the hit then does not depend
+/// on how the kernel rounded (Embree's single-ray and packet sphere tests differ in the last bits).
+float refine_sphere_t(const ShapeRecord& s, const Ray& ray, float t_kernel) {
+    const Vec3d o = Vec3d(ray.o) - Vec3d(s.center), d(ray.d);
+    const double a = glm::dot(d, d), b = glm::dot(o, d), c = glm::dot(o, o) - double(s.radius) * s.radius;
+    const double disc = b * b - a * c;
+    if (!(disc >= 0.0) || !(a > 0.0)) return t_kernel;
+    // The two roots without cancellation (Numerical Recipes §5.6): q = −(b + sign(b)√disc).
+    const double q = -(b + std::copysign(std::sqrt(disc), b)), t0 = q / a, t1 = q != 0.0 ? c / q : t0;
+    const double t = std::fabs(t0 - t_kernel) < std::fabs(t1 - t_kernel) ? t0 : t1;
+    return std::isfinite(t) ? float(t) : t_kernel;
+}
+
 void fill_sphere(const ShapeRecord& s, const Ray& ray, const RayHit& h, SurfaceInteraction& si) {
     Point3f hit = ray.o + h.t * ray.d;
     Vec3f n = hit - s.center;
@@ -82,16 +95,36 @@ bool Scene::intersect(const Ray& ray, SurfaceInteraction& si) const {
     RayHit h;
     h.t = ray.tmax;
     if (!accel.intersect(ray, h)) return false;
+    fill_hit(ray, h, si);
+    return true;
+}
+
+void Scene::intersect_packet(int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) const {
+    RayHit h[EmbreeScene::kPacketSize];
+    accel.intersect_packet(n, rays, h);
+    for (int i = 0; i < n; ++i) {
+        hit[i] = h[i].hit();
+        if (hit[i]) fill_hit(*rays[i], h[i], si[i]);
+    }
+}
+
+// Not inlined, so that single rays and packets fill hit records with the same instructions.
+[[gnu::noinline]] void Scene::fill_hit(const Ray& ray, const RayHit& h, SurfaceInteraction& si) const {
     const ShapeRecord& s = shapes[h.geom_id];
-    if (s.kind == ShapeRecord::Kind::Mesh) fill_triangle(meshes[s.mesh_index], h, si);
-    else fill_sphere(s, ray, h, si);
-    si.t = h.t;
+    if (s.kind == ShapeRecord::Kind::Mesh) {
+        fill_triangle(meshes[s.mesh_index], h, si);
+        si.t = h.t;
+    } else {
+        RayHit refined = h;
+        refined.t = refine_sphere_t(s, ray, h.t);
+        fill_sphere(s, ray, refined, si);
+        si.t = refined.t;
+    }
     si.wo = -ray.d;
     si.shape_id = h.geom_id;
     si.prim_id = h.prim_id;
     si.material_id = s.face_materials.empty() ? s.material : s.face_materials[h.prim_id];
     si.light_id = s.light;
-    return true;
 }
 
 Spectrum Scene::emitted(const SurfaceInteraction& si) const {

@@ -39,6 +39,7 @@ struct IntegratorSettings {
     int rr_depth = 5;     ///< Russian roulette starts at this depth
     std::string strategy = "mis";  ///< "mis", "nee", "bsdf", "direct"
     std::string light_selection = "power";  ///< "power" or "uniform"
+    bool packets = true;  ///< type "path": trace 16 paths' rays per Embree packet (same image either way)
     std::string aov;  ///< type "aov": "albedo", "normal" or "depth" (integrator/aov.h)
 };
 
@@ -51,6 +52,13 @@ public:
     /// Closest hit, filled into si. Thread-safe.
     bool intersect(const Ray& ray, SurfaceInteraction& si) const;
     bool occluded(const Ray& ray) const { return accel.occluded(ray); }
+    /// intersect() for n ≤ EmbreeScene::kPacketSize rays traced as one packet; hit[i] says whether
+    /// si[i] was filled. Thread-safe.
+    void intersect_packet(int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) const;
+    /// occluded() for n ≤ EmbreeScene::kPacketSize rays traced as one packet.
+    void occluded_packet(int n, const Ray* const* rays, bool* occluded) const {
+        accel.occluded_packet(n, rays, occluded);
+    }
     /// The BSDF at a hit: textures evaluated over the hit's footprint, bump/normal maps applied.
     BSDF bsdf(const SurfaceInteraction& si) const {
         if (!has_textures || !needs_textures(si)) return BSDF(get_bxdf(materials[si.material_id], si), si.shading, si.ng);
@@ -100,5 +108,7 @@ public:
 
 private:
     BSDF textured_bsdf(const SurfaceInteraction& si) const;
+    /// The hit record of a kernel hit (the one place intersect and intersect_packet fill it).
+    void fill_hit(const Ray& ray, const RayHit& h, SurfaceInteraction& si) const;
 };
 }  // namespace pellucid
