@@ -37,7 +37,8 @@ namespace {
 /// render_tile for the path tracer with its rays traced in packets. Up to kSlots paths are in flight;
 /// each round traces all their rays a packet at a time and advances every path one vertex
 /// (PathIntegrator::vertex), then traces the shadow rays NEE left, a packet at a time. A finished
-/// path's slot takes the tile's next (pixel, sample), so packets stay full until the tile runs out.
+/// path's slot takes the next (pixel, sample), so packets stay full until the chunk runs out (a tile
+/// goes through in chunks of whole pixels, about 4096 paths each).
 /// Each path keeps its own Sampler, and the estimates reach the film in render_tile's order (pixel
 /// by pixel, sample by sample), so the image equals the one-path-at-a-time loop's bit for bit.
 uint64_t render_tile_packets(const PathIntegrator& integrator, const Scene& scene, const TileJob& job, Film& film,
@@ -53,71 +54,82 @@ uint64_t render_tile_packets(const PathIntegrator& integrator, const Scene& scen
         float fx, fy;
     };
     const int tile_w = job.x1 - job.x0, n_samples = job.s1 - job.s0;
-    const int64_t n_paths = int64_t(tile_w) * (job.y1 - job.y0) * n_samples;
-    thread_local std::vector<Estimate> done;  // grows to the largest tile pass, then is reused
-    done.resize(size_t(n_paths));
+    const int64_t n_pixels = int64_t(tile_w) * (job.y1 - job.y0);
+    // The tile's pixels go through in chunks of about kChunkPaths paths (whole pixels, all their
+    // samples), so the buffer of finished estimates stays small however many samples a pass takes.
+    constexpr int64_t kChunkPaths = 4096;
+    const int64_t chunk_pixels = std::max<int64_t>(1, kChunkPaths / n_samples);
+    thread_local std::vector<Estimate> done;  // grows to the largest chunk, then is reused
     const bool splat = film.splats();
-    int64_t next = 0;
-    auto start = [&](Slot& slot) {
-        if (next >= n_paths) return false;
-        const int64_t k = next++, px = k / n_samples;
-        const int x = job.x0 + int(px % tile_w), y = job.y0 + int(px / tile_w);
-        slot.k = k;
-        slot.sampler = Sampler(type, uint64_t(y) * uint64_t(scene.width) + uint64_t(x),
-                               uint64_t(job.s0 + int(k % n_samples)), job.seed);
-        slot.st = PathIntegrator::PathState{};
-        slot.st.ray = camera_sample(scene, splat, x, y, slot.sampler, &done[k].fx, &done[k].fy);
-        return true;
-    };
-
+    uint64_t bad = 0;
     Slot slots[kSlots];
-    int active[kSlots], shadowed[kSlots], n_active = 0;
+    int active[kSlots], shadowed[kSlots];
     bool alive[kSlots];
-    for (int i = 0; i < kSlots && start(slots[i]); ++i) active[n_active++] = i;
     SurfaceInteraction si[kPacket];
     const Ray* rays[kPacket];
     bool flag[kPacket];
-    while (n_active > 0) {
-        for (int b = 0; b < n_active; b += kPacket) {
-            const int n = std::min(kPacket, n_active - b);
-            for (int i = 0; i < n; ++i) rays[i] = &slots[active[b + i]].st.ray;
-            scene.intersect_packet(n, rays, si, flag);
-            for (int i = 0; i < n; ++i) {
-                Slot& s = slots[active[b + i]];
-                alive[b + i] = integrator.vertex(scene, s.st, flag[i], si[i], s.sampler);
+    auto pixel_xy = [&](int64_t px, int* x, int* y) {
+        *x = job.x0 + int(px % tile_w);
+        *y = job.y0 + int(px / tile_w);
+    };
+    for (int64_t p0 = 0; p0 < n_pixels; p0 += chunk_pixels) {
+        const int64_t n_paths = std::min(chunk_pixels, n_pixels - p0) * n_samples;
+        done.resize(size_t(n_paths));
+        int64_t next = 0;
+        auto start = [&](Slot& slot) {  // path k of the chunk: pixel p0 + k / n_samples, sample k % n_samples
+            if (next >= n_paths) return false;
+            const int64_t k = next++;
+            int x, y;
+            pixel_xy(p0 + k / n_samples, &x, &y);
+            slot.k = k;
+            slot.sampler = Sampler(type, uint64_t(y) * uint64_t(scene.width) + uint64_t(x),
+                                   uint64_t(job.s0 + int(k % n_samples)), job.seed);
+            slot.st = PathIntegrator::PathState{};
+            slot.st.ray = camera_sample(scene, splat, x, y, slot.sampler, &done[k].fx, &done[k].fy);
+            return true;
+        };
+        int n_active = 0;
+        for (int i = 0; i < kSlots && start(slots[i]); ++i) active[n_active++] = i;
+        while (n_active > 0) {
+            for (int b = 0; b < n_active; b += kPacket) {
+                const int n = std::min(kPacket, n_active - b);
+                for (int i = 0; i < n; ++i) rays[i] = &slots[active[b + i]].st.ray;
+                scene.intersect_packet(n, rays, si, flag);
+                for (int i = 0; i < n; ++i) {
+                    Slot& s = slots[active[b + i]];
+                    alive[b + i] = integrator.vertex(scene, s.st, flag[i], si[i], s.sampler);
+                }
             }
-        }
-        int n_shadowed = 0;
-        for (int j = 0; j < n_active; ++j)
-            if (slots[active[j]].st.has_shadow) shadowed[n_shadowed++] = active[j];
-        for (int b = 0; b < n_shadowed; b += kPacket) {
-            const int n = std::min(kPacket, n_shadowed - b);
-            for (int i = 0; i < n; ++i) rays[i] = &slots[shadowed[b + i]].st.shadow;
-            scene.occluded_packet(n, rays, flag);
-            for (int i = 0; i < n; ++i) {
-                PathIntegrator::PathState& st = slots[shadowed[b + i]].st;
-                if (!flag[i]) st.L += st.Ld;
-                st.has_shadow = false;
+            int n_shadowed = 0;
+            for (int j = 0; j < n_active; ++j)
+                if (slots[active[j]].st.has_shadow) shadowed[n_shadowed++] = active[j];
+            for (int b = 0; b < n_shadowed; b += kPacket) {
+                const int n = std::min(kPacket, n_shadowed - b);
+                for (int i = 0; i < n; ++i) rays[i] = &slots[shadowed[b + i]].st.shadow;
+                scene.occluded_packet(n, rays, flag);
+                for (int i = 0; i < n; ++i) {
+                    PathIntegrator::PathState& st = slots[shadowed[b + i]].st;
+                    if (!flag[i]) st.L += st.Ld;
+                    st.has_shadow = false;
+                }
             }
-        }
-        int m = 0;
-        for (int j = 0; j < n_active; ++j) {
-            Slot& s = slots[active[j]];
-            if (alive[j]) {
-                active[m++] = active[j];
-                continue;
+            int m = 0;
+            for (int j = 0; j < n_active; ++j) {
+                Slot& s = slots[active[j]];
+                if (alive[j]) {
+                    active[m++] = active[j];
+                    continue;
+                }
+                done[s.k].L = s.st.L;
+                if (start(s)) active[m++] = active[j];
             }
-            done[s.k].L = s.st.L;
-            if (start(s)) active[m++] = active[j];
+            n_active = m;
         }
-        n_active = m;
-    }
-
-    uint64_t bad = 0;
-    for (int64_t k = 0; k < n_paths; ++k) {
-        const int64_t px = k / n_samples;
-        const int x = job.x0 + int(px % tile_w), y = job.y0 + int(px / tile_w);
-        if (!film_add<SampleValues::NonNegative>(film, x, y, done[k].fx, done[k].fy, done[k].L)) ++bad;
+        for (int64_t k = 0; k < n_paths; ++k) {
+            int x, y;
+            pixel_xy(p0 + k / n_samples, &x, &y);
+            if (!film_add<SampleValues::NonNegative>(film, x, y, done[k].fx, done[k].fy, done[k].L)) ++bad;
+        }
     }
     return bad;
 }
