@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 #include "pellucid/api.h"
 #include "pellucid/light/area.h"
@@ -45,7 +46,10 @@ struct ObjMaterials : ::testing::Test {
     fs::path dir;
     test::LogCapture log;  // the zero-area triangle is dropped with a warning
     void SetUp() override {
-        dir = fs::temp_directory_path() / "pellucid_obj_materials";
+        // One directory per test: ctest runs tests in parallel processes, and TearDown removes it.
+        dir = fs::temp_directory_path() /
+              (std::string("pellucid_obj_materials_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
         fs::create_directories(dir);
         std::ofstream(dir / "two.obj") << kObj;
     }
