@@ -19,19 +19,16 @@ using namespace pellucid;
 
 using pellucid::test::LogCapture;
 using pellucid::test::expect_constant_image;
+using pellucid::test::kFrontCamera;
 using pellucid::test::scene_from;
 using pellucid::test::z_two_sided;
 
-namespace {
-const char* kCamera = R"("camera": {"type": "perspective", "fov": 40,
-    "to_world": [{"look_at": {"origin": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0]}}]})";
-}  // namespace
 
 class AnalyticScenes : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(AnalyticScenes, WhiteFurnaceSphereRendersOne) {
     // A white Lambertian sphere under a constant environment of radiance 1: every pixel is 1.
-    auto scene = scene_from(std::string("{") + kCamera + R"(,
+    auto scene = scene_from(std::string("{") + kFrontCamera + R"(,
         "film": {"width": 24, "height": 24}, "sampler": {"sample_count": 256, "seed": 7},
         "integrator": {"type": "path", "strategy": ")" + GetParam() + R"("},
         "materials": {"white": {"type": "lambertian", "reflectance": 1.0}},

@@ -19,32 +19,17 @@
 #include "pellucid/util/log.h"
 #include "support/chi2.h"
 #include "support/scene_util.h"
+#include "support/temp_dir.h"
 
 using namespace pellucid;
 namespace fs = std::filesystem;
 
 using pellucid::test::LogCapture;
+using pellucid::test::TempDir;
 using pellucid::test::scene_from;
 using pellucid::test::z_two_sided;
 
 namespace {
-// A per-test scratch directory under the system temp dir.
-class TempDir {
-public:
-    TempDir() {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        m_path = fs::temp_directory_path() / (std::string("pellucid_envmap_") + info->name());
-        fs::remove_all(m_path);
-        fs::create_directories(m_path);
-    }
-    ~TempDir() { fs::remove_all(m_path); }
-    std::string file(const std::string& name) const { return (m_path / name).string(); }
-    std::string dir() const { return m_path.string(); }
-
-private:
-    fs::path m_path;
-};
-
 SceneDesc desc_in(const TempDir& dir, const std::string& json) {
     SceneDesc d;
     d.source = "scene.json";
@@ -117,7 +102,7 @@ TEST(Envmap, IntegralIsExactForTheBilinearRadiance) {
 }
 
 TEST(Envmap, BuildsFromAnExrFile) {
-    TempDir dir;
+    TempDir dir("pellucid_envmap_");
     write_image_file(dir.file("sky.exr"), test::asymmetric_envmap_image());
     auto scene = load_desc(desc_in(dir, R"({"lights": [{"type": "envmap", "filename": "sky.exr", "scale": 2,
         "to_world": [{"rotate": {"axis": [1, 0, 0], "angle": -90}}]}]})"));
@@ -137,7 +122,7 @@ TEST(Envmap, BuildsFromAnExrFile) {
 }
 
 TEST(EnvmapErrors, MissingFileNamesPathAndKey) {
-    TempDir dir;
+    TempDir dir("pellucid_envmap_");
     std::string e = build_error(desc_in(dir, R"({"lights": [{"type": "constant"},
         {"type": "envmap", "filename": "nothere.exr"}]})"));
     EXPECT_NE(e.find("scene.json: lights[1].filename: "), std::string::npos) << e;
@@ -149,7 +134,7 @@ TEST(EnvmapErrors, MissingFileNamesPathAndKey) {
 }
 
 TEST(EnvmapErrors, CorruptFileNamesPathAndKey) {
-    TempDir dir;
+    TempDir dir("pellucid_envmap_");
     for (const char* name : {"bad.exr", "bad.hdr"}) {
         std::ofstream(dir.file(name), std::ios::binary) << "this is not an image\n\x01\x02\x03";
         std::string e = build_error(desc_in(dir, std::string(R"({"lights": [{"type": "envmap", "filename": ")") + name + "\"}]}"));
@@ -166,7 +151,7 @@ TEST(EnvmapErrors, CorruptFileNamesPathAndKey) {
 }
 
 TEST(EnvmapErrors, InvalidContentsAndParameters) {
-    TempDir dir;
+    TempDir dir("pellucid_envmap_");
     Image img = test::asymmetric_envmap_image();
     img.pixel(3, 2)[1] = std::nanf("");
     write_image_file(dir.file("nan.exr"), img);
@@ -191,7 +176,7 @@ TEST(EnvmapErrors, InvalidContentsAndParameters) {
 }
 
 TEST(ZeroPowerLights, SkippedWithAWarningAndTheSceneRenders) {
-    TempDir dir;
+    TempDir dir("pellucid_envmap_");
     write_image_file(dir.file("sky.exr"), test::asymmetric_envmap_image());
     write_image_file(dir.file("black.exr"), Image(8, 4));
     LogCapture log;
@@ -223,7 +208,7 @@ class EnvmapRender : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(EnvmapRender, UniformMapFurnace) {
     // An envmap of constant radiance 1 around a white Lambertian sphere: every pixel is 1.
-    TempDir dir;
+    TempDir dir("pellucid_envmap_");
     Image one(6, 4);
     std::fill(one.data.begin(), one.data.end(), 1.f);
     write_image_file(dir.file("one.exr"), one);
@@ -252,7 +237,7 @@ INSTANTIATE_TEST_SUITE_P(Strategies, EnvmapRender, ::testing::Values("mis", "nee
 TEST(EnvmapRender, StrategiesAgreeUnderAnAsymmetricMap) {
     // BSDF sampling alone and light sampling alone (nee) estimate the same image as MIS: pixel by
     // pixel, |a − b| / sqrt(var a + var b) below the Šidák-corrected two-sided α = 0.01 bound.
-    TempDir dir;
+    TempDir dir("pellucid_envmap_");
     write_image_file(dir.file("sky.exr"), test::asymmetric_envmap_image(16, 9));
     auto make = [&](const char* strategy) {
         return load_desc(desc_in(dir, std::string(R"({"film": {"width": 12, "height": 12}, "sampler": {"sample_count": 256, "seed": 5},
@@ -280,7 +265,7 @@ TEST(EnvmapRender, StrategiesAgreeUnderAnAsymmetricMap) {
 TEST(Envmap, MitsubaXmlSceneBuildsTheSameLight) {
     // <emitter type="envmap"> from a Mitsuba 3 XML file builds the same light as the JSON form, with
     // the file resolved against the XML file's directory.
-    TempDir dir;
+    TempDir dir("pellucid_envmap_");
     fs::create_directories(dir.file("tex"));
     write_image_file(dir.file("tex/sky.exr"), test::asymmetric_envmap_image());
     std::ofstream(dir.file("scene.xml")) << R"(<scene version="3.0.0">

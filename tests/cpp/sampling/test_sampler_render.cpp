@@ -19,19 +19,15 @@
 
 using namespace pellucid;
 using pellucid::test::expect_constant_image;
+using pellucid::test::kFrontCamera;
 using pellucid::test::scene_from;
 using pellucid::test::z_two_sided;
 
-namespace {
-
-const char* kCamera = R"("camera": {"type": "perspective", "fov": 40,
-    "to_world": [{"look_at": {"origin": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0]}}]})";
-}  // namespace
 
 class SobolAnalyticScenes : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SobolAnalyticScenes, WhiteFurnaceSphereRendersOne) {
-    auto scene = scene_from(std::string("{") + kCamera + R"(,
+    auto scene = scene_from(std::string("{") + kFrontCamera + R"(,
         "film": {"width": 16, "height": 16}, "sampler": {"type": "sobol", "sample_count": 128, "seed": 7},
         "integrator": {"type": "path", "strategy": ")" + GetParam() + R"("},
         "materials": {"white": {"type": "lambertian", "reflectance": 1.0}},

@@ -14,6 +14,7 @@
 #include "pellucid/scene/mitsuba_xml.h"
 #include "pellucid/util/error.h"
 #include "support/scene_util.h"
+#include "support/temp_dir.h"
 
 using namespace pellucid;
 namespace fs = std::filesystem;
@@ -43,17 +44,10 @@ usemtl unused
 )";
 
 struct ObjMaterials : ::testing::Test {
-    fs::path dir;
+    test::TempDir tmp{"pellucid_obj_materials_"};
+    fs::path dir = tmp.path();
     test::LogCapture log;  // the zero-area triangle is dropped with a warning
-    void SetUp() override {
-        // One directory per test: ctest runs tests in parallel processes, and TearDown removes it.
-        dir = fs::temp_directory_path() /
-              (std::string("pellucid_obj_materials_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-        std::ofstream(dir / "two.obj") << kObj;
-    }
-    void TearDown() override { fs::remove_all(dir); }
+    void SetUp() override { std::ofstream(dir / "two.obj") << kObj; }
 
     std::shared_ptr<const Scene> build(const std::string& shape, const std::string& extra = "") const {
         return test::scene_from(R"({"materials": {

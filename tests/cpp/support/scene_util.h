@@ -13,6 +13,10 @@
 
 namespace pellucid::test {
 
+/// A JSON "camera" member: 40° perspective on the origin from (0, 0, 5), for the analytic-scene tests.
+inline const char* const kFrontCamera = R"("camera": {"type": "perspective", "fov": 40,
+    "to_world": [{"look_at": {"origin": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0]}}]})";
+
 /// Build a scene from JSON text; relative files resolve against `base`. Errors start with "test".
 inline std::shared_ptr<const Scene> scene_from(const std::string& json, const std::string& base = ".") {
     SceneDesc d;
