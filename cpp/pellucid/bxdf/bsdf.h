@@ -13,8 +13,26 @@ namespace pellucid {
 
 class BSDF {
 public:
+    /// Owns a copy of bxdf.
     BSDF(const BxDF& bxdf, const Frame& shading, const Normal3f& ng)
-        : m_bxdf(bxdf), m_frame(shading), m_ng(ng) {}
+        : m_own(bxdf), m_bxdf(&*m_own), m_frame(shading), m_ng(ng) {}
+    /// Refers to *bxdf, which must outlive the BSDF: a material's prebuilt BxDF (Scene::bsdf), so
+    /// that an untextured hit copies nothing.
+    static BSDF borrowing(const BxDF* bxdf, const Frame& shading, const Normal3f& ng) { return BSDF(bxdf, shading, ng); }
+    BSDF(const BSDF& o)
+        : m_own(o.m_own), m_bxdf(m_own ? &*m_own : o.m_bxdf), m_frame(o.m_frame), m_ng(o.m_ng), m_n0(o.m_n0),
+          m_soften(o.m_soften) {}
+    BSDF& operator=(const BSDF& o) {
+        if (this != &o) {
+            m_own = o.m_own;
+            m_bxdf = m_own ? &*m_own : o.m_bxdf;
+            m_frame = o.m_frame;
+            m_ng = o.m_ng;
+            m_n0 = o.m_n0;
+            m_soften = o.m_soften;
+        }
+        return *this;
+    }
 
     /// Soften the shadow terminator of a perturbed (bumped or normal-mapped) shading normal:
     /// reflection is scaled by Chiang et al. 2019 ("Taming the Shadow Terminator", eq. 4),
@@ -30,15 +48,15 @@ public:
         m_n0 = n0;
     }
 
-    BxDFFlags flags() const { return pellucid::flags(m_bxdf); }
-    const BxDF& bxdf() const { return m_bxdf; }
+    BxDFFlags flags() const { return pellucid::flags(*m_bxdf); }
+    const BxDF& bxdf() const { return *m_bxdf; }
 
     /// f·|cos θi| for world directions; 0 where the shading and geometric hemispheres disagree
     /// (a light leak through a shading normal).
     Spectrum eval(const Vec3f& wo_w, const Vec3f& wi_w, TransportMode mode = TransportMode::Radiance) const {
         Vec3f wo = m_frame.to_local(wo_w), wi = m_frame.to_local(wi_w);
         if (wo.z == 0.f || leaks(wo_w, wi_w, wo, wi)) return Spectrum(0.f);
-        Spectrum f = pellucid::eval(m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, wi);
+        Spectrum f = pellucid::eval(*m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, wi);
         if (mode == TransportMode::Importance) f *= shading_correction(wo_w, wi_w, wo, wi);
         if (m_soften) f *= mode == TransportMode::Radiance ? terminator(wo, wi, wi_w) : terminator(wi, wo, wo_w);
         return f;
@@ -46,7 +64,7 @@ public:
     float pdf(const Vec3f& wo_w, const Vec3f& wi_w, TransportMode mode = TransportMode::Radiance) const {
         Vec3f wo = m_frame.to_local(wo_w), wi = m_frame.to_local(wi_w);
         if (wo.z == 0.f || leaks(wo_w, wi_w, wo, wi)) return 0.f;  // as sample(): leaking directions are never produced
-        return pellucid::pdf(m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, wi);
+        return pellucid::pdf(*m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, wi);
     }
     /// Sample wi (world space). Returns nullopt for wo on the horizon, failed, zero-pdf,
     /// zero-weight or leaking samples.
@@ -54,7 +72,7 @@ public:
                                      TransportMode mode = TransportMode::Radiance) const {
         Vec3f wo = m_frame.to_local(wo_w);
         if (wo.z == 0.f) return std::nullopt;
-        auto s = pellucid::sample(m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, u_lobe, u);
+        auto s = pellucid::sample(*m_bxdf, BxDFContext{mode, BxDFFlags::All}, wo, u_lobe, u);
         if (!s || !(s->pdf > 0.f) || s->weight.is_black() || s->wi.z == 0.f) return std::nullopt;
         Vec3f wi_local = s->wi;
         s->wi = m_frame.to_world(wi_local);
@@ -68,6 +86,7 @@ public:
     Vec3f to_world(const Vec3f& v) const { return m_frame.to_world(v); }
 
 private:
+    BSDF(const BxDF* bxdf, const Frame& shading, const Normal3f& ng) : m_bxdf(bxdf), m_frame(shading), m_ng(ng) {}
     // Shading and geometric normals must agree on which side each direction is on.
     bool leaks(const Vec3f& wo_w, const Vec3f& wi_w, const Vec3f& wo, const Vec3f& wi) const {
         return dot(wo_w, m_ng) * wo.z <= 0.f || dot(wi_w, m_ng) * wi.z <= 0.f;
@@ -89,7 +108,8 @@ private:
         return g * (1.f + g * (1.f - g));  // −g³ + g² + g
     }
 
-    BxDF m_bxdf;
+    std::optional<BxDF> m_own;  ///< the BxDF, when this BSDF owns it
+    const BxDF* m_bxdf;         ///< &*m_own, or the borrowed BxDF
     Frame m_frame;
     Normal3f m_ng;
     Normal3f m_n0{0.f};

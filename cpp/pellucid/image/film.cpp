@@ -23,10 +23,8 @@ void Film::splat(int x, int y, float fx, float fy, const Spectrum& L) {
     constexpr int kMaxTaps = 2 * 16 + 1;  // filters are limited to a 16-pixel radius (registry.cpp)
     const int m = std::min(m_margin, 16);
     float wx[kMaxTaps], wy[kMaxTaps];
-    for (int i = -m; i <= m; ++i) {
-        wx[i + m] = eval_filter(*m_splat, float(x + i) + 0.5f - fx);
-        wy[i + m] = eval_filter(*m_splat, float(y + i) + 0.5f - fy);
-    }
+    eval_filter_taps(*m_splat, float(x - m) + 0.5f - fx, 2 * m + 1, wx);
+    eval_filter_taps(*m_splat, float(y - m) + 0.5f - fy, 2 * m + 1, wy);
     m_splats[size_t(y) * m_width + x].n += 1;
     const double l[3] = {L[0], L[1], L[2]};
     for (int j = -m; j <= m; ++j) {

@@ -39,6 +39,7 @@ public:
         build_lights(root.get_node("lights"));  // after shapes: needs the scene bounds and area lights
         root.check_unqueried();
         m_scene.material_textures.resize(m_scene.materials.size());
+        for (const Material& m : m_scene.materials) m_scene.material_bxdfs.push_back(get_bxdf(m, SurfaceInteraction{}));
         for (const auto& mt : m_scene.material_textures)
             m_scene.has_textures = m_scene.has_textures || mt.has_bindings() || mt.perturbs_normal();
         if (m_scene.shapes.empty() && m_scene.lights.empty())

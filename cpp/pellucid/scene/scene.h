@@ -61,7 +61,8 @@ public:
     }
     /// The BSDF at a hit: textures evaluated over the hit's footprint, bump/normal maps applied.
     BSDF bsdf(const SurfaceInteraction& si) const {
-        if (!has_textures || !needs_textures(si)) return BSDF(get_bxdf(materials[si.material_id], si), si.shading, si.ng);
+        if (!has_textures || !needs_textures(si))
+            return BSDF::borrowing(&material_bxdfs[si.material_id], si.shading, si.ng);
         return textured_bsdf(si);
     }
     /// Does the hit's material read textures (so that its footprint is needed)?
@@ -89,6 +90,9 @@ public:
     std::vector<ShapeRecord> shapes;
     std::vector<Material> materials;
     std::vector<std::string> material_names;
+    /// Each material's BxDF at an untextured hit (every parameter a constant), built once at scene
+    /// build: parallel to materials.
+    std::vector<BxDF> material_bxdfs;
     std::vector<MaterialTextures> material_textures;  ///< parallel to materials
     TextureList textures;
     bool has_textures = false;  ///< any material reads textures or perturbs normals

@@ -199,3 +199,29 @@ TEST(FilmSplat, BitIdenticalAcrossThreadCounts) {
             << filter;
     }
 }
+
+// A row of splat weights (eval_filter_taps, which the Gaussian computes with two exponentials and a
+// recurrence) equals the filter's profile, including the cut at the radius. The reference is the
+// profile in double precision at the same float abscissa; the bound, 4e-6 relative (+1e-9 absolute),
+// covers float exp's error of about |argument|·2^-24 (the argument reaches (2·4σ+1)/(2σ²) in the
+// ratio term) compounded over the row's steps, and is far below anything a wrong recurrence gives.
+TEST(FilmSplat, FilterTapsEqualTheFilterProfile) {
+    const Filter filters[] = {GaussianFilter(0.5f), GaussianFilter(0.3f), GaussianFilter(1.2f), TentFilter{1.5f},
+                              BoxFilter{0.5f}};
+    for (const Filter& f : filters) {
+        const int m = int(std::ceil(filter_radius(f) - 0.5f)), n = 2 * m + 1;
+        for (int s = 0; s < 200; ++s) {
+            const float frac = float(s) / 200.f;  // the sample's offset within its pixel
+            const float x0 = float(-m) + 0.5f - frac;
+            float w[64];
+            eval_filter_taps(f, x0, n, w);
+            for (int i = 0; i < n; ++i) {
+                const float x = x0 + float(i);
+                double ref = eval_filter(f, x);  // box, tent: exact in float
+                if (const auto* g = std::get_if<GaussianFilter>(&f))
+                    ref = std::fabs(x) < 4.f * g->stddev ? std::exp(-double(x) * x / (2.0 * g->stddev * g->stddev)) : 0.0;
+                EXPECT_NEAR(w[i], ref, 4e-6 * ref + 1e-9) << to_string(f) << " x=" << x;
+            }
+        }
+    }
+}
