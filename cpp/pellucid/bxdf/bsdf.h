@@ -61,6 +61,20 @@ public:
         if (m_soften) f *= mode == TransportMode::Radiance ? terminator(wo, wi, wi_w) : terminator(wi, wo, wo_w);
         return f;
     }
+    /// eval() and, in *pdf_out, pdf() of the same pair of directions, with one change of frame and
+    /// one dispatch (next-event estimation needs both). Radiance transport.
+    Spectrum eval_pdf(const Vec3f& wo_w, const Vec3f& wi_w, float* pdf_out) const {
+        Vec3f wo = m_frame.to_local(wo_w), wi = m_frame.to_local(wi_w);
+        *pdf_out = 0.f;
+        if (wo.z == 0.f || leaks(wo_w, wi_w, wo, wi)) return Spectrum(0.f);
+        const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
+        Spectrum f = visit_bxdf(*m_bxdf, [&](const auto& x) {
+            *pdf_out = x.pdf(ctx, wo, wi);
+            return x.eval(ctx, wo, wi);
+        });
+        if (m_soften) f *= terminator(wo, wi, wi_w);
+        return f;
+    }
     float pdf(const Vec3f& wo_w, const Vec3f& wi_w, TransportMode mode = TransportMode::Radiance) const {
         Vec3f wo = m_frame.to_local(wo_w), wi = m_frame.to_local(wi_w);
         if (wo.z == 0.f || leaks(wo_w, wi_w, wo, wi)) return 0.f;  // as sample(): leaking directions are never produced

@@ -220,10 +220,11 @@ Spectrum PathIntegrator::Li(const Scene& scene, RayDifferential ray, Sampler& sa
         size_t li = scene.sample_light(u_light, &pmf);
         auto ls = std::visit([&](const auto& l) { return l.sample_li(ctx, u); }, scene.lights[li]);
         if (ls && ls->pdf > 0.f) {
-            Spectrum f = bsdf.eval(wo, ls->wi);
+            float bsdf_pdf;
+            Spectrum f = bsdf.eval_pdf(wo, ls->wi, &bsdf_pdf);
             if (!f.is_black()) {
                 float light_pdf = pmf * ls->pdf;
-                float w = (ls->delta || !use_mis) ? 1.f : power_heuristic(light_pdf, bsdf.pdf(wo, ls->wi));
+                float w = (ls->delta || !use_mis) ? 1.f : power_heuristic(light_pdf, bsdf_pdf);
                 st.Ld = st.beta * f * ls->L * (w / light_pdf);
                 st.shadow = ls->infinite ? si.spawn_ray(ls->wi) : si.spawn_ray_to(ls->p_light, ls->n_light, ls->p_error);
                 st.has_shadow = true;

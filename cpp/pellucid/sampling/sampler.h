@@ -26,6 +26,9 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#if defined(__GFNI__) && defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 #include "pellucid/math/vec.h"
 #include "pellucid/sampling/rng.h"
@@ -46,12 +49,20 @@ inline SamplerType parse_sampler_type(const std::string& name, const std::string
 
 namespace sobol {
 
+/// The bits of x in reverse order. With GFNI (x86), one affine transform over GF(2) reverses the
+/// bits of each byte (the matrix is the anti-diagonal 0x8040201008040201) and a byte swap does the
+/// rest; otherwise five swap steps of halves, quarters, ...
 inline uint32_t reverse_bits(uint32_t x) {
+#if defined(__GFNI__) && defined(__SSE2__)
+    const __m128i v = _mm_gf2p8affine_epi64_epi8(_mm_cvtsi32_si128(int(x)), _mm_set1_epi64x(0x8040201008040201LL), 0);
+    return __builtin_bswap32(uint32_t(_mm_cvtsi128_si32(v)));
+#else
     x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
     x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
     x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
     x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
     return (x >> 16) | (x << 16);
+#endif
 }
 
 /// Owen scramble of a bit-reversed integer: bit j of the result is bit j of x flipped by a
@@ -148,10 +159,14 @@ inline uint32_t shuffled_scrambled(uint32_t index, int dim, const GroupSeeds& g)
 /// shuffled_scrambled in dimensions 0 and 1 without the table and with the bit reversals that
 /// cancel removed: Sobol dimension 0 of i is reverse_bits(i), so nested_uniform_scramble of it is
 /// reverse_bits(owen_scramble_reversed(i)); dimension 1 comes bit-reversed from dim1_reversed.
-inline void sample_2d(uint32_t index, const GroupSeeds& g, uint32_t* x0, uint32_t* x1) {
-    const uint32_t i = reverse_bits(owen_scramble_reversed(reverse_bits(index), g.shuffle));
+inline void sample_2d_rev(uint32_t index_reversed, const GroupSeeds& g, uint32_t* x0, uint32_t* x1) {
+    const uint32_t i = reverse_bits(owen_scramble_reversed(index_reversed, g.shuffle));
     *x0 = reverse_bits(owen_scramble_reversed(i, g.scramble[0]));
     if (x1) *x1 = reverse_bits(owen_scramble_reversed(dim1_reversed(i), g.scramble[1]));
+}
+/// sample_2d_rev of reverse_bits(index) (the Sampler reverses its index once).
+inline void sample_2d(uint32_t index, const GroupSeeds& g, uint32_t* x0, uint32_t* x1) {
+    sample_2d_rev(reverse_bits(index), g, x0, x1);
 }
 }  // namespace sobol
 
@@ -166,7 +181,8 @@ public:
     /// A placeholder (independent, pixel 0, sample 0, seed 0), to be assigned a real one.
     Sampler() : Sampler(SamplerType::Independent, 0, 0, 0) {}
     Sampler(SamplerType type, uint64_t pixel, uint64_t sample_index, uint64_t seed)
-        : m_rng(PCG32::for_sample(pixel, sample_index, seed)), m_type(type), m_index(uint32_t(sample_index)),
+        : m_rng(PCG32::for_sample(pixel, sample_index, seed)), m_type(type),
+          m_index_rev(sobol::reverse_bits(uint32_t(sample_index))),
           m_pixel_hash(mix_bits(pixel * 0xBF58476D1CE4E5B9ULL ^ mix_bits(seed ^ 0x94D049BB133111EBULL))) {}
 
     SamplerType type() const { return m_type; }
@@ -185,7 +201,7 @@ public:
         const int d = m_dim++;
         if (m_type == SamplerType::Independent || d >= kMaxSobolDims) return m_rng.next_float();
         uint32_t x;
-        sobol::sample_2d(m_index, sobol::group_seeds(m_pixel_hash, uint32_t(d)), &x, nullptr);
+        sobol::sample_2d_rev(m_index_rev, seeds(d), &x, nullptr);
         return sobol::to_float(x);
     }
     /// Two dimensions with joint (0,2)-sequence stratification (sobol).
@@ -194,14 +210,15 @@ public:
         m_dim += 2;
         if (m_type == SamplerType::Independent || d + 2 > kMaxSobolDims) return m_rng.next_2d();
         uint32_t x0, x1;
-        sobol::sample_2d(m_index, sobol::group_seeds(m_pixel_hash, uint32_t(d)), &x0, &x1);
+        sobol::sample_2d_rev(m_index_rev, seeds(d), &x0, &x1);
         return Vec2f(sobol::to_float(x0), sobol::to_float(x1));
     }
 
 private:
+    sobol::GroupSeeds seeds(int d) const { return sobol::group_seeds(m_pixel_hash, uint32_t(d)); }
     PCG32 m_rng;
     SamplerType m_type;
-    uint32_t m_index;
+    uint32_t m_index_rev;  ///< the sample index, bit-reversed
     uint64_t m_pixel_hash;
     int m_dim = 0;
 };

@@ -88,6 +88,17 @@ TEST(Sampler, SobolDirectionNumbersMatchJoeKuo) {
     EXPECT_EQ(sobol::sample_bits(6, 0), 0x60000000u);  // van der Corput: 6 = 110b -> 0.011b
 }
 
+TEST(Sampler, ReverseBitsReversesBits) {
+    // reverse_bits (GFNI or shift steps, whichever the build has) against bit-by-bit reversal.
+    PCG32 rng(8, 9);
+    for (int t = 0; t < 20000; ++t) {
+        const uint32_t x = t < 64 ? (t < 32 ? 1u << t : ~(1u << (t - 32))) : rng.next_u32();
+        uint32_t r = 0;
+        for (int b = 0; b < 32; ++b) r |= ((x >> b) & 1u) << (31 - b);
+        ASSERT_EQ(sobol::reverse_bits(x), r) << x;
+    }
+}
+
 TEST(Sampler, FastSobolEqualsTheDefinition) {
     // sample_2d (no table, reversals cancelled), which the Sampler uses, against Burley's Listing 5
     // with the table.
