@@ -103,6 +103,29 @@ TEST(Fresnel, HemisphericalAverages) {
     EXPECT_NEAR(s.average().r, 0.04f + 0.96f / 21.f, 1e-7f);
 }
 
+TEST(Fresnel, CachedAveragesFollowTheirInputs) {
+    // The averages keep the last input and result per thread (textured materials rebuild their BxDF
+    // per hit): alternating inputs must each get their own value, against independent midpoint sums.
+    auto midpoint = [](auto&& f) {
+        double s = 0.0;
+        const int n = 100000;
+        for (int i = 0; i < n; ++i) s += f((i + 0.5) / n) * ((i + 0.5) / n);
+        return 2.0 * s / n;
+    };
+    for (int round = 0; round < 3; ++round)
+        for (float eta : {1.5f, 1.333f, 1.5f, 1.f / 1.5f})
+            EXPECT_NEAR(fresnel_dielectric_average(eta), midpoint([&](double mu) { return fresnel_dielectric_d(mu, eta); }),
+                        2e-6) << eta;
+    const Spectrum eta_a(0.2f, 0.9f, 1.1f), k_a(3.9f, 2.4f, 2.1f), eta_b(1.5f, 1.2f, 0.3f), k_b(7.f, 6.f, 5.f);
+    for (int round = 0; round < 3; ++round)
+        for (const auto& [eta, k] : {std::pair{eta_a, k_a}, std::pair{eta_b, k_b}, std::pair{eta_a, k_b}}) {
+            const Spectrum avg = fresnel_conductor_average(eta, k);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(avg[c], midpoint([&](double mu) { return fresnel_conductor_1(mu, eta[c], k[c]); }), 2e-6)
+                    << c;
+        }
+}
+
 TEST(Fresnel, NamedIors) {
     ConductorIOR au = conductor_ior("Au");
     EXPECT_GT(au.k.r, au.k.b);  // gold: red reflects most
