@@ -11,20 +11,15 @@
 
 #include "pellucid/geometry/mesh_io.h"
 #include "pellucid/util/error.h"
+#include "support/temp_dir.h"
 
 using namespace pellucid;
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path temp_file(const std::string& name) {
-    fs::path dir = fs::temp_directory_path() / "pellucid_mesh_io";
-    fs::create_directories(dir);
-    return dir / name;
-}
-
-fs::path write_text(const std::string& name, const std::string& text) {
-    fs::path p = temp_file(name);
+fs::path write_text(const test::TempDir& tmp, const std::string& name, const std::string& text) {
+    fs::path p = tmp.file(name);
     std::ofstream(p, std::ios::binary) << text;
     return p;
 }
@@ -114,7 +109,8 @@ PlyMesh small_mesh() {
 }  // namespace
 
 TEST(MeshIO, ObjQuadsMaterialsUvsNormals) {
-    fs::path p = write_text("quads.obj", R"(# two materials, a quad, a triangle and a pentagon
+    const test::TempDir tmp("pellucid_mesh_io_");
+    fs::path p = write_text(tmp, "quads.obj", R"(# two materials, a quad, a triangle and a pentagon
 mtllib missing.mtl
 v 0 0 0
 v 1 0 0
@@ -163,7 +159,8 @@ f 1/1/1 3/3/1 4/4/1
 }
 
 TEST(MeshIO, ObjWithoutAttributesAndSmoothNormals) {
-    fs::path p = write_text("plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+    const test::TempDir tmp("pellucid_mesh_io_");
+    fs::path p = write_text(tmp, "plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
     ObjMesh o = load_obj(p.string());
     EXPECT_EQ(o.mesh.triangle_count(), 4u);
     EXPECT_EQ(o.mesh.positions.size(), 4u);
@@ -178,25 +175,27 @@ TEST(MeshIO, ObjWithoutAttributesAndSmoothNormals) {
 }
 
 TEST(MeshIO, ObjErrorsNameTheFile) {
-    fs::path p = write_text("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+    const test::TempDir tmp("pellucid_mesh_io_");
+    fs::path p = write_text(tmp, "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
     EXPECT_EQ(error_of([&] { load_obj(p.string()); }),
               p.string() + ": face 2: vertex index 9 is out of range (3 defined so far)");
-    p = write_text("bad2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n");
+    p = write_text(tmp, "bad2.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n");
     EXPECT_EQ(error_of([&] { load_obj(p.string()); }), p.string() + ": face 1 has 2 vertices (need >= 3)");
-    p = write_text("bad3.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n");
+    p = write_text(tmp, "bad3.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n");
     EXPECT_EQ(error_of([&] { load_obj(p.string()); }),
               p.string() + ": face 1: texture coordinate index 2 is out of range (1 defined so far)");
-    p = write_text("empty.obj", "v 0 0 0\n");
+    p = write_text(tmp, "empty.obj", "v 0 0 0\n");
     EXPECT_EQ(error_of([&] { load_obj(p.string()); }), p.string() + ": OBJ file has no faces");
     EXPECT_EQ(error_of([] { load_obj("/nonexistent/x.obj"); }),
               "/nonexistent/x.obj: cannot open OBJ file (does it exist?)");
 }
 
 TEST(MeshIO, PlyRoundTripsAsciiAndBinary) {
+    const test::TempDir tmp("pellucid_mesh_io_");
     PlyMesh src = small_mesh();
     for (Fmt fmt : {Fmt::Ascii, Fmt::LE, Fmt::BE}) {
         SCOPED_TRACE(int(fmt));
-        fs::path p = temp_file("round" + std::to_string(int(fmt)) + ".ply");
+        fs::path p = tmp.file("round" + std::to_string(int(fmt)) + ".ply");
         std::ofstream(p, std::ios::binary) << ply_text(src, fmt, "red");
         TriangleMesh m = load_ply(p.string());
         ASSERT_EQ(m.positions.size(), 5u);
@@ -213,7 +212,7 @@ TEST(MeshIO, PlyRoundTripsAsciiAndBinary) {
     PlyMesh bare = src;
     bare.n.clear();
     bare.uv.clear();
-    fs::path p = temp_file("bare.ply");
+    fs::path p = tmp.file("bare.ply");
     std::ofstream(p, std::ios::binary) << ply_text(bare, Fmt::LE);
     TriangleMesh m = load_ply(p.string());
     EXPECT_TRUE(m.normals.empty());
@@ -226,10 +225,11 @@ TEST(MeshIO, PlyRoundTripsAsciiAndBinary) {
 }
 
 TEST(MeshIO, PlyCorruptFilesNameTheFile) {
+    const test::TempDir tmp("pellucid_mesh_io_");
     PlyMesh src = small_mesh();
     std::string good = ply_text(src, Fmt::LE);
-    auto load_text = [](const std::string& name, const std::string& text) {
-        fs::path p = temp_file(name);
+    auto load_text = [&tmp](const std::string& name, const std::string& text) {
+        fs::path p = tmp.file(name);
         std::ofstream(p, std::ios::binary) << text;
         return std::make_pair(p.string(), error_of([&] { load_ply(p.string()); }));
     };
@@ -261,9 +261,10 @@ TEST(MeshIO, PlyCorruptFilesNameTheFile) {
 }
 
 TEST(MeshIO, LargeBinaryPlyMemoryPerTriangle) {
+    const test::TempDir tmp("pellucid_mesh_io_");
     // A 708x708-quad grid: 502,681 vertices, 1,002,528 triangles (~19 MB binary PLY).
     const uint32_t n = 708;
-    fs::path p = temp_file("large.ply");
+    fs::path p = tmp.file("large.ply");
     {
         std::string h = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string((n + 1) * (n + 1)) +
                         "\nproperty float x\nproperty float y\nproperty float z\nelement face " +

@@ -10,6 +10,7 @@
 #include "pellucid/scene/build.h"
 #include "pellucid/scene/mitsuba_xml.h"
 #include "support/scene_util.h"
+#include "support/temp_dir.h"
 
 using namespace pellucid;
 namespace fs = std::filesystem;
@@ -78,8 +79,8 @@ TEST(MitsubaShapes, CubeIsClosedWithOutwardWinding) {
 // uv and dp/du, dp/dv (checked against Mitsuba 3.9.1), and an area emitter then emits on the
 // other side.
 TEST(MitsubaShapes, FlipNormalsOnEveryShape) {
-    fs::path dir = fs::temp_directory_path() / "pellucid_flip_normals";
-    fs::create_directories(dir);
+    const test::TempDir tmp("pellucid_mitsuba_shapes_");
+    const fs::path dir = tmp.path();
     std::ofstream(dir / "quad.obj") << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
                                        "f 1/1 2/2 3/3 4/4\n";
     std::ofstream(dir / "quad.ply") << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
@@ -121,7 +122,6 @@ TEST(MitsubaShapes, FlipNormalsOnEveryShape) {
             }
         }
     }
-    fs::remove_all(dir);
 }
 
 TEST(MitsubaShapes, FlipNormalsInJson) {

@@ -13,6 +13,7 @@
 #include "pellucid/util/error.h"
 #include "pellucid/util/log.h"
 #include "support/scene_util.h"
+#include "support/temp_dir.h"
 
 using namespace pellucid;
 namespace fs = std::filesystem;
@@ -81,13 +82,6 @@ std::string error_of(const std::string& xml, bool lenient = false, const std::st
     return "";
 }
 
-
-fs::path temp_dir(const std::string& name) {
-    fs::path p = fs::temp_directory_path() / ("pellucid_mitsuba_" + name);
-    fs::remove_all(p);
-    fs::create_directories(p);
-    return p;
-}
 
 void write(const fs::path& p, const std::string& text) {
     fs::create_directories(p.parent_path());
@@ -353,7 +347,8 @@ TEST(MitsubaXml, MalformedXmlAndOtherErrors) {
 }
 
 TEST(MitsubaXml, IncludesResolveRelativeToTheirFile) {
-    fs::path dir = temp_dir("include");
+    const test::TempDir tmp("pellucid_mitsuba_");
+    const fs::path dir = tmp.path();
     write(dir / "parts" / "objects.xml", scene(R"(<default name="r" value="3"/>
 <bsdf type="diffuse" id="grey"/>
 <shape type="obj"><string name="filename" value="meshes/a.obj"/><ref id="grey"/></shape>
@@ -377,7 +372,6 @@ TEST(MitsubaXml, IncludesResolveRelativeToTheirFile) {
         {"type": "obj", "filename": "parts/meshes/a.obj", "face_normals": false, "smooth_normals": true, "flip_tex_coords": true, "usemtl": false,
          "material": "grey"},
         {"type": "sphere", "radius": 3, "material": "grey"}]})", "e")));
-    fs::remove_all(dir);
 }
 
 TEST(MitsubaXml, DataFileBuildsWithTheSharedBuilder) {

@@ -15,6 +15,7 @@
 #include "pellucid/util/error.h"
 #include "support/scene_util.h"
 #include "support/surface_util.h"
+#include "support/temp_dir.h"
 
 using namespace pellucid;
 
@@ -25,11 +26,6 @@ using pellucid::test::ctx_of;
 using pellucid::test::plane_hit;
 
 namespace {
-std::string tmp_dir() {
-    auto d = std::filesystem::temp_directory_path() / "pellucid-texture-tests";
-    std::filesystem::create_directories(d);
-    return d.string();
-}
 
 
 }  // namespace
@@ -120,7 +116,8 @@ TEST(Footprint, CameraDifferentialsMatchGeometryAndConvergeWithResolution) {
 // trilinearly with a footprint of f = 2^k texels, returns k; in between, OIIO blends the two
 // bracketing levels linearly in the footprint width: k + (f − 2^k)/2^k.
 TEST(ImageTexture, MipLevelMatchesFootprint) {
-    std::string path = tmp_dir() + "/levels.exr";
+    const test::TempDir tmp("pellucid_texture_");
+    std::string path = tmp.file("levels.exr");
     int levels = write_level_index_mipmap(path, 256);
     ASSERT_EQ(levels, 9);
     ImageTextureHandle h = open_image_texture(path, TextureColorSpace::Linear, nullptr);
@@ -166,7 +163,8 @@ TEST(Checkerboard, FilteredAveragesHalfAtDistanceAndMatchesBoxAverage) {
 
 // A flat normal map — (0.5, 0.5, 1) in float, or (128, 128, 255) in 8 bits — changes nothing.
 TEST(NormalMap, FlatMapChangesNothing) {
-    std::string dir = tmp_dir();
+    const test::TempDir tmp("pellucid_texture_");
+    std::string dir = tmp.dir();
     float flat32[4 * 4 * 3], flat8[4 * 4 * 3];
     for (int i = 0; i < 16; ++i) {
         flat32[3 * i] = flat32[3 * i + 1] = 0.5f;
@@ -203,7 +201,8 @@ TEST(NormalMap, FlatMapChangesNothing) {
 // The property suite on bumped surfaces: tests/cpp/material/test_bumped_properties.cpp.
 
 TEST(ImageTexture, BadInputNamesThePath) {
-    std::string dir = tmp_dir();
+    const test::TempDir tmp("pellucid_texture_");
+    std::string dir = tmp.dir();
     try {
         open_image_texture(dir + "/missing.png", TextureColorSpace::Auto, nullptr);
         FAIL() << "expected an error";
@@ -231,7 +230,8 @@ TEST(ImageTexture, BadInputNamesThePath) {
 // Non-power-of-two, 8-bit, 16-bit and float images all load and read back their values (8/16-bit
 // through the sRGB decode, float as stored).
 TEST(ImageTexture, NonPowerOfTwoAnd16BitAndFloatWork) {
-    std::string dir = tmp_dir();
+    const test::TempDir tmp("pellucid_texture_");
+    std::string dir = tmp.dir();
     const int w = 37, h = 23;
     std::vector<float> px(size_t(w) * h * 3);
     for (int y = 0; y < h; ++y)
