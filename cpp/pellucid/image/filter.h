@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <variant>
 
 #include "pellucid/math/vec.h"
@@ -25,9 +26,6 @@ struct BoxFilter {
     Vec2f sample(Vec2f u) const { return (2.f * u - Vec2f(1.f)) * radius; }
     float eval(float x) const { return std::fabs(x) <= radius ? 1.f : 0.f; }
     float radius_px() const { return radius; }
-    void taps(float x0, int n, float* w) const {
-        for (int i = 0; i < n; ++i) w[i] = eval(x0 + float(i));
-    }
     std::string to_string() const { return "BoxFilter[radius=" + std::to_string(radius) + "]"; }
 };
 struct TentFilter {
@@ -35,9 +33,6 @@ struct TentFilter {
     Vec2f sample(Vec2f u) const { return Vec2f(sample_tent(u.x, radius), sample_tent(u.y, radius)); }
     float eval(float x) const { return std::max(0.f, radius - std::fabs(x)); }
     float radius_px() const { return radius; }
-    void taps(float x0, int n, float* w) const {
-        for (int i = 0; i < n; ++i) w[i] = eval(x0 + float(i));
-    }
     std::string to_string() const { return "TentFilter[radius=" + std::to_string(radius) + "]"; }
 };
 struct GaussianFilter {
@@ -77,7 +72,12 @@ inline float eval_filter(const Filter& f, float x) {
 }
 /// w[i] = eval_filter(f, x0 + i) for i < n (one dispatch for a row of splat weights).
 inline void eval_filter_taps(const Filter& f, float x0, int n, float* w) {
-    std::visit([&](const auto& k) { k.taps(x0, n, w); }, f);
+    std::visit([&](const auto& k) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(k)>, GaussianFilter>)
+            k.taps(x0, n, w);
+        else
+            for (int i = 0; i < n; ++i) w[i] = k.eval(x0 + float(i));
+    }, f);
 }
 inline float filter_radius(const Filter& f) {
     return std::visit([](const auto& k) { return k.radius_px(); }, f);

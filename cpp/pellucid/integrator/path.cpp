@@ -221,7 +221,7 @@ Spectrum PathIntegrator::Li(const Scene& scene, RayDifferential ray, Sampler& sa
         auto ls = std::visit([&](const auto& l) { return l.sample_li(ctx, u); }, scene.lights[li]);
         if (ls && ls->pdf > 0.f) {
             float bsdf_pdf;
-            Spectrum f = bsdf.eval_pdf(wo, ls->wi, &bsdf_pdf);
+            Spectrum f = bsdf.eval(wo, ls->wi, TransportMode::Radiance, &bsdf_pdf);
             if (!f.is_black()) {
                 float light_pdf = pmf * ls->pdf;
                 float w = (ls->delta || !use_mis) ? 1.f : power_heuristic(light_pdf, bsdf_pdf);
