@@ -196,4 +196,55 @@ void EmbreeScene::occluded_packet(int n, const Ray* const* rays, bool* occluded)
     rtcOccluded16(valid, m_impl->scene, &ctx, &r);
     for (int i = 0; i < n; ++i) occluded[i] = r.tfar[i] < 0.f;
 }
+
+namespace {
+template <class RayK>
+void fill_packet_soa(const int32_t* valid, const EmbreeScene::RaysSoA& in, RayK& r, int* v) {
+    for (int i = 0; i < EmbreeScene::kPacketSize; ++i) {
+        v[i] = valid[i] ? -1 : 0;
+        r.org_x[i] = in.ox[i];
+        r.org_y[i] = in.oy[i];
+        r.org_z[i] = in.oz[i];
+        r.dir_x[i] = in.dx[i];
+        r.dir_y[i] = in.dy[i];
+        r.dir_z[i] = in.dz[i];
+        r.tnear[i] = 0.f;
+        r.tfar[i] = in.tmax[i];
+        r.mask[i] = ~0u;
+        r.flags[i] = 0;
+        r.time[i] = 0.f;
+    }
+}
+}  // namespace
+
+void EmbreeScene::intersect_soa(const int32_t* valid, const RaysSoA& rays, float* t, float* u, float* v,
+                                uint32_t* geom, uint32_t* prim) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int on[16];
+    fill_packet_soa(valid, rays, rh.ray, on);
+    for (int i = 0; i < 16; ++i) {
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(on, m_impl->scene, &ctx, &rh);
+    for (int i = 0; i < 16; ++i) {
+        t[i] = rh.ray.tfar[i];
+        u[i] = rh.hit.u[i];
+        v[i] = rh.hit.v[i];
+        geom[i] = on[i] ? rh.hit.geomID[i] : ~0u;
+        prim[i] = geom[i] != ~0u ? rh.hit.primID[i] : 0u;
+    }
+}
+
+void EmbreeScene::occluded_soa(const int32_t* valid, const RaysSoA& rays, int32_t* occluded) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    alignas(64) RTCRay16 r;
+    alignas(64) int on[16];
+    fill_packet_soa(valid, rays, r, on);
+    rtcOccluded16(on, m_impl->scene, &ctx, &r);
+    for (int i = 0; i < 16; ++i) occluded[i] = (on[i] && r.tfar[i] < 0.f) ? -1 : 0;
+}
 }  // namespace pellucid

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "pellucid/integrator/aov.h"
+#include "pellucid/integrator/path_lanes.h"
 #include "pellucid/sampling/mis.h"
 #include "pellucid/util/error.h"
 
@@ -137,6 +138,13 @@ uint64_t render_tile_packets(const PathIntegrator& integrator, const Scene& scen
 
 RenderResult PathIntegrator::render(const Scene& scene, const RenderOptions& opts) const {
     const SamplerType type = sampler_type(scene, opts);
+    // The simplest model that renders the scene: the lane kernel when it covers every material and
+    // light of the scene (path_lanes.h), the general vertex loop otherwise.
+    if (m_s.lanes && m_s.packets)
+        if (std::shared_ptr<const LaneScene> lanes = make_lane_scene(scene, m_s))
+            return render_loop(scene, opts, [&](const TileJob& job, Film& film) {
+                return render_tile_lanes(*lanes, scene, m_max_depth, m_s.rr_depth, job, film, type);
+            });
     return render_loop(scene, opts, [&](const TileJob& job, Film& film) {
         if (m_s.packets) return render_tile_packets(*this, scene, job, film, type);
         return render_tile(scene, job, film, type, [&](const RayDifferential& r, Sampler& u) { return Li(scene, r, u); });

@@ -36,6 +36,14 @@ public:
     /// Total emitted power (W).
     float power() const;
     float area() const { return m_area; }
+    bool is_sphere() const { return m_is_sphere; }
+    bool two_sided() const { return m_two_sided; }
+    const Spectrum& radiance() const { return m_radiance; }
+    /// Mesh emitter: its triangles' corners (3 per triangle), unit normals (the side that emits)
+    /// and sampled-point error bounds, as sample_li uses them.
+    const std::vector<Point3f>& triangles() const { return m_tri; }
+    const std::vector<Normal3f>& triangle_normals() const { return m_tri_n; }
+    const std::vector<Vec3f>& triangle_errors() const { return m_tri_err; }
     std::string to_string() const;
 
 private:

@@ -116,6 +116,7 @@ private:
         if (s.light_selection != "power" && s.light_selection != "uniform")
             p.fail("light_selection", "unknown light selection '" + s.light_selection + "' (known: power, uniform)");
         s.packets = p.get_bool("packets", true);
+        s.lanes = p.get_bool("lanes", true);
         p.check_unqueried();
     }
 

@@ -19,6 +19,7 @@ std::shared_ptr<const Scene> load_with_packets(const std::string& file, bool pac
     SceneDesc desc = read_json_file(std::string(PELLUCID_SOURCE_DIR) + "/scenes/" + file);
     Node integrator = desc.root.find("integrator") ? *desc.root.find("integrator") : Node::object();
     integrator.set("packets", Node::boolean(packets));
+    integrator.set("lanes", Node::boolean(false));  // the general loop's drivers (path_lanes.h has its own tests)
     desc.root.set("integrator", integrator);
     if (width > 0) {
         Node film = *desc.root.find("film");
