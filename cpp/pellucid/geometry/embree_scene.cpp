@@ -37,7 +37,12 @@ EmbreeScene::EmbreeScene() : m_impl(std::make_unique<Impl>()) {
     if (!m_impl->device) throw Error("could not create an Embree device");
     rtcSetDeviceErrorFunction(m_impl->device, error_callback, &m_impl->error);
     m_impl->scene = rtcNewScene(m_impl->device);
-    rtcSetSceneBuildQuality(m_impl->scene, RTC_BUILD_QUALITY_HIGH);
+    // LOW makes Embree build two levels: a BVH per geometry (at the geometry's default MEDIUM
+    // quality) under a top-level BVH over the geometries. Measured on our scenes (2 threads, same
+    // image bit for bit): the Cornell box traces 1.35x faster than with one HIGH-quality BVH over all
+    // triangles (32 spp: 4.1 against 3.0 M samples/s), the box with a 360k-triangle sphere added
+    // 1.15x; the sphere and textured scenes, which spend their time shading, are unchanged.
+    rtcSetSceneBuildQuality(m_impl->scene, RTC_BUILD_QUALITY_LOW);
     rtcSetSceneFlags(m_impl->scene, RTC_SCENE_FLAG_NONE);
 }
 
