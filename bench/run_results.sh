@@ -31,7 +31,6 @@ if [[ $what == veach || $what == all ]]; then
     --crop 0,100,320,140 --agreement-spp 256
 fi
 if [[ $what == env || $what == all ]]; then
-  # Needs the envmap light (branch h-env) merged.
   bench scenes/env_spheres.json --methods bsdf,nee,mis,mis+sobol,scalar_rgb,llvm_ad_rgb --budgets 0.5,1,2,5,10 \
     --reference-spp 4096 --threads "$THREADS" --out-dir bench/results --name env_spheres \
     --crop 60,50,200,100 --agreement-spp 256

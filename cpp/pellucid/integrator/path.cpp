@@ -143,7 +143,8 @@ RenderResult PathIntegrator::render(const Scene& scene, const RenderOptions& opt
     if (m_s.lanes && m_s.packets)
         if (std::shared_ptr<const LaneScene> lanes = make_lane_scene(scene, m_s))
             return render_loop(scene, opts, [&](const TileJob& job, Film& film) {
-                return render_tile_lanes(*lanes, scene, m_max_depth, m_s.rr_depth, job, film, type);
+                return render_tile_lanes(*lanes, scene, LaneSettings{m_max_depth, m_s.rr_depth, m_use_nee, m_use_mis},
+                                         job, film, type);
             });
     return render_loop(scene, opts, [&](const TileJob& job, Film& film) {
         if (m_s.packets) return render_tile_packets(*this, scene, job, film, type);

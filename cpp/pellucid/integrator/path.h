@@ -8,7 +8,7 @@
 // | strategy  | string | "mis"   | "mis": light + BSDF sampling, power heuristic; "nee": light sampling (BSDF sampling only through delta lobes); "bsdf": BSDF sampling only; "direct": one bounce (mis, max_depth 2) |
 // | light_selection | string | "power" | NEE picks a light with probability ∝ its power, or "uniform" |
 // | packets   | bool   | true    | trace the rays of 16 paths at a time as one Embree packet; false = one path at a time. The image is the same |
-// | lanes     | bool   | true    | render a scene the lane kernel models (flat Lambertian meshes, mesh area lights: path_lanes.h) on it, 64 paths shaded per vectorised loop; false = always the general loop above |
+// | lanes     | bool   | true    | render a scene the lane kernel models (flat Lambertian meshes, mesh area lights, any strategy: path_lanes.h) on it, 64 paths shaded per vectorised loop; false = always the general loop above |
 // JSON: "integrator": {"type": "path", "max_depth": 8}
 #pragma once
 #include "pellucid/integrator/integrator.h"

@@ -69,7 +69,6 @@ std::shared_ptr<const LaneScene> make_lane_scene(const Scene& scene, const Integ
         return std::shared_ptr<const LaneScene>();
     };
     if (settings.type != "path") return no("integrator type " + settings.type);
-    if (settings.strategy != "mis" && settings.strategy != "direct") return no("strategy " + settings.strategy);
     if (scene.has_textures) return no("textures");
     for (size_t m = 0; m < scene.material_bxdfs.size(); ++m)
         if (!std::holds_alternative<Lambertian>(scene.material_bxdfs[m]))
@@ -261,7 +260,8 @@ inline vf power_heuristic(vf a, vf b) {
 /// One vertex of the paths in lanes [o, o + 16) (path.cpp's PathIntegrator::vertex on a Lambertian
 /// surface), without a branch on the lanes' data: every quantity is computed in every lane and
 /// the results selected by masks.
-inline void shade_group(Lanes& s, int o, const LaneScene& ls, int max_depth, int rr_depth) {
+inline void shade_group(Lanes& s, int o, const LaneScene& ls, const LaneSettings& st) {
+    const int max_depth = st.max_depth, rr_depth = st.rr_depth;
     constexpr int kTri = int(sizeof(LaneTriangle) / sizeof(float));
     constexpr int kEm = int(sizeof(LaneEmitter) / sizeof(float));
     const float* tf = reinterpret_cast<const float*>(ls.tris.data());
@@ -288,15 +288,17 @@ inline void shade_group(Lanes& s, int o, const LaneScene& ls, int max_depth, int
     vf br = load(s.br + o), bg = load(s.bg + o), bb = load(s.bb + o);
     const vf ar = T(12), ag = T(13), ab = T(14);
 
-    // Emission found by the last bounce, MIS-weighted against light sampling (the camera ray's
-    // weight is 1: nothing else could have found it).
+    // Emission found by the last bounce, MIS-weighted against light sampling (path.cpp's
+    // bsdf_hit_weight: 1 for the camera ray, which nothing else could have found, and without NEE;
+    // 0 under "nee", where light sampling alone accounts for it).
     {
         const vf Ler = T(15), Leg = T(16), Leb = T(17);
         const vi emits = hit & ((Ler > 0.f) | (Leg > 0.f) | (Leb > 0.f)) & ((T(18) > 0.f) | (cos_o > 0.f));
         const vf qx = px - load(s.px + o), qy = py - load(s.py + o), qz = pz - load(s.pz + o);
         const vf dist2 = qx * qx + qy * qy + qz * qz;
         const vf lpdf = cos_o != 0.f ? T(19) * dist2 / vabs(cos_o) : splat(0.f);
-        const vf w = emits ? (depth == 1 ? splat(1.f) : power_heuristic(load(s.prev_pdf + o), lpdf)) : splat(0.f);
+        const vf w_bsdf = !st.use_nee ? splat(1.f) : (!st.use_mis ? splat(0.f) : power_heuristic(load(s.prev_pdf + o), lpdf));
+        const vf w = emits ? (depth == 1 ? splat(1.f) : w_bsdf) : splat(0.f);
         store(s.Lr + o, load(s.Lr + o) + br * Ler * w);
         store(s.Lg + o, load(s.Lg + o) + bg * Leg * w);
         store(s.Lb + o, load(s.Lb + o) + bb * Leb * w);
@@ -335,8 +337,9 @@ inline void shade_group(Lanes& s, int o, const LaneScene& ls, int max_depth, int
         const vi light_faces = (E(18) > 0.f) | (cos_lw < 0.f);  // emits toward -wi
         const vf cos_i = nx * wix + ny * wiy + nz * wiz;
         const vf abs_cos_i = vabs(cos_i);
-        const vf k = kInvPi * abs_cos_i * power_heuristic(pdf_l, abs_cos_i * kInvPi) / pdf_l;  // f/ρ · w / pdf
-        const vi nee = goes_on & (d2 > 0.f) & (cos_l > 0.f) & light_faces & (cos_i * cos_o > 0.f) & (pdf_l < kInfinity);
+        const vf w_l = st.use_mis ? power_heuristic(pdf_l, abs_cos_i * kInvPi) : splat(1.f);
+        const vf k = kInvPi * abs_cos_i * w_l / pdf_l;  // f/ρ · w / pdf
+        const vi nee = (st.use_nee ? goes_on : splat(0)) & (d2 > 0.f) & (cos_l > 0.f) & light_faces & (cos_i * cos_o > 0.f) & (pdf_l < kInfinity);
         store(s.shadow + o, nee);
         store(s.Ldr + o, br * ar * E(15) * k);
         store(s.Ldg + o, bg * ag * E(16) * k);
@@ -407,13 +410,14 @@ inline void shade_group(Lanes& s, int o, const LaneScene& ls, int max_depth, int
     store(s.alive + o, goes_on & (cos_o != 0.f) & (pdf_b > 0.f) & survives & ((br > 0.f) | (bg > 0.f) | (bb > 0.f)));
 }
 
-[[gnu::noinline]] void shade_lanes(Lanes& s, const LaneScene& ls, int max_depth, int rr_depth) {
-    for (int o = 0; o < kLanes; o += kGroup) shade_group(s, o, ls, max_depth, rr_depth);
+[[gnu::noinline]] void shade_lanes(Lanes& s, const LaneScene& ls, const LaneSettings& st) {
+    for (int o = 0; o < kLanes; o += kGroup) shade_group(s, o, ls, st);
 }
 }  // namespace
 
-uint64_t render_tile_lanes(const LaneScene& ls, const Scene& scene, int max_depth, int rr_depth,
-                           const TileJob& job, Film& film, SamplerType type) {
+uint64_t render_tile_lanes(const LaneScene& ls, const Scene& scene, const LaneSettings& settings, const TileJob& job,
+                           Film& film, SamplerType type) {
+    const int rr_depth = settings.rr_depth;
     struct Estimate {
         Spectrum L;
         float fx, fy;
@@ -504,7 +508,7 @@ uint64_t render_tile_lanes(const LaneScene& ls, const Scene& scene, int max_dept
                     s.u_rr[i] = 0.f;
                 }
             }
-            shade_lanes(s, ls, max_depth, rr_depth);
+            shade_lanes(s, ls, settings);
             for (int g = 0; g < kGroups; ++g) {
                 const int o = g * kGroup;
                 bool on = false;

@@ -4,8 +4,8 @@
 // SPDX-License-Identifier: Apache-2.0
 //
 // It models: triangle meshes with flat shading (the shading normal is the geometric one),
-// untextured Lambertian materials, and area lights on meshes; strategy "mis" (or "direct"), any
-// max_depth and rr_depth, either sampler, either film reconstruction. A scene that needs more
+// untextured Lambertian materials, and area lights on meshes; every strategy, any max_depth and
+// rr_depth, either sampler, either film reconstruction. A scene that needs more
 // (another BSDF, textures, smooth normals, spheres, point or infinite lights) renders with the
 // general vertex loop (path.cpp) instead; `integrator.lanes: false` asks for that loop always.
 //
@@ -34,7 +34,15 @@ struct LaneScene;
 std::shared_ptr<const LaneScene> make_lane_scene(const Scene& scene, const IntegratorSettings& settings,
                                                  std::string* why = nullptr);
 
-/// render_tile for the lane kernel. max_depth as PathIntegrator uses it (-1 = unbounded).
-uint64_t render_tile_lanes(const LaneScene& lanes, const Scene& scene, int max_depth, int rr_depth,
-                           const TileJob& job, Film& film, SamplerType type);
+/// The path tracer's settings as PathIntegrator resolves them from the strategy.
+struct LaneSettings {
+    int max_depth = -1;  ///< -1 = unbounded ("direct" = 2)
+    int rr_depth = 5;
+    bool use_nee = true;  ///< next-event estimation (all strategies but "bsdf")
+    bool use_mis = true;  ///< power-heuristic weights ("mis", "direct"); without, "nee" leaves emission hits to NEE
+};
+
+/// render_tile for the lane kernel.
+uint64_t render_tile_lanes(const LaneScene& lanes, const Scene& scene, const LaneSettings& settings, const TileJob& job,
+                           Film& film, SamplerType type);
 }  // namespace pellucid
