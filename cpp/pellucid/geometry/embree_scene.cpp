@@ -140,26 +140,51 @@ bool EmbreeScene::occluded(const Ray& ray) const {
 }
 
 namespace {
-// Lanes past n stay invalid (valid[i] = 0); Embree reads no other field of an invalid lane, but
-// they hold a harmless ray anyway.
-template <class RayK>
-void fill_packet(int n, const Ray* const* rays, RayK& r, int* valid) {
+/// Fill an Embree ray packet: lane(i, o, d, &tmax) gives lane i's ray and whether to trace it. An
+/// invalid lane (valid[i] = 0) is not read by Embree, but holds a harmless ray anyway.
+template <class RayK, class LaneFn>
+void fill_packet(RayK& r, int* valid, LaneFn&& lane) {
     for (int i = 0; i < EmbreeScene::kPacketSize; ++i) {
-        const bool on = i < n;
-        const Ray& ray = *rays[on ? i : 0];
-        valid[i] = on ? -1 : 0;
-        r.org_x[i] = ray.o.x;
-        r.org_y[i] = ray.o.y;
-        r.org_z[i] = ray.o.z;
-        r.dir_x[i] = ray.d.x;
-        r.dir_y[i] = ray.d.y;
-        r.dir_z[i] = ray.d.z;
+        float o[3], d[3], tmax;
+        valid[i] = lane(i, o, d, &tmax) ? -1 : 0;
+        r.org_x[i] = o[0];
+        r.org_y[i] = o[1];
+        r.org_z[i] = o[2];
+        r.dir_x[i] = d[0];
+        r.dir_y[i] = d[1];
+        r.dir_z[i] = d[2];
         r.tnear[i] = 0.f;
-        r.tfar[i] = ray.tmax;
+        r.tfar[i] = tmax;
         r.mask[i] = ~0u;
         r.flags[i] = 0;
         r.time[i] = 0.f;
     }
+}
+/// Lanes [0, n) from rays[i]; lanes past n repeat rays[0], invalid.
+auto lanes_of(int n, const Ray* const* rays) {
+    return [n, rays](int i, float* o, float* d, float* tmax) {
+        const bool on = i < n;
+        const Ray& ray = *rays[on ? i : 0];
+        for (int k = 0; k < 3; ++k) {
+            o[k] = ray.o[k];
+            d[k] = ray.d[k];
+        }
+        *tmax = ray.tmax;
+        return on;
+    };
+}
+/// Lanes from a RaysSoA, valid where valid[i] != 0.
+auto lanes_of(const int32_t* valid, const EmbreeScene::RaysSoA& in) {
+    return [valid, &in](int i, float* o, float* d, float* tmax) {
+        o[0] = in.ox[i];
+        o[1] = in.oy[i];
+        o[2] = in.oz[i];
+        d[0] = in.dx[i];
+        d[1] = in.dy[i];
+        d[2] = in.dz[i];
+        *tmax = in.tmax[i];
+        return valid[i] != 0;
+    };
 }
 }  // namespace
 
@@ -170,7 +195,7 @@ void EmbreeScene::intersect_packet(int n, const Ray* const* rays, RayHit* hits) 
     rtcInitIntersectContext(&ctx);
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
-    fill_packet(n, rays, rh.ray, valid);
+    fill_packet(rh.ray, valid, lanes_of(n, rays));
     for (int i = 0; i < 16; ++i) {
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
@@ -197,30 +222,11 @@ void EmbreeScene::occluded_packet(int n, const Ray* const* rays, bool* occluded)
     rtcInitIntersectContext(&ctx);
     alignas(64) RTCRay16 r;
     alignas(64) int valid[16];
-    fill_packet(n, rays, r, valid);
+    fill_packet(r, valid, lanes_of(n, rays));
     rtcOccluded16(valid, m_impl->scene, &ctx, &r);
     for (int i = 0; i < n; ++i) occluded[i] = r.tfar[i] < 0.f;
 }
 
-namespace {
-template <class RayK>
-void fill_packet_soa(const int32_t* valid, const EmbreeScene::RaysSoA& in, RayK& r, int* v) {
-    for (int i = 0; i < EmbreeScene::kPacketSize; ++i) {
-        v[i] = valid[i] ? -1 : 0;
-        r.org_x[i] = in.ox[i];
-        r.org_y[i] = in.oy[i];
-        r.org_z[i] = in.oz[i];
-        r.dir_x[i] = in.dx[i];
-        r.dir_y[i] = in.dy[i];
-        r.dir_z[i] = in.dz[i];
-        r.tnear[i] = 0.f;
-        r.tfar[i] = in.tmax[i];
-        r.mask[i] = ~0u;
-        r.flags[i] = 0;
-        r.time[i] = 0.f;
-    }
-}
-}  // namespace
 
 void EmbreeScene::intersect_soa(const int32_t* valid, const RaysSoA& rays, float* t, float* u, float* v,
                                 uint32_t* geom, uint32_t* prim) const {
@@ -228,7 +234,7 @@ void EmbreeScene::intersect_soa(const int32_t* valid, const RaysSoA& rays, float
     rtcInitIntersectContext(&ctx);
     alignas(64) RTCRayHit16 rh;
     alignas(64) int on[16];
-    fill_packet_soa(valid, rays, rh.ray, on);
+    fill_packet(rh.ray, on, lanes_of(valid, rays));
     for (int i = 0; i < 16; ++i) {
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
@@ -248,7 +254,7 @@ void EmbreeScene::occluded_soa(const int32_t* valid, const RaysSoA& rays, int32_
     rtcInitIntersectContext(&ctx);
     alignas(64) RTCRay16 r;
     alignas(64) int on[16];
-    fill_packet_soa(valid, rays, r, on);
+    fill_packet(r, on, lanes_of(valid, rays));
     rtcOccluded16(on, m_impl->scene, &ctx, &r);
     for (int i = 0; i < 16; ++i) occluded[i] = (on[i] && r.tfar[i] < 0.f) ? -1 : 0;
 }

@@ -218,21 +218,15 @@ inline vf vsqrt(vf x) {
     return r;
 #endif
 }
-/// base[idx[k]] for every lane (AVX-512: one gather instruction).
-inline vf gather(const float* base, vi idx) {
+/// base[idx[k]] for every lane, of 32-bit floats (V = vf) or integers (V = vi); AVX-512: one
+/// gather instruction, which moves the bits whatever they mean.
+template <class V, class T>
+inline V gather(const T* base, vi idx) {
+    static_assert(sizeof(T) == 4, "32-bit elements");
 #ifdef __AVX512F__
-    return (vf)_mm512_mask_i32gather_ps(_mm512_setzero_ps(), __mmask16(0xFFFF), (__m512i)idx, base, 4);
+    return (V)_mm512_mask_i32gather_ps(_mm512_setzero_ps(), __mmask16(0xFFFF), (__m512i)idx, base, 4);
 #else
-    vf r;
-    for (int k = 0; k < kGroup; ++k) r[k] = base[idx[k]];
-    return r;
-#endif
-}
-inline vi gather(const int32_t* base, vi idx) {
-#ifdef __AVX512F__
-    return (vi)_mm512_mask_i32gather_epi32(_mm512_setzero_si512(), __mmask16(0xFFFF), (__m512i)idx, base, 4);
-#else
-    vi r;
+    V r;
     for (int k = 0; k < kGroup; ++k) r[k] = base[idx[k]];
     return r;
 #endif
@@ -268,8 +262,8 @@ inline void shade_group(Lanes& s, int o, const LaneScene& ls, const LaneSettings
     const float* ef = reinterpret_cast<const float*>(ls.emitters.data());
     const vi geom = load(s.geom + o);
     const vi hit = (load(s.active + o) != 0) & (geom >= 0);
-    const vi ti = (gather(ls.tri_base.data(), hit ? geom : splat(0)) + (hit ? load(s.prim + o) : splat(0))) * kTri;
-    auto T = [&](int field) { return gather(tf + field, ti); };
+    const vi ti = (gather<vi>(ls.tri_base.data(), hit ? geom : splat(0)) + (hit ? load(s.prim + o) : splat(0))) * kTri;
+    auto T = [&](int field) { return gather<vf>(tf + field, ti); };
     // The hit: barycentric position and its error bound (pbrt-v4 §6.8.5, eq. 6.31), as
     // Scene::fill_hit computes them.
     const vf b1 = load(s.bu + o), b2 = load(s.bv + o), b0 = 1.f - b1 - b2;
@@ -315,10 +309,10 @@ inline void shade_group(Lanes& s, int o, const LaneScene& ls, const LaneSettings
         const vi last = splat(int32_t(ls.emitters.size()) - 1);
         for (int step = ls.search_top; step > 0; step >>= 1) {
             const vi c = vmin(j + step, last);
-            j = gather(ls.cdf.data(), c) <= us ? c : j;
+            j = gather<vf>(ls.cdf.data(), c) <= us ? c : j;
         }
         const vi ei = j * kEm;
-        auto E = [&](int field) { return gather(ef + field, ei); };
+        auto E = [&](int field) { return gather<vf>(ef + field, ei); };
         const vf ua = load(s.u_l0 + o), ub = load(s.u_l1 + o);
         const vi lower = ua < ub;
         const vf h = (lower ? ua : ub) * 0.5f;
