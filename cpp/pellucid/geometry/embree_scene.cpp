@@ -186,21 +186,33 @@ auto lanes_of(const int32_t* valid, const EmbreeScene::RaysSoA& in) {
         return valid[i] != 0;
     };
 }
+/// rtcIntersect16 / rtcOccluded16 on the lanes `lane` gives (fill_packet); valid receives the mask.
+template <class LaneFn>
+void intersect16(RTCScene scene, LaneFn&& lane, RTCRayHit16& rh, int* valid) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    fill_packet(rh.ray, valid, lane);
+    for (int i = 0; i < 16; ++i) {
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, scene, &ctx, &rh);
+}
+template <class LaneFn>
+void occluded16(RTCScene scene, LaneFn&& lane, RTCRay16& r, int* valid) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    fill_packet(r, valid, lane);
+    rtcOccluded16(valid, scene, &ctx, &r);
+}
 }  // namespace
 
 void EmbreeScene::intersect_packet(int n, const Ray* const* rays, RayHit* hits) const {
     static_assert(kPacketSize == 16, "the packet calls below are the 16-wide ones");
     if (n <= 0) return;
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
-    fill_packet(rh.ray, valid, lanes_of(n, rays));
-    for (int i = 0; i < 16; ++i) {
-        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-    }
-    rtcIntersect16(valid, m_impl->scene, &ctx, &rh);
+    intersect16(m_impl->scene, lanes_of(n, rays), rh, valid);
     for (int i = 0; i < n; ++i) {
         RayHit& hit = hits[i];
         if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
@@ -218,28 +230,17 @@ void EmbreeScene::intersect_packet(int n, const Ray* const* rays, RayHit* hits) 
 
 void EmbreeScene::occluded_packet(int n, const Ray* const* rays, bool* occluded) const {
     if (n <= 0) return;
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
     alignas(64) RTCRay16 r;
     alignas(64) int valid[16];
-    fill_packet(r, valid, lanes_of(n, rays));
-    rtcOccluded16(valid, m_impl->scene, &ctx, &r);
+    occluded16(m_impl->scene, lanes_of(n, rays), r, valid);
     for (int i = 0; i < n; ++i) occluded[i] = r.tfar[i] < 0.f;
 }
 
-
 void EmbreeScene::intersect_soa(const int32_t* valid, const RaysSoA& rays, float* t, float* u, float* v,
                                 uint32_t* geom, uint32_t* prim) const {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
     alignas(64) RTCRayHit16 rh;
     alignas(64) int on[16];
-    fill_packet(rh.ray, on, lanes_of(valid, rays));
-    for (int i = 0; i < 16; ++i) {
-        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-    }
-    rtcIntersect16(on, m_impl->scene, &ctx, &rh);
+    intersect16(m_impl->scene, lanes_of(valid, rays), rh, on);
     for (int i = 0; i < 16; ++i) {
         t[i] = rh.ray.tfar[i];
         u[i] = rh.hit.u[i];
@@ -250,12 +251,9 @@ void EmbreeScene::intersect_soa(const int32_t* valid, const RaysSoA& rays, float
 }
 
 void EmbreeScene::occluded_soa(const int32_t* valid, const RaysSoA& rays, int32_t* occluded) const {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
     alignas(64) RTCRay16 r;
     alignas(64) int on[16];
-    fill_packet(r, on, lanes_of(valid, rays));
-    rtcOccluded16(on, m_impl->scene, &ctx, &r);
+    occluded16(m_impl->scene, lanes_of(valid, rays), r, on);
     for (int i = 0; i < 16; ++i) occluded[i] = (on[i] && r.tfar[i] < 0.f) ? -1 : 0;
 }
 }  // namespace pellucid
