@@ -187,6 +187,9 @@ struct alignas(64) Lanes {
 // 16 lanes in one value: GCC vector extensions, which compile to single AVX-512 instructions
 // (or pairs of AVX2 ones, and so on, with narrower registers). Comparisons give masks of -1/0 and
 // `mask ? a : b` selects per lane.
+// Without AVX-512 GCC notes that 64-byte vectors are passed differently from AVX-512 code; these
+// helpers are internal to this file, so no ABI is crossed.
+#pragma GCC diagnostic ignored "-Wpsabi"
 typedef float vf __attribute__((vector_size(64)));
 typedef int32_t vi __attribute__((vector_size(64)));
 static_assert(sizeof(vf) == kGroup * sizeof(float), "a vector holds one packet of lanes");
