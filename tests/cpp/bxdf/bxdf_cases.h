@@ -2,6 +2,8 @@
 // `BxDF` (a missing specialisation is a compile error, so a new model cannot skip the suite).
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <gtest/gtest.h>
+
 #include <string>
 #include <vector>
 
@@ -276,6 +278,21 @@ struct BxDFCases<Principled> {
                     v.emplace_back(p);
                 }
         return v;
+    }
+};
+
+/// Every alternative of a std::variant of BxDFs, as a gtest type list for the typed suites, and
+/// sums over the alternatives' parameter sets (the suites count their χ² runs with it, for the
+/// Šidák correction).
+template <class V>
+struct VariantTypes;
+template <class... Ts>
+struct VariantTypes<std::variant<Ts...>> {
+    using type = ::testing::Types<Ts...>;
+    /// Σ over the alternatives T of count(BxDFCases<T>::cases()).
+    template <class F>
+    static int sum_over_cases(F&& count) {
+        return (0 + ... + count(BxDFCases<Ts>::cases()));
     }
 };
 }  // namespace pellucid::test
