@@ -6,10 +6,16 @@ SHELL := /bin/bash
 PYTHON ?= python3
 VENV := .venv
 VPY := $(VENV)/bin/python
+# The cmake/ctest that pip puts in the venv: called by path, never from PATH.
+CTEST := $(CURDIR)/$(VENV)/bin/ctest
 BUILD := build/py
 BIN := $(BUILD)/cpp/pellucid-render
-DEB_PACKAGES := libembree-dev libopenimageio-dev libglm-dev libtbb-dev nlohmann-json3-dev \
-                libpugixml-dev libtinyobjloader-dev libgtest-dev
+# Everything beyond make, git and python3 that a minbase Debian 12 lacks: the compiler, venv and the
+# Python headers, the libraries, and openimageio-tools (OpenImageIO's CMake package file names its
+# binaries, and --no-install-recommends would leave them out).
+DEB_PACKAGES := g++ python3-venv python3-dev ca-certificates \
+                libembree-dev libopenimageio-dev openimageio-tools libglm-dev libtbb-dev \
+                nlohmann-json3-dev libpugixml-dev libtinyobjloader-dev libgtest-dev
 PY_DEPS := "pybind11>=2.12" "scikit-build-core>=0.10" "numpy" "pytest" "cmake>=3.18" "ninja" "matplotlib" "tqdm"
 SOURCES := $(shell find cpp bindings python tests/cpp cmake -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name '*.txt' -o -name '*.cmake' -o -name '*.pyi' \) 2>/dev/null) CMakeLists.txt pyproject.toml
 
@@ -17,7 +23,7 @@ SOURCES := $(shell find cpp bindings python tests/cpp cmake -type f \( -name '*.
 .DEFAULT_GOAL := render
 
 # Debian packages: installed only when one is missing (needs root or sudo).
-$(VENV)/.deb-stamp:
+$(VENV)/.deb-stamp: Makefile
 	@missing=$$(for p in $(DEB_PACKAGES); do dpkg -s $$p >/dev/null 2>&1 || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
 	  echo "installing Debian packages: $$missing"; \
@@ -45,7 +51,7 @@ render: deps
 	@echo "rendered: $(CURDIR)/out/cornell_box.exr and $(CURDIR)/out/cornell_box.png"
 
 test: deps
-	cd $(BUILD) && ctest --output-on-failure -j2
+	cd $(BUILD) && $(CTEST) --output-on-failure -j2
 	$(VPY) -m pytest -q
 
 clean:

@@ -26,6 +26,7 @@ fi
 excl="$(git -C "$bench/.." rev-parse --git-path info/exclude 2>/dev/null || true)"
 if [ -n "$excl" ]; then
     case "$excl" in /*) ;; *) excl="$bench/../$excl" ;; esac
+    mkdir -p "$(dirname "$excl")"
     grep -qxF 'bench/.venv-mitsuba/' "$excl" 2>/dev/null || echo 'bench/.venv-mitsuba/' >> "$excl"
 fi
 
