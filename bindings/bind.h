@@ -21,5 +21,6 @@ py::array image_to_array(Image&& img);
 /// Copy a (H, W, 3) / (H, W) float array into an Image.
 Image array_to_image(const py::array_t<float, py::array::c_style | py::array::forcecast>& a);
 /// Python object (dict, list, number, str, bool, None) -> SceneDesc node. Errors carry the key path.
-Node to_node(const py::handle& obj, const std::string& path);
+/// A Python dict/list/number/string as a scene Node; depth counts the containers above obj.
+Node to_node(const py::handle& obj, const std::string& path, int depth = 0);
 }  // namespace pellucid::bind

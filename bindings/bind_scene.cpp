@@ -8,10 +8,16 @@
 #include "pellucid/api.h"
 #include "pellucid/scene/registry.h"
 #include "pellucid/util/error.h"
+#include "pellucid/util/limits.h"
 
 namespace pellucid::bind {
 
-Node to_node(const py::handle& obj, const std::string& path) {
+Node to_node(const py::handle& obj, const std::string& path, int depth) {
+    if (depth > max_scene_depth())
+        throw Error("<dict>: " + (path.empty() ? std::string("<root>") : path) + ": dicts and lists nested deeper than " +
+                    std::to_string(max_scene_depth()) +
+                    " levels (the scene depth limit; a container that holds itself? Raise it with "
+                    "PELLUCID_MAX_SCENE_DEPTH)");
     if (obj.is_none()) return Node();
     if (py::isinstance<py::bool_>(obj)) return Node::boolean(obj.cast<bool>());
     if (py::isinstance<py::int_>(obj)) return Node::number(obj.cast<double>(), true);
@@ -23,15 +29,15 @@ Node to_node(const py::handle& obj, const std::string& path) {
             if (!py::isinstance<py::str>(item.first))
                 throw Error("<dict>: " + (path.empty() ? std::string("<root>") : path) + ": keys must be strings");
             std::string key = item.first.cast<std::string>();
-            o.set(key, to_node(item.second, path_join(path, key)));
+            o.set(key, to_node(item.second, path_join(path, key), depth + 1));
         }
         return o;
     }
-    if (py::isinstance<py::array>(obj)) return to_node(obj.attr("tolist")(), path);
+    if (py::isinstance<py::array>(obj)) return to_node(obj.attr("tolist")(), path, depth);
     if (py::isinstance<py::list>(obj) || py::isinstance<py::tuple>(obj)) {
         Node a = Node::array();
         size_t i = 0;
-        for (auto item : obj) a.push_back(to_node(item, path_index(path, i++)));
+        for (auto item : obj) a.push_back(to_node(item, path_index(path, i++), depth + 1));
         return a;
     }
     if (py::hasattr(obj, "__float__")) return Node::number(obj.cast<double>(), false);

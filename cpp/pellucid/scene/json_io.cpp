@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "pellucid/util/error.h"
+#include "pellucid/util/limits.h"
 
 namespace pellucid {
 namespace {
@@ -59,11 +60,20 @@ nlohmann::ordered_json to_nl(const Node& n) {
 Node parse_json(const std::string& text, const std::string& source) {
     try {
         // ordered_json keeps key order, so error paths and to_json round trips follow the file.
-        return from_json(nlohmann::ordered_json::parse(text));
-    } catch (const nlohmann::json::parse_error& e) {
+        // The parser itself is iterative; from_json recurses, so the depth is bounded while parsing.
+        const int limit = max_scene_depth();
+        auto depth_check = [&](int depth, nlohmann::ordered_json::parse_event_t, nlohmann::ordered_json&) {
+            if (depth > limit)
+                throw Error(source + ": objects and arrays nested deeper than " + std::to_string(limit) +
+                            " levels (the scene depth limit; raise it with PELLUCID_MAX_SCENE_DEPTH)");
+            return true;
+        };
+        return from_json(nlohmann::ordered_json::parse(text, depth_check));
+    } catch (const nlohmann::json::exception& e) {
+        // parse_error (syntax) and out_of_range (a number such as 1e999 that overflows a double).
         std::string msg = e.what();
-        auto pos = msg.find("parse error");
-        throw Error(source + ": malformed JSON: " + (pos == std::string::npos ? msg : msg.substr(pos)));
+        auto pos = msg.find("] ");
+        throw Error(source + ": malformed JSON: " + (pos == std::string::npos ? msg : msg.substr(pos + 2)));
     }
 }
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "pellucid/util/error.h"
+#include "pellucid/util/limits.h"
 
 namespace pellucid {
 
@@ -17,6 +18,13 @@ std::string format_error(const std::string& source, const std::string& path, con
 }
 
 namespace {
+/// A number as a user would write it (1e+39, not 1000000000000000044885712678075916785549312.000000).
+std::string number_text(double v) {
+    std::ostringstream os;
+    os.precision(15);
+    os << v;
+    return os.str();
+}
 thread_local std::vector<ParameterRecord>* t_recorder = nullptr;
 }
 
@@ -61,6 +69,7 @@ float Properties::number_of(const Node& n, const std::string& key) {
     if (!n.is_number()) fail(key, std::string("expected a number, got a ") + n.kind_name());
     double v = n.as_number();
     if (!std::isfinite(v)) fail(key, "value " + std::to_string(v) + " is not finite");
+    if (!fits_float(v)) fail(key, "value " + number_text(v) + " overflows a 32-bit float (largest: 3.4e38)");
     return float(v);
 }
 
@@ -76,11 +85,13 @@ float Properties::get_float(const std::string& key) {
 int Properties::get_int(const std::string& key, int def) {
     const Node* n = lookup(key);
     if (!n) return def;
-    float v = number_of(*n, key);
+    if (!n->is_number()) fail(key, std::string("expected a number, got a ") + n->kind_name());
     double d = n->as_number();
-    if (d != std::floor(d) || std::fabs(d) > 2147483647.0)
-        fail(key, "expected an integer, got " + std::to_string(d));
-    return int(v);
+    if (!std::isfinite(d) || d != std::floor(d))
+        fail(key, "expected an integer, got " + number_text(d));
+    if (std::fabs(d) > 2147483647.0)
+        fail(key, "value " + number_text(d) + " is out of range (a 32-bit integer: at most 2147483647 in magnitude)");
+    return int(d);
 }
 std::string Properties::get_choice(const std::string& key, const std::string& def, const std::string& what,
                                    std::initializer_list<const char*> known) {
@@ -144,8 +155,8 @@ std::vector<float> Properties::get_float_array(const std::string& key) {
     out.reserve(n->size());
     for (size_t i = 0; i < n->size(); ++i) {
         const Node& v = n->items()[i];
-        if (!v.is_number() || !std::isfinite(v.as_number()))
-            fail(path_index(key, i), "expected a finite number");
+        if (!v.is_number() || !fits_float(v.as_number()))
+            fail(path_index(key, i), "expected a finite number that fits a 32-bit float");
         out.push_back(float(v.as_number()));
     }
     return out;
@@ -174,8 +185,8 @@ Vec3f vec3_of(const Node& n, const std::string& src, const std::string& path) {
     Vec3f v;
     for (int i = 0; i < 3; ++i) {
         const Node& c = n.items()[i];
-        if (!c.is_number() || !std::isfinite(c.as_number()))
-            throw Error(format_error(src, path, "expected finite numbers"));
+        if (!c.is_number() || !fits_float(c.as_number()))
+            throw Error(format_error(src, path, "expected finite numbers that fit a 32-bit float"));
         v[i] = float(c.as_number());
     }
     return v;
@@ -189,6 +200,8 @@ Transform transform_op(const Node& op, const std::string& src, const std::string
     std::string p = path_join(path, name);
     if (name == "translate") return Transform::translate(vec3_of(v, src, p));
     if (name == "scale") {
+        if (v.is_number() && !fits_float(v.as_number()))
+            throw Error(format_error(src, p, "expected a finite number that fits a 32-bit float"));
         Vec3f s = v.is_number() ? Vec3f(float(v.as_number())) : vec3_of(v, src, p);
         if (s.x == 0.f || s.y == 0.f || s.z == 0.f)
             throw Error(format_error(src, p, "scale must be non-zero, got " + to_string(s)));
@@ -217,8 +230,8 @@ Transform transform_op(const Node& op, const std::string& src, const std::string
         for (int r = 0; r < 4; ++r)
             for (int c = 0; c < 4; ++c) {
                 const Node& e = v.items()[r * 4 + c];
-                if (!e.is_number() || !std::isfinite(e.as_number()))
-                    throw Error(format_error(src, p, "expected finite numbers"));
+                if (!e.is_number() || !fits_float(e.as_number()))
+                    throw Error(format_error(src, p, "expected finite numbers that fit a 32-bit float"));
                 m[c][r] = float(e.as_number());
             }
         if (std::fabs(glm::determinant(m)) < 1e-12f)
