@@ -44,8 +44,8 @@ LAMBDA_MIN, LAMBDA_MAX, STEPS = 360.0, 830.0, 1000
 SOURCES = {
     "P85": "E. D. Palik (ed.), Handbook of Optical Constants of Solids, Academic Press, 1985",
     "P91": "E. D. Palik (ed.), Handbook of Optical Constants of Solids II, Academic Press, 1991",
-    "PAL": "Palik's handbooks (P85 or P91, the file does not say which), joined to CXRO/LLNL X-ray data "
-           "below the visible",
+    "PAL": "Palik's handbooks (P85 or P91, the file does not say which); in an X_llnl_cxro + X_palik "
+           "file the CXRO/LLNL X-ray data lie below the visible",
     "LUX": "luxpop.com export with no source line (Mitsuba 3's documentation attributes its luxpop set "
            "to Palik's handbooks; Cu coincides with Cu_palik, P85, at Palik's wavelengths)",
     "JC74": "P. B. Johnson, R. W. Christy, \"Optical constants of transition metals: Ti, V, Cr, Mn, Fe, Co, "
@@ -73,7 +73,7 @@ def read_spd(path: pathlib.Path) -> Tuple[np.ndarray, np.ndarray, str]:
     return lam_a, val_a, "\n".join(header)
 
 
-def source_tag(header: str, directory: pathlib.Path) -> str:
+def source_tag(name: str, header: str, directory: pathlib.Path) -> str:
     if "Johnson" in header and "Christy" in header and "1974" in header:
         return "JC74"
     if "Handbook of Optical Constants of Solids II" in header:
@@ -84,9 +84,9 @@ def source_tag(header: str, directory: pathlib.Path) -> str:
     if m:
         # X-ray data (CXRO/LLNL) joined to Palik's; 360-830 nm lies in Palik's part.
         palik = directory / f"{m.group(2)}.eta.spd"
-        tag = source_tag(read_spd(palik)[2], directory) if palik.exists() else ""
+        tag = source_tag(m.group(2), read_spd(palik)[2], directory) if palik.exists() else "PAL"
         return tag if tag in ("P85", "P91") else "PAL"
-    return "LUX"
+    return "PAL" if name.endswith("_palik") else "LUX"
 
 
 def cie1931() -> Tuple[np.ndarray, np.ndarray]:
@@ -143,7 +143,7 @@ def reduce_dirs(dirs: List[pathlib.Path]) -> Dict[str, dict]:
             le, ve, header = read_spd(eta_file)
             lk, vk, _ = read_spd(k_file)
             out[name] = {"eta": red.srgb(le, ve).tolist(), "k": red.srgb(lk, vk).tolist(),
-                         "source": source_tag(header, d),
+                         "source": source_tag(name, header, d),
                          "range_nm": [float(max(le[0], lk[0])), float(min(le[-1], lk[-1]))]}
     return dict(sorted(out.items(), key=lambda kv: sort_key(kv[0])))
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 import importlib.util
 import json
 import pathlib
+import re
 import sys
 
 import numpy as np
@@ -63,6 +64,21 @@ def test_our_extra_names_and_unknown_names() -> None:
         assert np.all(ours_normal_albedo({"material": name}) > 0.4)
     with pytest.raises(pellucid.Error, match=r"unknown metal 'Gold' \(known: a-C, Ag, Al, "):
         pellucid.bsdf({"type": "conductor", "material": "Gold"})
+
+
+def known_names() -> list:
+    """The names the builder accepts, read from its error message for an unknown name."""
+    with pytest.raises(pellucid.Error) as e:
+        pellucid.bsdf({"type": "conductor", "material": "?"})
+    return re.search(r"\(known: ([^)]*)\)", str(e.value)).group(1).split(", ")
+
+
+def test_docs_list_every_name() -> None:
+    names = known_names()
+    assert set(NAMES) | {"Fe", "Ti", "Ni"} == set(names)
+    doc = (DATA.parents[2] / "docs" / "materials.md").read_text()
+    missing = [n for n in names if f"`{n}`" not in doc]
+    assert not missing, f"docs/materials.md (Named IORs) does not list {missing}"
 
 
 @pytest.mark.parametrize("name", NAMES)

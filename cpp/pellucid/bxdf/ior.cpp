@@ -22,8 +22,8 @@ struct NamedConductor {
 //   to Palik's handbooks; Cu coincides with Cu_palik, P85, at Palik's wavelengths).
 // P85: E. D. Palik (ed.), Handbook of Optical Constants of Solids, Academic Press, 1985.
 // P91: E. D. Palik (ed.), Handbook of Optical Constants of Solids II, Academic Press, 1991.
-// PAL: Palik's handbooks (P85 or P91, the file does not say which), joined to CXRO/LLNL X-ray data
-//   below the visible.
+// PAL: Palik's handbooks (P85 or P91, the file does not say which); in an X_llnl_cxro + X_palik
+//   file the CXRO/LLNL X-ray data lie below the visible.
 // Data not covering 360-830 nm (the missing part counts as 0): AlSb, AlSb_palik, Cu_palik, d-C,
 //   d-C_palik, HgTe, HgTe_palik, Li, Li_palik, MgO, MgO_palik, Se, Se-e, Se-e_palik, Se_palik, SiC,
 //   SiC_palik, ThF4, ThF4_palik, TiC, TiC_palik, TiN, TiN_palik, VC, VC_palik, VN, VN_palik.
@@ -37,7 +37,7 @@ const NamedConductor kConductors[] = {
     {"AlSb_palik", {{0.f, 4.14139f, 4.66861f}, {0.f, 0.0937623f, 1.30033f}}, "P91"},
     {"Au", {{0.143142f, 0.374951f, 1.44202f}, {3.98377f, 2.38569f, 1.60271f}}, "LUX"},
     {"Be", {{4.1857f, 3.18502f, 2.78321f}, {3.83602f, 3.01009f, 2.8681f}}, "PAL"},
-    {"Be_palik", {{4.1857f, 3.18502f, 2.78321f}, {3.83602f, 3.01009f, 2.8681f}}, "LUX"},
+    {"Be_palik", {{4.1857f, 3.18502f, 2.78321f}, {3.83602f, 3.01009f, 2.8681f}}, "PAL"},
     {"Cr", {{4.37035f, 2.91666f, 1.65418f}, {5.20723f, 4.23131f, 3.75376f}}, "PAL"},
     {"CsI", {{2.14523f, 1.70229f, 1.66189f}, {0.f, 0.f, 0.f}}, "P91"},
     {"CsI_palik", {{2.14523f, 1.70229f, 1.66189f}, {0.f, 0.f, 0.f}}, "P91"},
