@@ -18,7 +18,9 @@ The reduction, per spectrum v(λ) (η or k):
   4. negative channels are clamped to 0.
 This is the procedure of Mitsuba 3's `spectrum_list_to_srgb` (src/core/spectrum.cpp, v3.9.1) with
 its constants derived instead of tabulated: its normalisation 470/1000 / 106.75026 equals our
-1 / Σ ȳ(λ_i) to 2e-6, and its 5 nm CIE table coincides with the 1 nm one at every fifth node.
+1 / Σ ȳ(λ_i) to 2e-6; it interpolates the CIE's 5 nm table (the 1 nm one at every fifth node) and
+uses a rounded M. Those two make the only difference: at most 0.3 % in a channel of η or k above
+0.05 and 2.4e-4 in the normal-incidence reflectance, over all of Mitsuba's names.
 
 The CIE 1931 2° table comes from the `colour-science` package (`pip install colour-science`, a
 tool-only dependency): colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"], the CIE's 1 nm
