@@ -95,17 +95,18 @@ def _transform(ops, what="to_world"):
     return m
 
 
-# pellucid's measured RGB complex IORs (cpp/pellucid/bxdf/ior.cpp). Mitsuba's own `material`
-# names go through its spectral tables, which give other RGB values, so the converter passes ours.
+# pellucid's RGB complex IORs (cpp/pellucid/bxdf/ior.cpp, tools/conductor_rgb.py), passed explicitly:
+# for Mitsuba's own `material` names they equal its RGB reduction of the same spectra (reflectance
+# within 2.4e-4); Fe, Ti, Ni are not Mitsuba names.
 _METALS = {
-    "Au": ([0.1556, 0.4241, 1.383], [3.602, 2.472, 1.915]),
-    "Ag": ([0.05222, 0.05958, 0.04], [4.409, 3.597, 2.648]),
-    "Cu": ([0.2378, 1.007, 1.24], [3.626, 2.582, 2.393]),
-    "Al": ([1.558, 1.015, 0.6332], [7.712, 6.627, 5.454]),
-    "Cr": ([3.107, 3.181, 2.323], [3.331, 3.329, 3.135]),
-    "Fe": ([2.911, 2.95, 2.584], [3.089, 2.932, 2.767]),
-    "Ti": ([2.741, 2.542, 2.267], [3.814, 3.435, 3.038]),
-    "Ni": ([1.99, 1.921, 1.729], [4.209, 3.616, 2.944]),
+    "Au": ([0.143142, 0.374951, 1.44202], [3.98377, 2.38569, 1.60271]),
+    "Ag": ([0.155288, 0.116722, 0.138337], [4.82908, 3.1222, 2.14627]),
+    "Cu": ([0.20047, 0.924021, 1.10186], [3.91354, 2.45282, 2.14151]),
+    "Al": ([1.65771, 0.880357, 0.521064], [9.22527, 6.26944, 4.83547]),
+    "Cr": ([4.37035, 2.91666, 1.65418], [5.20723, 4.23131, 3.75376]),
+    "Fe": ([3.51496, 2.76985, 2.3011], [3.6956, 2.78608, 2.49224]),
+    "Ti": ([3.27592, 2.37974, 2.0241], [4.57313, 3.22448, 2.72688]),
+    "Ni": ([2.42358, 1.80444, 1.56296], [4.97373, 3.38453, 2.60247]),
 }
 _IORS = {"vacuum": 1.0, "air": 1.000277, "water": 1.333, "ethanol": 1.361, "glass": 1.5046, "bk7": 1.5046,
          "fused-quartz": 1.458, "acrylic": 1.49, "polypropylene": 1.49, "sapphire": 1.77, "diamond": 2.419}

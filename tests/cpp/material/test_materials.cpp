@@ -79,7 +79,7 @@ TEST(Materials, ErrorsNameKeyPathParameterAndValue) {
     EXPECT_EQ(material_error(R"({"type": "conductor", "eta": [1, 0, 1], "k": 2})"),
               "scene.json: materials.m.eta: value 0 must be > 0");
     EXPECT_EQ(material_error(R"({"type": "conductor", "material": "unobtainium"})").rfind(
-                  "scene.json: materials.m.material: unknown metal 'unobtainium' (known: Au, Ag", 0),
+                  "scene.json: materials.m.material: unknown metal 'unobtainium' (known: a-C, Ag", 0),
               0u);
     EXPECT_EQ(material_error(R"({"type": "rough_conductor", "distribution": "phong"})"),
               "scene.json: materials.m.distribution: unknown distribution 'phong' (known: ggx, beckmann)");

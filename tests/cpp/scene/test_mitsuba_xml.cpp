@@ -380,7 +380,7 @@ TEST(MitsubaXml, DataFileBuildsWithTheSharedBuilder) {
     auto s = build_scene(d);
     EXPECT_EQ(s->width, 64);
     EXPECT_EQ(s->height, 48);
-    EXPECT_EQ(s->spp, 8);
+    EXPECT_EQ(s->spp, 256);
     EXPECT_EQ(s->shapes.size(), 3u);
     EXPECT_EQ(s->lights.size(), 2u);
 }
