@@ -14,6 +14,7 @@ C++ log messages go to the ``logging`` logger ``"pellucid"`` (warnings show by d
 from __future__ import annotations
 
 import logging as _logging
+import math as _math
 import os as _os
 import threading as _threading
 from typing import Any, Dict, Optional, Tuple, Union
@@ -126,6 +127,32 @@ def _render_with_bar(tqdm: Any, kwargs: Dict[str, Any]) -> Tuple[Any, Any, Dict[
         bar.close()
 
 
+_INT32_MAX = 2**31 - 1
+_INT64_MAX = 2**63 - 1
+
+
+def _check_int(name: str, value: Any, lo: int, hi: int) -> None:
+    """A render argument that the C++ core stores as a fixed-width integer: the range is checked here,
+    so that a value such as 10**12 gets a pellucid.Error instead of a binding TypeError."""
+    if value is None:
+        return
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise Error(f"{name}: expected an integer, got {value!r}")
+    if not lo <= value <= hi:
+        raise Error(f"{name}: value {value} is out of range [{lo}, {hi}]")
+
+
+def _check_seconds(name: str, value: Any) -> None:
+    """time_budget and target_rel_error: None or 0 (off), else a finite number > 0; NaN is an error,
+    never silently ignored."""
+    if value is None:
+        return
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise Error(f"{name}: expected a number, got {value!r}")
+    if not _math.isfinite(value) or value < 0:
+        raise Error(f"{name}: value {value!r} must be a finite number >= 0 (0 or None: no limit)")
+
+
 def render_with_stats(
     scene: Scene,
     spp: Optional[int] = None,
@@ -149,10 +176,11 @@ def render_with_stats(
     ``"sobol"`` the samples of a pixel are stratified, so ``variance`` (computed as if they were
     independent) overestimates the error of the mean.
     """
-    if spp is not None and (not isinstance(spp, int) or isinstance(spp, bool) or spp < 1):
-        raise Error(f"spp: value {spp!r} must be an integer >= 1")
-    if seed is not None and (not isinstance(seed, int) or seed < 0):
-        raise Error(f"seed: value {seed!r} must be an integer >= 0")
+    _check_int("spp", spp, 1, _INT32_MAX)
+    _check_int("seed", seed, 0, _INT64_MAX)
+    _check_int("threads", threads, 0, _INT32_MAX)
+    _check_seconds("time_budget", time_budget)
+    _check_seconds("target_rel_error", target_rel_error)
     if sampler is not None and sampler not in SAMPLERS:
         raise Error(f"sampler: unknown sampler {sampler!r} (known: {', '.join(SAMPLERS)})")
     kwargs: Dict[str, Any] = dict(
