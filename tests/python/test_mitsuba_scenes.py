@@ -36,7 +36,7 @@ import pytest
 import pellucid
 
 DATA = pathlib.Path(__file__).resolve().parents[2] / "tests" / "data" / "mitsuba"
-SCENES = ["cornell_mini", "cube_uv", "glass", "metals", "textures"]
+SCENES = ["aniso_sphere", "cornell_mini", "cube_uv", "glass", "metals", "textures"]
 SEED = 7
 
 
