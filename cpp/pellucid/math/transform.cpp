@@ -65,7 +65,8 @@ float Transform::similarity_scale(std::string* why, float rel_tol) const {
     if (!(len[0] > 0.f && len[1] > 0.f && len[2] > 0.f) || !std::isfinite(len[0] + len[1] + len[2]))
         return fail("it is degenerate (" + scales() + ")");
     for (int k = 1; k < 3; ++k)
-        if (std::fabs(len[k] - len[0]) > rel_tol * len[0]) return fail("it does not scale uniformly (" + scales() + ")");
+        if (std::fabs(len[k] - len[0]) > rel_tol * len[0])
+            return fail("it does not scale uniformly (" + scales() + ")");
     static const char* const kAxis[3] = {"x", "y", "z"};
     for (int a = 0; a < 3; ++a)
         for (int b = a + 1; b < 3; ++b) {

@@ -549,9 +549,9 @@ private:
                 return a.first.offset_debug() < b.first.offset_debug();
             });
             if (textures.size() > 1)
-                fail(textures[1].first, what + " takes exactly one nested texture (under any name); the first is on line " +
-                                            std::to_string(line(textures[0].first)));
-            // Mitsuba's two options for perturbed normals (since 3.8), both on by default. Ours:
+                fail(textures[1].first, what + " takes exactly one nested texture (under any name); the first is on "
+                                            "line " + std::to_string(line(textures[0].first)));
+            // Mitsuba's two options for perturbed normals, both on by default. Ours:
             // use_shadowing_function selects our terminator softening (Chiang et al. 2019, where
             // Mitsuba uses Estevez et al. 2019); invalid normals are always corrected (bent toward
             // the viewer, where Mitsuba mirrors them), so false only warns. docs/mitsuba-import.md.
