@@ -52,6 +52,32 @@ Transform Transform::look_at(const Vec3f& origin, const Vec3f& target, const Vec
     return Transform(m);
 }
 
+float Transform::similarity_scale(std::string* why, float rel_tol) const {
+    const Mat3f m(m_m);
+    const float len[3] = {length(m[0]), length(m[1]), length(m[2])};
+    auto fail = [&](const std::string& msg) {
+        if (why) *why = msg;
+        return 0.f;
+    };
+    auto scales = [&] {
+        return "scales " + std::to_string(len[0]) + ", " + std::to_string(len[1]) + ", " + std::to_string(len[2]);
+    };
+    if (!(len[0] > 0.f && len[1] > 0.f && len[2] > 0.f) || !std::isfinite(len[0] + len[1] + len[2]))
+        return fail("it is degenerate (" + scales() + ")");
+    for (int k = 1; k < 3; ++k)
+        if (std::fabs(len[k] - len[0]) > rel_tol * len[0])
+            return fail("it does not scale uniformly (" + scales() + ")");
+    static const char* const kAxis[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a)
+        for (int b = a + 1; b < 3; ++b) {
+            const float c = dot(m[a], m[b]) / (len[a] * len[b]);  // cosine of the angle between the mapped axes
+            if (std::fabs(c) > rel_tol)
+                return fail(std::string("it shears: the images of the ") + kAxis[a] + " and " + kAxis[b] +
+                            " axes are not perpendicular (cosine " + std::to_string(c) + ")");
+        }
+    return len[0];
+}
+
 std::string Transform::to_string() const {
     std::ostringstream os;
     os << "[";

@@ -31,6 +31,11 @@ public:
     Vec3f normal(const Vec3f& n) const { return Vec3f(glm::transpose(m_inv) * Vec4f(n, 0.f)); }
     /// True if the transform flips handedness (negative determinant of the linear part).
     bool swaps_handedness() const { return glm::determinant(Mat3f(m_m)) < 0.f; }
+    /// If the linear part is a similarity, s·Q with Q orthogonal (a rotation, possibly with a
+    /// mirror) and s > 0, return s; else return 0 and, if `why` is given, say what fails. All three
+    /// column lengths must agree and all three pairs of columns be perpendicular, to `rel_tol`
+    /// relative to the lengths.
+    float similarity_scale(std::string* why = nullptr, float rel_tol = 1e-4f) const;
     std::string to_string() const;
 
 private:

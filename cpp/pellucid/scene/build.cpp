@@ -203,7 +203,7 @@ private:
         const Node* emitter = p.get_node("emitter");
         p.check_unqueried();
         if (g.is_sphere) {
-            to_sphere(g, to_world, p);
+            to_sphere(g, to_world, p, rec);
             rec.kind = ShapeRecord::Kind::Sphere;
             rec.center = g.center;
             rec.radius = g.radius;
@@ -272,16 +272,17 @@ private:
         else rec.face_materials = std::move(per_face);
     }
 
-    void to_sphere(ShapeGeometry& g, const Transform& t, Properties& p) {
-        // A sphere's to_world must be a similarity (uniform scale, rotation, translation).
-        Vec3f ax = t.vector(Vec3f(1, 0, 0)), ay = t.vector(Vec3f(0, 1, 0)), az = t.vector(Vec3f(0, 0, 1));
-        float sx = length(ax), sy = length(ay), sz = length(az);
-        if (std::fabs(sx - sy) > 1e-4f * sx || std::fabs(sx - sz) > 1e-4f * sx ||
-            std::fabs(dot(ax, ay)) > 1e-4f * sx * sy || std::fabs(dot(ax, az)) > 1e-4f * sx * sz)
-            p.fail("to_world", "a sphere's transform must scale uniformly (got scales " + std::to_string(sx) +
-                                   ", " + std::to_string(sy) + ", " + std::to_string(sz) + ")");
+    // A sphere's to_world must be a similarity (rotation or mirror, uniform scale, translation): it
+    // maps the center and scales the radius, and its rotation orients the sphere's uv and tangents.
+    void to_sphere(ShapeGeometry& g, const Transform& t, Properties& p, ShapeRecord& rec) {
+        std::string why;
+        const float scale = t.similarity_scale(&why);
+        if (!(scale > 0.f))
+            p.fail("to_world", "a sphere's transform must be a similarity (rotation, uniform scale and "
+                               "translation), but " + why);
         g.center = t.point(g.center);
-        g.radius *= sx;
+        g.radius *= scale;
+        rec.rotation = Mat3f(t.matrix()) / scale;
     }
 
     int32_t build_area_light(const Node& n, const std::string& path, const ShapeGeometry& g) {
@@ -392,13 +393,12 @@ private:
         if (!(scale >= 0.f) || !std::isfinite(scale))
             p.fail("scale", "value " + std::to_string(scale) + " must be finite and >= 0");
         // The map's frame must be rotated (and at most uniformly scaled), so solid angle is preserved.
-        Mat3f m(p.get_transform("to_world").matrix());
-        float s0 = length(m[0]), s1 = length(m[1]), s2 = length(m[2]);
-        if (!(s0 > 0.f) || std::fabs(s0 - s1) > 1e-4f * s0 || std::fabs(s0 - s2) > 1e-4f * s0 ||
-            std::fabs(dot(m[0], m[1])) > 1e-4f * s0 * s1 || std::fabs(dot(m[0], m[2])) > 1e-4f * s0 * s2 ||
-            std::fabs(dot(m[1], m[2])) > 1e-4f * s1 * s2)
-            p.fail("to_world", "an envmap's transform must be a rotation (got scales " + std::to_string(s0) + ", " +
-                                   std::to_string(s1) + ", " + std::to_string(s2) + " or sheared axes)");
+        const Transform to_world = p.get_transform("to_world");
+        std::string why;
+        const float s0 = to_world.similarity_scale(&why);
+        if (!(s0 > 0.f))
+            p.fail("to_world", "an envmap's transform must be a rotation (optionally uniformly scaled), but " + why);
+        const Mat3f m(to_world.matrix());
         Image img;
         try {
             img = read_image_file(file);

@@ -514,38 +514,73 @@ private:
             return bsdf_value(inner[0]);
         }
         if (type == "bumpmap" || type == "normalmap") {
+            const bool bump = type == "bumpmap";
             Collected c = collect(n);
-            Node out = make(type == "bumpmap" ? "bump_map" : "normal_map", n);
+            Node out = make(bump ? "bump_map" : "normal_map", n);
             std::optional<Node> inner;
+            // bumpmap: Mitsuba takes exactly one Texture child under any name (its own documentation
+            // names it "arbitrary"): an unnamed or named <texture>, or a <ref> to one with or without
+            // a name. normalmap reads only the texture named "normalmap" (a parameter, below).
+            std::vector<std::pair<pugi::xml_node, Node>> textures;
             for (pugi::xml_node o : c.objects) {
                 std::string t = o.name();
                 bool is_ref = t == "ref";
                 std::string kind = is_ref ? lookup_ref(o).kind : t;
                 if (kind == "bsdf") {
-                    if (inner) fail(o, what + " takes one nested bsdf");
+                    if (inner) fail(o, what + " takes exactly one nested bsdf");
                     inner = bsdf_value(o);
                     if (!inner) return std::nullopt;
-                } else if (kind == "texture" && type == "bumpmap") {
-                    if (auto tex = texture_value(o)) out.set("texture", *tex);
-                    else return std::nullopt;
+                } else if (kind == "texture" && bump) {
+                    std::optional<Node> tex = texture_value(o);
+                    if (!tex) return std::nullopt;
+                    textures.emplace_back(o, *tex);
                 } else {
                     unsupported(o, "unexpected <" + t + "> inside " + what);
                 }
             }
-            if (type == "bumpmap") map_params(out, c, what, {{"scale", "scale"}});
+            if (bump)
+                for (Prop& p : c.props) {
+                    const std::string tag = p.node.name();
+                    if (p.used || (tag != "texture" && tag != "ref")) continue;
+                    p.used = true;
+                    textures.emplace_back(p.node, p.value);
+                }
+            std::sort(textures.begin(), textures.end(), [](const auto& a, const auto& b) {
+                return a.first.offset_debug() < b.first.offset_debug();
+            });
+            if (textures.size() > 1)
+                fail(textures[1].first, what + " takes exactly one nested texture (under any name); the first is on "
+                                            "line " + std::to_string(line(textures[0].first)));
+            // Mitsuba's two options for perturbed normals, both on by default. Ours:
+            // use_shadowing_function selects our terminator softening (Chiang et al. 2019, where
+            // Mitsuba uses Estevez et al. 2019); invalid normals are always corrected (bent toward
+            // the viewer, where Mitsuba mirrors them), so false only warns. docs/mitsuba-import.md.
+            if (Prop* sh = take(c, "use_shadowing_function")) {
+                if (!sh->value.is_bool()) fail(sh->node, "'use_shadowing_function' of " + what + " must be a boolean");
+                out.set("terminator_softening", sh->value);
+            }
+            if (Prop* fl = take(c, "flip_invalid_normals")) {
+                if (!fl->value.is_bool()) fail(fl->node, "'flip_invalid_normals' of " + what + " must be a boolean");
+                if (!fl->value.as_bool())
+                    log_warning(where(fl->node) + ": 'flip_invalid_normals' false of " + what +
+                                " is not supported: pellucid always corrects perturbed normals that face away from "
+                                "the viewer");
+            }
+            if (bump) map_params(out, c, what, {{"scale", "scale"}});
             else map_params(out, c, what, {{"normalmap", "normalmap"}});
-            if (!inner) fail(n, what + " needs a nested bsdf");
-            if (type == "bumpmap" && !out.find("texture")) fail(n, "bumpmap needs a nested texture");
-            if (type == "normalmap" && !out.find("normalmap")) fail(n, "normalmap needs a texture named 'normalmap'");
+            if (!inner) fail(n, what + " needs exactly one nested bsdf; it has none");
+            if (bump && textures.empty()) fail(n, what + " needs exactly one nested texture (under any name); it has none");
+            if (!bump && !out.find("normalmap")) fail(n, "normalmap needs a texture named 'normalmap'");
             // Our materials carry bump and normal maps as keys: copy the wrapped material and add them.
             Node mat = *inner;
             if (mat.is_string()) mat = *m_materials.find(mat.as_string());
-            if (type == "bumpmap") {
-                mat.set("bump_map", *out.find("texture"));
+            if (bump) {
+                mat.set("bump_map", textures[0].second);
                 if (const Node* sc = out.find("scale")) mat.set("bump_scale", *sc);
             } else {
                 mat.set("normal_map", *out.find("normalmap"));
             }
+            if (const Node* ts = out.find("terminator_softening")) mat.set("terminator_softening", *ts);
             return mat;
         }
 

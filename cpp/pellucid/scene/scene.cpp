@@ -65,28 +65,36 @@ void fill_sphere(const ShapeRecord& s, const Ray& ray, const RayHit& h, SurfaceI
     Point3f hit = ray.o + h.t * ray.d;
     Vec3f n = hit - s.center;
     float len = length(n);
-    n = len > 0.f ? n / len : Vec3f(0, 0, 1);
+    n = len > 0.f ? n / len : s.rotation[2];
     // Re-project onto the surface; the remaining error is a few ulps of |p| (pbrt-v4 §6.8.5).
     si.p = s.center + s.radius * n;
     si.p_error = gamma(5) * (abs(si.p) + abs(s.center)) + Vec3f(gamma(5) * s.radius);
     si.ng = s.flip_normals ? -n : n;
-    float phi = std::atan2(n.y, n.x);
+    // The parameterisation is the unit sphere's in object space, (sin θ cos φ, sin θ sin φ, cos θ)
+    // with u = φ/2π, v = θ/π, carried to world by to_world (as Mitsuba 3's sphere): l is the hit
+    // in object space (unit length), R⁻¹ = Rᵀ for the orthogonal R.
+    const Mat3f& R = s.rotation;
+    const Vec3f l = glm::transpose(R) * n;
+    float phi = std::atan2(l.y, l.x);
     if (phi < 0.f) phi += 2.f * kPi;
-    float theta = safe_acos(n.z);
-    si.uv = Vec2f(phi * kInv2Pi, theta * kInvPi);
-    si.dpdu = Vec3f(-2.f * kPi * s.radius * n.y, 2.f * kPi * s.radius * n.x, 0.f);
-    float st = std::sqrt(n.x * n.x + n.y * n.y);
-    if (st > 1e-6f)
-        si.dpdv = kPi * s.radius * Vec3f(n.z * n.x / st, n.z * n.y / st, -st);
-    if (length2(si.dpdu) < 1e-12f || st <= 1e-6f) {
-        Frame f = Frame::from_z(n);
-        si.dpdu = f.s;
-        si.dpdv = f.t;
+    si.uv = Vec2f(phi * kInv2Pi, safe_acos(l.z) * kInvPi);
+    // ∂p/∂u = 2π·r·(−l.y, l.x, 0), ∂p/∂v = π·r·(cos θ cos φ, cos θ sin φ, −sin θ), mapped by R.
+    const float st = std::sqrt(l.x * l.x + l.y * l.y);
+    Vec3f dpdu_l, dpdv_l;
+    if (st > 1e-6f) {
+        dpdu_l = (2.f * kPi * s.radius) * Vec3f(-l.y, l.x, 0.f);
+        dpdv_l = (kPi * s.radius) * Vec3f(l.z * l.x / st, l.z * l.y / st, -st);
+    } else {  // at a pole φ is undefined and ∂p/∂u vanishes: take the directions at φ = 0, lengths at the equator
+        dpdu_l = (2.f * kPi * s.radius) * Vec3f(0.f, 1.f, 0.f);
+        dpdv_l = (kPi * s.radius) * Vec3f(l.z, 0.f, 0.f);
     }
+    si.dpdu = R * dpdu_l;
+    si.dpdv = R * dpdv_l;
     // n = (p − c)/r, so ∂n/∂u = (∂p/∂u)/r (negated with the normal when it is flipped).
     float sgn = s.flip_normals ? -1.f : 1.f;
     si.dndu = (sgn / s.radius) * si.dpdu;
     si.dndv = (sgn / s.radius) * si.dpdv;
+    // s = ∂p/∂u made perpendicular to the normal, t = n × s (Mitsuba 3's initialize_sh_frame).
     si.shading = Frame::from_xz(si.dpdu, si.ng);
 }
 }  // namespace

@@ -23,8 +23,12 @@ namespace pellucid {
 struct ShapeRecord {
     enum class Kind { Mesh, Sphere } kind = Kind::Mesh;
     uint32_t mesh_index = 0;  ///< into Scene::meshes (Kind::Mesh)
-    Point3f center{0.f};      ///< Kind::Sphere
+    Point3f center{0.f};      ///< Kind::Sphere: world center and radius
     float radius = 1.f;
+    /// Kind::Sphere: to_world's linear part divided by its uniform scale (orthogonal; determinant
+    /// −1 when to_world mirrors), object space → world. uv, ∂p/∂u, ∂p/∂v and the shading frame
+    /// follow the sphere's own parameterisation about its object-space z axis, carried through it.
+    Mat3f rotation{1.f};
     bool flip_normals = false;
     uint32_t material = 0;
     std::vector<uint32_t> face_materials;  ///< per triangle (OBJ usemtl); empty = `material` everywhere
