@@ -110,13 +110,39 @@ struct NamedDielectric {
     float eta;
 };
 // Real IORs near 589 nm (sodium D line). Sources: water 1.333 and diamond 2.419 (Hecht, "Optics",
-// 5th ed., Table 4.1); BK7 1.5046 at 550 nm (Schott datasheet N-BK7, also the Mitsuba 0.6 table);
-// fused silica 1.458 (Malitson 1965); acrylic/PMMA 1.49; polypropylene 1.49; sapphire 1.77;
-// ethanol 1.361; air 1.000277 (Ciddor 1996).
+// 5th ed., Table 4.1); BK7 1.5046 at 550 nm (Schott datasheet N-BK7); fused silica 1.458 (Malitson
+// 1965); acrylic/PMMA 1.49; polypropylene 1.49; sapphire 1.77; ethanol 1.361; air 1.000277 (Ciddor
+// 1996); the gases, liquids and solids from helium to PET are the common handbook values (CRC
+// Handbook of Chemistry and Physics, "Index of refraction of ..." tables). The names with spaces are
+// the spellings of Mitsuba 3's IOR table, whose values these equal, so imported scenes agree.
 const NamedDielectric kDielectrics[] = {
-    {"vacuum", 1.0f},     {"air", 1.000277f},    {"water", 1.333f},       {"ethanol", 1.361f},
-    {"glass", 1.5046f},   {"bk7", 1.5046f},      {"fused-quartz", 1.458f}, {"acrylic", 1.49f},
-    {"polypropylene", 1.49f}, {"sapphire", 1.77f}, {"diamond", 2.419f},
+    {"vacuum", 1.0f},
+    {"helium", 1.000036f},
+    {"hydrogen", 1.000132f},
+    {"air", 1.000277f},
+    {"carbon dioxide", 1.00045f},
+    {"water", 1.333f},
+    {"acetone", 1.36f},
+    {"ethanol", 1.361f},
+    {"carbon tetrachloride", 1.461f},
+    {"glycerol", 1.4729f},
+    {"benzene", 1.501f},
+    {"silicone oil", 1.52045f},
+    {"bromine", 1.661f},
+    {"water ice", 1.31f},
+    {"fused quartz", 1.458f},
+    {"fused-quartz", 1.458f},
+    {"pyrex", 1.47f},
+    {"acrylic glass", 1.49f},
+    {"acrylic", 1.49f},
+    {"polypropylene", 1.49f},
+    {"glass", 1.5046f},
+    {"bk7", 1.5046f},
+    {"sodium chloride", 1.544f},
+    {"amber", 1.55f},
+    {"pet", 1.575f},
+    {"sapphire", 1.77f},
+    {"diamond", 2.419f},
 };
 
 template <class Table>
