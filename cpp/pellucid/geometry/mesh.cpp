@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "pellucid/util/error.h"
+#include "pellucid/util/limits.h"
 
 namespace pellucid {
 
@@ -111,6 +112,9 @@ void TriangleMesh::validate(const std::string& where) const {
     for (size_t i = 0; i < positions.size(); ++i)
         if (!is_finite(positions[i]))
             throw Error(where + "positions: vertex " + std::to_string(i) + " is not finite");
+        else if (!within_coordinate_limit(positions[i].x, positions[i].y, positions[i].z))
+            throw Error(where + "positions: vertex " + std::to_string(i) + " at " + point_text(positions[i].x, positions[i].y, positions[i].z) +
+                        " (after to_world) is beyond the coordinate limit of 1e18 scene units");
     for (size_t i = 0; i < normals.size(); ++i)
         if (!is_finite(normals[i]) || length2(normals[i]) == 0.f)
             throw Error(where + "normals: normal " + std::to_string(i) + " is zero or not finite");

@@ -12,6 +12,7 @@
 #include "pellucid/scene/registry.h"
 #include "pellucid/scene/texture_builder.h"
 #include "pellucid/util/error.h"
+#include "pellucid/util/limits.h"
 #include "pellucid/util/log.h"
 
 namespace pellucid {
@@ -132,6 +133,10 @@ private:
             if (!(fov > 0.f && fov < 180.f)) p.fail("fov", "value " + std::to_string(fov) + " must be in (0, 180)");
             axis = p.get_string("fov_axis", "x");
             to_world = p.get_transform("to_world");
+            const Point3f o = to_world.point(Point3f(0.f));
+            if (!within_coordinate_limit(o.x, o.y, o.z))
+                p.fail("to_world", "the camera position " + point_text(o.x, o.y, o.z) +
+                                       " is beyond the coordinate limit of 1e18 scene units");
             if (axis != "x" && axis != "y" && axis != "smaller" && axis != "larger")
                 p.fail("fov_axis", "unknown axis '" + axis + "' (known: x, y, smaller, larger)");
             p.check_unqueried();
@@ -282,6 +287,10 @@ private:
                                "translation), but " + why);
         g.center = t.point(g.center);
         g.radius *= scale;
+        const Vec3f far = glm::abs(g.center) + Vec3f(g.radius);
+        if (!within_coordinate_limit(far.x, far.y, far.z))
+            p.fail("to_world", "the sphere (centre " + point_text(g.center.x, g.center.y, g.center.z) + ", radius " + std::to_string(g.radius) +
+                                   ") reaches beyond the coordinate limit of 1e18 scene units");
         rec.rotation = Mat3f(t.matrix()) / scale;
     }
 
@@ -300,6 +309,13 @@ private:
         if (g.is_sphere) m_scene.lights.emplace_back(AreaLight(g.center, g.radius, g.flip_normals, radiance, two_sided));
         else m_scene.lights.emplace_back(AreaLight(g.mesh, radiance, two_sided));
         return int32_t(m_scene.lights.size() - 1);
+    }
+
+    /// A positional light's position must be a valid ray origin for Embree (util/limits.h).
+    static void check_position(Properties& p, const Point3f& pos) {
+        if (!within_coordinate_limit(pos.x, pos.y, pos.z))
+            p.fail(p.has("position") ? "position" : "to_world",
+                   "the light position " + point_text(pos.x, pos.y, pos.z) + " is beyond the coordinate limit of 1e18 scene units");
     }
 
     // Bounding sphere of all geometry, for the power of lights at infinity.
@@ -351,6 +367,7 @@ private:
             value = non_negative(p, "intensity");
             Transform t = p.get_transform("to_world");
             Point3f pos = p.has("position") ? p.get_vec3("position") : t.point(Point3f(0.f));
+            check_position(p, pos);
             light = PointLight(pos, value);
         } else if (type == "spot") {
             value = non_negative(p, "intensity");
@@ -359,6 +376,7 @@ private:
             float beam = p.get_float("beam_width", 0.75f * cutoff);
             p.check_range("beam_width", beam, 0.f, cutoff);
             Transform t = p.get_transform("to_world");
+            check_position(p, t.point(Point3f(0.f)));
             light = SpotLight(t.point(Point3f(0.f)), t.vector(Vec3f(0, 0, 1)), value, cutoff, beam);
         } else if (type == "directional") {
             value = non_negative(p, "irradiance");

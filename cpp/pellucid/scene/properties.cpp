@@ -220,7 +220,9 @@ Transform transform_op(const Node& op, const std::string& src, const std::string
         Vec3f o = r.get_vec3("origin"), t = r.get_vec3("target"), up = r.get_vec3("up", Vec3f(0, 1, 0));
         r.check_unqueried();
         if (length(t - o) == 0.f) r.fail("target", "target equals origin");
-        if (length(cross(normalize(up), normalize(t - o))) < 1e-6f) r.fail("up", "up is parallel to the view direction");
+        if (!(length(up) > 0.f)) r.fail("up", "up vector " + to_string(up) + " is zero (or underflows a float)");
+        if (!(length(cross(normalize(up), normalize(t - o))) >= 1e-6f))
+            r.fail("up", "up is parallel to the view direction");
         return Transform::look_at(o, t, up);
     }
     if (name == "matrix") {

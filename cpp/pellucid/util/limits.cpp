@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/util/limits.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -21,5 +22,10 @@ int max_scene_depth() {
         return int(v);
     }();
     return depth;
+}
+std::string point_text(float x, float y, float z) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "[%g, %g, %g]", double(x), double(y), double(z));
+    return buf;
 }
 }  // namespace pellucid

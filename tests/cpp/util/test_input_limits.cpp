@@ -65,3 +65,33 @@ TEST(InputLimits, IntegersKeepTheirValueOrAreRejected) {
               "magnitude)");
     EXPECT_EQ(error_of(R"({"film": {"width": 2.5}})"), "scene.json: film.width: expected an integer, got 2.5");
 }
+
+TEST(InputLimits, DegenerateCameraUpIsAnError) {
+    // up = 0 (or a double that underflows a float to 0) made the camera's frame NaN, and Embree
+    // aborted on the first ray.
+    const std::string cam = R"({"camera": {"type": "perspective", "to_world": [{"look_at": {"origin": [0, 0, 5],
+        "target": [0, 0, 0], "up": )";
+    EXPECT_EQ(error_of(cam + "[0, 0, 0]}}]}}"),
+              "scene.json: camera.to_world[0].look_at.up: up vector [0.000000, 0.000000, 0.000000] is zero (or underflows a float)");
+    EXPECT_EQ(error_of(cam + "[0, 1e-309, 0]}}]}}"),
+              "scene.json: camera.to_world[0].look_at.up: up vector [0.000000, 0.000000, 0.000000] is zero (or underflows a float)");
+    EXPECT_EQ(error_of(cam + "[0, 0, 1]}}]}}"), "scene.json: camera.to_world[0].look_at.up: up is parallel to the view direction");
+}
+
+TEST(InputLimits, CoordinatesBeyondTheRayOriginLimitAreErrors) {
+    EXPECT_NE(error_of(R"({"camera": {"type": "perspective", "to_world": [{"translate": [0, 0, 1e30]}]}})")
+                  .find("scene.json: camera.to_world: the camera position [0, 0, 1e+30] is beyond the coordinate limit"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"({"shapes": [{"type": "mesh", "positions": [0, 0, 0, 1, 0, 0, 0, 9.2e18, 0],
+                           "indices": [0, 1, 2], "emitter": {"type": "area"}}]})")
+                  .find("shapes[0]: positions: vertex 2 at [0, 9.2e+18, 0] (after to_world) is beyond the coordinate limit"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"({"shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2e18}]})")
+                  .find("shapes[0].to_world: the sphere"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"({"lights": [{"type": "point", "position": [0, 5e18, 0], "intensity": 1}]})")
+                  .find("lights[0].position: the light position"),
+              std::string::npos);
+    // Large but valid coordinates still build.
+    EXPECT_EQ(error_of(R"({"shapes": [{"type": "sphere", "center": [0, 0, 1e9], "radius": 1}]})"), "");
+}
