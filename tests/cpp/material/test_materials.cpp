@@ -12,6 +12,7 @@
 #include "pellucid/scene/json_io.h"
 #include "pellucid/scene/registry.h"
 #include "pellucid/util/error.h"
+#include "support/error_of.h"
 
 using namespace pellucid;
 
@@ -21,14 +22,7 @@ Material material_from(const std::string& json) {
 }
 BxDF bxdf_from(const std::string& json) { return get_bxdf(material_from(json), SurfaceInteraction{}); }
 
-std::string material_error(const std::string& json) {
-    try {
-        material_from(json);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string material_error(const std::string& json) { return test::error_of_call([&] { material_from(json); }); }
 
 Vec3f dir(float cos_theta, float phi) {
     float s = std::sqrt(1.f - cos_theta * cos_theta);

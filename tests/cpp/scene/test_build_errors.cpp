@@ -6,21 +6,12 @@
 #include "pellucid/scene/build.h"
 #include "pellucid/scene/json_io.h"
 #include "pellucid/util/error.h"
+#include "support/error_of.h"
 
 using namespace pellucid;
 
 namespace {
-std::string build_error(const std::string& json) {
-    SceneDesc d;
-    d.source = "scene.json";
-    try {
-        d.root = parse_json(json, "scene.json");
-        build_scene(d);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string build_error(const std::string& json) { return test::json_scene_error(json); }
 const char* kMat = R"("materials": {"white": {"type": "lambertian", "reflectance": 0.5}})";
 }  // namespace
 

@@ -12,6 +12,7 @@
 #include "pellucid/scene/mitsuba_xml.h"
 #include "pellucid/util/error.h"
 #include "support/scene_util.h"
+#include "support/error_of.h"
 
 using namespace pellucid;
 using pellucid::test::LogCapture;
@@ -32,14 +33,7 @@ std::string scene(const std::string& bsdf_body, const std::string& before = "") 
 
 SceneDesc parse(const std::string& xml) { return parse_mitsuba_xml(xml, "scene.xml", ".", false); }
 
-std::string error_of(const std::string& xml) {
-    try {
-        parse(xml);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string error_of(const std::string& xml) { return test::error_of_call([&] { parse(xml); }); }
 
 const Node& material_of(const SceneDesc& d) { return *d.root.find("shapes")->items()[0].find("material"); }
 

@@ -15,6 +15,7 @@
 #include "pellucid/scene/json_io.h"
 #include "pellucid/scene/mitsuba_xml.h"
 #include "pellucid/util/error.h"
+#include "support/error_of.h"
 
 using namespace pellucid;
 
@@ -30,14 +31,7 @@ std::unique_ptr<Scene> from_json(const std::string& json) {
     return build_scene(d);
 }
 
-std::string build_error(const std::string& json) {
-    try {
-        from_json(json);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string build_error(const std::string& json) { return test::error_of_call([&] { from_json(json); }); }
 
 void expect_vec(const Vec3f& got, const Vec3f& want, const char* what, float tol) {
     for (int k = 0; k < 3; ++k)

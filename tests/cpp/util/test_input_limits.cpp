@@ -9,21 +9,12 @@
 #include "pellucid/scene/json_io.h"
 #include "pellucid/util/error.h"
 #include "pellucid/util/limits.h"
+#include "support/error_of.h"
 
 using namespace pellucid;
 
 namespace {
-std::string error_of(const std::string& json) {
-    SceneDesc d;
-    d.source = "scene.json";
-    try {
-        d.root = parse_json(json, "scene.json");
-        build_scene(d);
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string error_of(const std::string& json) { return test::json_scene_error(json); }
 std::string nested(int depth) { return std::string(size_t(depth), '[') + std::string(size_t(depth), ']'); }
 }  // namespace
 
