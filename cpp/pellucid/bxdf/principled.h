@@ -32,6 +32,7 @@
 // JSON: {"type": "principled", "base_color": [0.8, 0.2, 0.1], "metallic": 0.0, "roughness": 0.4,
 //        "clearcoat": 1.0, "clearcoat_gloss": 0.9}
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -40,10 +41,21 @@
 
 namespace pellucid {
 
+/// Which Disney model: the 2012 BRDF (this file) or the 2015 BSDF (principled_bsdf.h).
+enum class PrincipledVariant : uint8_t { Burley2012, Burley2015 };
+
+/// Parameters of both models; the 2015 fields are read only by PrincipledBSDF.
 struct PrincipledParams {
     Spectrum base_color{0.8f};
     float metallic = 0.f, roughness = 0.5f, specular = 0.5f, specular_tint = 0.f;
     float sheen = 0.f, sheen_tint = 0.5f, clearcoat = 0.f, clearcoat_gloss = 1.f, anisotropic = 0.f;
+    // 2015 only.
+    float specular_transmission = 0.f;  ///< [0, 1]: blends the dielectric BRDF toward rough glass
+    float flatness = 0.f;               ///< [0, 1]: diffuse toward Hanrahan–Krueger subsurface
+    float diffuse_transmission = 0.f;   ///< [0, 2], thin only: 0 all reflected, 2 all transmitted
+    float eta = 0.f;                    ///< relative IOR; 0 = derived from `specular`
+    PrincipledVariant variant = PrincipledVariant::Burley2012;
+    bool thin = false;                  ///< 2015 thin sheet (principled_bsdf.h)
 };
 
 class Principled {
