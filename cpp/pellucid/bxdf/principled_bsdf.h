@@ -61,7 +61,9 @@
 // w_bsdf(1 − F_η(wo·m)); clearcoat ¼·clearcoat (GTR1 half vectors, Burley 2012 App. B eq. 5);
 // diffuse w_brdf (cosine-weighted). Interior: F_η : 1 − F_η. Thin: spec_trans/2 for each specular
 // lobe, (1 − spec_trans)(1 − d_t) cosine reflection, (1 − spec_trans) d_t cosine transmission.
-// Visible normals: GGX::sample_visible. Lobes outside ctx.allowed get probability 0.
+// Visible normals: GGX::sample_visible. Lobes outside ctx.allowed get probability 0. Where the
+// BxDF is zero (the interior of a solid without transmission) pdf() is 0 too; Mitsuba returns its
+// interface pdf there although it never samples it, which no render can see.
 //
 // Energy: not conserving. The diffuse lobe is not reduced by what the specular lobes reflect (for a
 // white base their sum exceeds 1), the retro-reflection exceeds 1 at grazing angles for high
