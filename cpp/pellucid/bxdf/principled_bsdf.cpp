@@ -138,8 +138,9 @@ PrincipledBSDF::EvalPdf PrincipledBSDF::eval_pdf_solid(const BxDFContext& ctx, c
     EvalPdf out;
     float co = wo.z, ci = wi.z;
     if (co == 0.f || ci == 0.f) return out;
+    // Opaque (no transmission lobe): two-sided, the back is the front mirrored (header comment).
+    if (co < 0.f && !(m_w_bsdf > 0.f)) return eval_pdf_solid(ctx, -wo, -wi);
     bool front = co > 0.f;
-    if (!front && !(m_w_bsdf > 0.f)) return out;  // from inside there is only the interface
     bool reflect = co * ci > 0.f;
     // η' = η(wi side)/η(wo side) for transmission.
     double etap_d = front ? double(m_eta) : 1.0 / double(m_eta);
@@ -229,8 +230,12 @@ std::optional<BxDFSample> PrincipledBSDF::sample_solid(const BxDFContext& ctx, c
                                                        const Vec2f& u) const {
     float co = wo.z;
     if (co == 0.f) return std::nullopt;
+    if (co < 0.f && !(m_w_bsdf > 0.f)) {  // opaque: the front mirrored (header comment)
+        std::optional<BxDFSample> s = sample_solid(ctx, -wo, u_lobe, u);
+        if (s) s->wi = -s->wi;
+        return s;
+    }
     bool front = co > 0.f;
-    if (!front && !(m_w_bsdf > 0.f)) return std::nullopt;
     bool spec_ok = allows(ctx, BxDFFlags::GlossyReflection) ||
                    (m_w_bsdf > 0.f && allows(ctx, BxDFFlags::GlossyTransmission));
     float g_spec = spec_ok ? 1.f : 0.f;

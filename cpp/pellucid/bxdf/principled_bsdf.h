@@ -42,7 +42,9 @@
 //   + (1 − m) · sheen · lerp(1, c_tint, sheen_tint) · F_S(cos θd)     sheen (Burley 2012 §5.5),
 //       only where w_brdf > 0.
 // From the interior (co < 0) only the interface remains: reflection w_bsdf F_η D G/(4 |co| |ci|)
-// and the transmission lobe above; the BxDF is zero there when w_bsdf = 0.
+// and the transmission lobe above. Without a transmission lobe (w_bsdf = 0) the solid is opaque and,
+// like every pellucid material, two-sided: seen from behind it is the front mirrored (Mitsuba's
+// principled is black from behind unless wrapped in `twosided`, which then gives exactly this).
 //
 // THIN (`thin`): wo and wi are first mirrored together so that wo is on +z (the sheet is the same
 // from both sides); η is the sheet's IOR, d_t = diffuse_transmission/2 ∈ [0, 1]. f =
@@ -61,9 +63,7 @@
 // w_bsdf(1 − F_η(wo·m)); clearcoat ¼·clearcoat (GTR1 half vectors, Burley 2012 App. B eq. 5);
 // diffuse w_brdf (cosine-weighted). Interior: F_η : 1 − F_η. Thin: spec_trans/2 for each specular
 // lobe, (1 − spec_trans)(1 − d_t) cosine reflection, (1 − spec_trans) d_t cosine transmission.
-// Visible normals: GGX::sample_visible. Lobes outside ctx.allowed get probability 0. Where the
-// BxDF is zero (the interior of a solid without transmission) pdf() is 0 too; Mitsuba returns its
-// interface pdf there although it never samples it, which no render can see.
+// Visible normals: GGX::sample_visible. Lobes outside ctx.allowed get probability 0.
 //
 // Energy: not conserving. The diffuse lobe is not reduced by what the specular lobes reflect (for a
 // white base their sum exceeds 1), the retro-reflection exceeds 1 at grazing angles for high
