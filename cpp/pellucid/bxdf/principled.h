@@ -13,7 +13,7 @@
 //             base, metallic); G_s = height-correlated Smith (instead of Burley's separable G)
 //   clearcoat: GTR1 (γ = 1) with α_c = lerp(0.1, 0.001, clearcoat_gloss), F_c = Schlick(0.04),
 //             G_c = Smith GGX with α = 0.25                                         (§5.6, App. B)
-// C_tint = base/luminance(base). Omitted: subsurface, transmission (use the dielectric models).
+// C_tint = base/luminance(base). Omitted: subsurface, transmission (the 2015 variant, principled_bsdf.h).
 // Not energy-conserving in general: the retro-reflective diffuse exceeds ρ at grazing angles for
 // high roughness (a documented property of the model); the property suite uses base ≤ 0.6.
 //
