@@ -195,15 +195,23 @@ def rough_plastic(diffuse_reflectance: Optional[Colour] = None, *, specular_refl
 
 
 @_with_surface_keys
-def principled(base_color: Optional[Colour] = None, *, metallic: Optional[float] = None,
-               roughness: Optional[float] = None, specular: Optional[float] = None,
-               specular_tint: Optional[float] = None, sheen: Optional[float] = None,
-               sheen_tint: Optional[float] = None, clearcoat: Optional[float] = None,
-               clearcoat_gloss: Optional[float] = None, anisotropic: Optional[float] = None) -> Material:
-    """Burley 2012 ("Disney") BRDF, reflection only; every scalar in [0, 1].
+def principled(base_color: Optional[Colour] = None, *, variant: Optional[str] = None,
+               metallic: Optional[float] = None, roughness: Optional[float] = None,
+               specular: Optional[float] = None, specular_tint: Optional[float] = None,
+               sheen: Optional[float] = None, sheen_tint: Optional[float] = None,
+               clearcoat: Optional[float] = None, clearcoat_gloss: Optional[float] = None,
+               anisotropic: Optional[float] = None, specular_transmission: Optional[float] = None,
+               eta: Optional[float] = None, flatness: Optional[float] = None, thin: Optional[bool] = None,
+               diffuse_transmission: Optional[float] = None) -> Material:
+    """Disney principled model: ``variant="2012"`` (default) is the Burley 2012 BRDF, reflection
+    only; ``variant="2015"`` the Burley 2015 BSDF (as Mitsuba 3's ``principled``) with
+    ``specular_transmission``, ``eta`` (instead of ``specular``), ``flatness`` and a ``thin`` sheet
+    mode with ``diffuse_transmission``. Scalars in [0, 1] (``diffuse_transmission`` in [0, 2]).
 
     docs/scene-format.md, ``### principled``.
     """
-    return _make("principled", dict(base_color=base_color, metallic=metallic, roughness=roughness, specular=specular,
-                                    specular_tint=specular_tint, sheen=sheen, sheen_tint=sheen_tint,
-                                    clearcoat=clearcoat, clearcoat_gloss=clearcoat_gloss, anisotropic=anisotropic))
+    return _make("principled", dict(base_color=base_color, variant=variant, metallic=metallic, roughness=roughness,
+                                    specular=specular, specular_tint=specular_tint, sheen=sheen,
+                                    sheen_tint=sheen_tint, clearcoat=clearcoat, clearcoat_gloss=clearcoat_gloss,
+                                    anisotropic=anisotropic, specular_transmission=specular_transmission, eta=eta,
+                                    flatness=flatness, thin=thin, diffuse_transmission=diffuse_transmission))

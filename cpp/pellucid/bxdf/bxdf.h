@@ -15,6 +15,7 @@
 #include "pellucid/bxdf/oren_nayar.h"
 #include "pellucid/bxdf/plastic.h"
 #include "pellucid/bxdf/principled.h"
+#include "pellucid/bxdf/principled_bsdf.h"
 
 namespace pellucid {
 
@@ -36,11 +37,11 @@ template <class T>
 inline constexpr bool is_bxdf_v = is_bxdf<T>::value;
 
 /// The closed list. Every microfacet model is here with both distributions (GGX and Beckmann);
-/// Principled is GGX by definition (Burley 2012).
+/// Principled (Burley 2012) and PrincipledBSDF (Burley 2015) are GGX by definition.
 using BxDF = std::variant<Lambertian, OrenNayar, SmoothConductor<ConductorFresnel>, RoughConductor,
                           RoughConductorBeckmann, SmoothDielectric, RoughDielectric<GGX>,
                           RoughDielectric<Beckmann>, ThinDielectric, SmoothPlastic, RoughPlastic<GGX>,
-                          RoughPlastic<Beckmann>, Principled>;
+                          RoughPlastic<Beckmann>, Principled, PrincipledBSDF>;
 
 namespace detail {
 template <class V>

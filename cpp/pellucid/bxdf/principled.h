@@ -13,7 +13,7 @@
 //             base, metallic); G_s = height-correlated Smith (instead of Burley's separable G)
 //   clearcoat: GTR1 (γ = 1) with α_c = lerp(0.1, 0.001, clearcoat_gloss), F_c = Schlick(0.04),
 //             G_c = Smith GGX with α = 0.25                                         (§5.6, App. B)
-// C_tint = base/luminance(base). Omitted: subsurface, transmission (use the dielectric models).
+// C_tint = base/luminance(base). Omitted: subsurface, transmission (the 2015 variant, principled_bsdf.h).
 // Not energy-conserving in general: the retro-reflective diffuse exceeds ρ at grazing angles for
 // high roughness (a documented property of the model); the property suite uses base ≤ 0.6.
 //
@@ -32,6 +32,7 @@
 // JSON: {"type": "principled", "base_color": [0.8, 0.2, 0.1], "metallic": 0.0, "roughness": 0.4,
 //        "clearcoat": 1.0, "clearcoat_gloss": 0.9}
 #pragma once
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -40,10 +41,21 @@
 
 namespace pellucid {
 
+/// Which Disney model: the 2012 BRDF (this file) or the 2015 BSDF (principled_bsdf.h).
+enum class PrincipledVariant : uint8_t { Burley2012, Burley2015 };
+
+/// Parameters of both models; the 2015 fields are read only by PrincipledBSDF.
 struct PrincipledParams {
     Spectrum base_color{0.8f};
     float metallic = 0.f, roughness = 0.5f, specular = 0.5f, specular_tint = 0.f;
     float sheen = 0.f, sheen_tint = 0.5f, clearcoat = 0.f, clearcoat_gloss = 1.f, anisotropic = 0.f;
+    // 2015 only.
+    float specular_transmission = 0.f;  ///< [0, 1]: blends the dielectric BRDF toward rough glass
+    float flatness = 0.f;               ///< [0, 1]: diffuse toward Hanrahan–Krueger subsurface
+    float diffuse_transmission = 0.f;   ///< [0, 2], thin only: 0 all reflected, 2 all transmitted
+    float eta = 0.f;                    ///< relative IOR; 0 = derived from `specular`
+    PrincipledVariant variant = PrincipledVariant::Burley2012;
+    bool thin = false;                  ///< 2015 thin sheet (principled_bsdf.h)
 };
 
 class Principled {

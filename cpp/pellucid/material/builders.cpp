@@ -309,16 +309,45 @@ Material build_rough_plastic(Properties& p, const BuildContext& ctx) {
 Material build_principled(Properties& p, const BuildContext& ctx) {
     PrincipledParams q;
     Binder b(p, ctx, q);
+    std::string v = p.get_choice("variant", "2012", "variant", {"2012", "2015"});
+    q.variant = v == "2015" ? PrincipledVariant::Burley2015 : PrincipledVariant::Burley2012;
+    bool v2015 = q.variant == PrincipledVariant::Burley2015;
+    q.thin = v2015 && p.get_bool("thin", false);
+    // Keys of the other variant (or mode) are errors, not silently ignored.
+    auto unused = [&](std::initializer_list<const char*> keys, const std::string& why) {
+        for (const char* k : keys)
+            if (p.has(k)) p.fail(k, "not used by " + why);
+    };
+    if (!v2015)
+        unused({"specular_transmission", "eta", "flatness", "thin", "diffuse_transmission"},
+               "variant '2012' (a key of variant '2015')");
+    else if (q.thin)
+        unused({"metallic", "clearcoat", "clearcoat_gloss"}, "the thin 2015 model");
+    else
+        unused({"diffuse_transmission"}, "the solid 2015 model (it needs thin: true)");
+    if (v2015 && p.has("eta") && p.has("specular"))
+        p.fail("eta", "give either eta or specular, not both (specular sets eta)");
     b.colour("base_color", q.base_color);
-    b.range("metallic", q.metallic, 0.f, 1.f);
+    if (!q.thin) b.range("metallic", q.metallic, 0.f, 1.f);
     b.range("roughness", q.roughness, 0.f, 1.f);
     b.range("specular", q.specular, 0.f, 1.f);
     b.range("specular_tint", q.specular_tint, 0.f, 1.f);
     b.range("sheen", q.sheen, 0.f, 1.f);
     b.range("sheen_tint", q.sheen_tint, 0.f, 1.f);
-    b.range("clearcoat", q.clearcoat, 0.f, 1.f);
-    b.range("clearcoat_gloss", q.clearcoat_gloss, 0.f, 1.f);
+    if (!q.thin) {
+        b.range("clearcoat", q.clearcoat, 0.f, 1.f);
+        b.range("clearcoat_gloss", q.clearcoat_gloss, 0.f, 1.f);
+    }
     b.range("anisotropic", q.anisotropic, 0.f, 1.f);
+    if (v2015) {
+        b.range("specular_transmission", q.specular_transmission, 0.f, 1.f);
+        b.range("flatness", q.flatness, 0.f, 1.f);
+        if (p.has("eta")) {
+            q.eta = 1.5f;  // the constant where a texture is bound
+            b.range("eta", q.eta, 1e-3f, 10.f);
+        }
+        if (q.thin) b.range("diffuse_transmission", q.diffuse_transmission, 0.f, 2.f);
+    }
     return PrincipledMaterial(q);
 }
 

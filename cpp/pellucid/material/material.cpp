@@ -125,6 +125,12 @@ std::string PrincipledMaterial::to_string() const {
            ", specular_tint=" + format_float(p.specular_tint) + ", sheen=" + format_float(p.sheen) +
            ", sheen_tint=" + format_float(p.sheen_tint) + ", clearcoat=" + format_float(p.clearcoat) +
            ", clearcoat_gloss=" + format_float(p.clearcoat_gloss) + ", anisotropic=" + format_float(p.anisotropic) +
+           (p.variant == PrincipledVariant::Burley2015
+                ? ", variant=2015, specular_transmission=" + format_float(p.specular_transmission) +
+                      ", flatness=" + format_float(p.flatness) + ", eta=" +
+                      (p.eta > 0.f ? format_float(p.eta) : std::string("from specular")) +
+                      (p.thin ? ", thin, diffuse_transmission=" + format_float(p.diffuse_transmission) : "")
+                : std::string()) +
            "]";
 }
 }  // namespace pellucid

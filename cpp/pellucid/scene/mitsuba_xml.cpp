@@ -644,17 +644,36 @@ private:
                        is_rough ? cat(plastic, {{"distribution", "distribution"}, {"alpha", "alpha"}}) : plastic,
                        {"sample_visible"});
             if (is_rough) set_default(out, "distribution", Node::string("beckmann"));
-        } else if (type == "principled") {
+        } else if (type == "principled" || type == "principledthin") {
+            // Mitsuba 3's principled is the Burley 2015 BSDF: our principled variant "2015"
+            // (principledthin: its thin mode). Sampling rates change only the noise.
+            bool thin = type == "principledthin";
             out = make("principled", n);
-            map_params(out, c, what,
-                       {{"base_color", "base_color"}, {"metallic", "metallic"}, {"roughness", "roughness"},
-                        {"specular", "specular"}, {"spec_tint", "specular_tint"}, {"sheen", "sheen"},
-                        {"sheen_tint", "sheen_tint"}, {"clearcoat", "clearcoat"},
-                        {"clearcoat_gloss", "clearcoat_gloss"}, {"anisotropic", "anisotropic"}});
+            out.set("variant", Node::string("2015"));
+            if (thin) out.set("thin", Node::boolean(true));
+            NameMap names = {{"base_color", "base_color"}, {"roughness", "roughness"},
+                             {"anisotropic", "anisotropic"}, {"spec_trans", "specular_transmission"},
+                             {"eta", "eta"}, {"spec_tint", "specular_tint"}, {"sheen", "sheen"},
+                             {"sheen_tint", "sheen_tint"}, {"flatness", "flatness"}};
+            if (thin) {
+                names.push_back({"diff_trans", "diffuse_transmission"});
+                map_params(out, c, what, names,
+                           {"diffuse_reflectance_sampling_rate", "specular_reflectance_sampling_rate",
+                            "specular_transmittance_sampling_rate", "diffuse_transmittance_sampling_rate"});
+            } else {
+                names.insert(names.end(), {{"metallic", "metallic"}, {"specular", "specular"},
+                                           {"clearcoat", "clearcoat"}, {"clearcoat_gloss", "clearcoat_gloss"}});
+                map_params(out, c, what, names,
+                           {"diffuse_reflectance_sampling_rate", "main_specular_sampling_rate",
+                            "clearcoat_sampling_rate"});
+                if (out.find("eta") && out.find("specular"))
+                    fail(n, what + " takes 'eta' or 'specular', not both (specular sets eta)");
+            }
             // Mitsuba 3's defaults where they differ from ours.
             set_default(out, "base_color", num(0.5));
             set_default(out, "sheen_tint", num(0.0));
-            set_default(out, "clearcoat_gloss", num(0.0));
+            if (thin) set_default(out, "eta", num(1.5));
+            else set_default(out, "clearcoat_gloss", num(0.0));
         } else {
             unsupported(n, "unsupported " + what);
             return std::nullopt;

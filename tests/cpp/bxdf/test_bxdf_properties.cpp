@@ -82,7 +82,8 @@ TYPED_TEST(BxDFProperties, WeightEqualsEvalOverPdf) {
 
 // 3. Reciprocity f(wo,wi) = f(wi,wo) for reflection; for refraction in radiance mode
 //    f(wi,wo) = η'² f(wo,wi) with η' = η(wi side)/η(wo side), and the adjoint identity
-//    f_importance(wi,wo) = f_radiance(wo,wi) (Veach 1997, eqs. 5.12–5.14).
+//    f_importance(wi,wo) = f_radiance(wo,wi) (Veach 1997, eqs. 5.12–5.14). Cases without
+//    symmetric_support are checked where both values are non-zero.
 TYPED_TEST(BxDFProperties, Reciprocity) {
     PCG32 rng(11, 5);
     const BxDFContext rad{TransportMode::Radiance, BxDFFlags::All}, imp{TransportMode::Importance, BxDFFlags::All};
@@ -94,6 +95,7 @@ TYPED_TEST(BxDFProperties, Reciprocity) {
             Spectrum a = c.bxdf.eval(rad, wo, wi) / std::fabs(wi.z);
             Spectrum b = c.bxdf.eval(rad, wi, wo) / std::fabs(wo.z);
             Spectrum bi = c.bxdf.eval(imp, wi, wo) / std::fabs(wo.z);
+            if (!c.symmetric_support && (a.is_black() || (same_hemisphere(wo, wi) ? b : bi).is_black())) continue;
             bool ok = true;
             for (int ch = 0; ch < 3; ++ch)
                 ok &= same_hemisphere(wo, wi) ? rel_close(a[ch], b[ch], 1e-3) : rel_close(bi[ch], a[ch], 1e-3);

@@ -395,6 +395,8 @@ TYPED_TEST(BumpedProperties, AdjointRelationAndShadingFrameReciprocity) {
                     Spectrum imp = b.eval(wo, wi, TransportMode::Importance) / std::fabs(dot(wi, kNg));
                     Spectrum rad_rev = b.eval(wi, wo, TransportMode::Radiance) / std::fabs(dot(wo, kNg));
                     Spectrum rad_fwd = b.eval(wo, wi, TransportMode::Radiance);
+                    // A lobe whose support is not symmetric (bxdf_cases.h) is checked where both are non-zero.
+                    if (!c.symmetric_support && (imp.is_black() || rad_rev.is_black())) continue;
                     bool reflection = dot(wo, ns) * dot(wi, ns) > 0.f;
                     bool ok = true;
                     for (int ch = 0; ch < 3; ++ch) ok &= rel_close(imp[ch], rad_rev[ch], 1e-3);
@@ -436,6 +438,13 @@ TEST(BumpedProperties, TiltedShadingNormalIsNotReciprocal) {
     EXPECT_GT(std::fabs(ratio - 1.0), 0.05);
 }
 
+/// BSDF::sample through one out-of-line call site, so that the plain and the softened sample run the
+/// same machine code: inlined twice, the two copies may contract multiply-adds differently and
+/// differ in the last bit, which the exact "never moves the sample" check below would report.
+[[gnu::noinline]] std::optional<BxDFSample> sample_once(const BSDF& b, const Vec3f& wo, float ul, const Vec2f& u) {
+    return b.sample(wo, ul, u);
+}
+
 // 6. Energy. Radiance transport, transmission weights × η'² (the 1/η'² radiance scaling removed,
 //    bxdf_types.h): E[weight] ≤ 1 + 5 SE for every case, frame and wo, with and without softening
 //    (the wrapper only removes the leaking part of the local albedo). Softening multiplies each
@@ -455,7 +464,7 @@ TYPED_TEST(BumpedProperties, WhiteFurnaceAndSoftening) {
                 for (int k = 0; k < kN; ++k) {
                     float ul = rng.next_float();
                     Vec2f u = rng.next_2d();
-                    auto s = plain.sample(wo, ul, u), ss = soft.sample(wo, ul, u);
+                    auto s = sample_once(plain, wo, ul, u), ss = sample_once(soft, wo, ul, u);
                     if (bool(s) != bool(ss) || (s && length(s->wi - ss->wi) != 0.f)) {
                         if (++bad < 3) ADD_FAILURE() << c.name << " on " << bf.name << ": softening moved a sample";
                         continue;

@@ -198,6 +198,9 @@ TEST(MitsubaXml, BsdfMappings) {
     <float name="sheen" value="0.1"/><float name="sheen_tint" value="0.4"/><float name="clearcoat" value="0.5"/>
     <float name="clearcoat_gloss" value="0.8"/><float name="anisotropic" value="0.25"/></bsdf>
   <bsdf type="principled" id="p_default"/>
+  <bsdf type="principled" id="p_glass"><float name="spec_trans" value="0.9"/><float name="eta" value="1.33"/>
+    <float name="flatness" value="0.2"/><float name="main_specular_sampling_rate" value="2"/></bsdf>
+  <bsdf type="principledthin" id="p_thin"><float name="diff_trans" value="1.2"/><float name="spec_trans" value="0.3"/></bsdf>
   <bsdf type="twosided" id="two"><bsdf type="diffuse"><float name="reflectance" value="0.3"/></bsdf></bsdf>)"),
                             R"({"materials": {
   "au": {"type": "conductor", "material": "Au"},
@@ -209,10 +212,14 @@ TEST(MitsubaXml, BsdfMappings) {
   "pane": {"type": "thin_dielectric", "int_ior": 1.5},
   "red": {"type": "plastic", "diffuse_reflectance": [0.5, 0.1, 0.1], "int_ior": 1.9},
   "rp": {"type": "rough_plastic", "alpha": 0.1, "distribution": "ggx"},
-  "p": {"type": "principled", "base_color": [0.1, 0.2, 0.3], "metallic": 0.7, "roughness": 0.3, "specular": 0.6,
-        "specular_tint": 0.2, "sheen": 0.1, "sheen_tint": 0.4, "clearcoat": 0.5, "clearcoat_gloss": 0.8,
-        "anisotropic": 0.25},
-  "p_default": {"type": "principled", "base_color": 0.5, "sheen_tint": 0, "clearcoat_gloss": 0},
+  "p": {"type": "principled", "variant": "2015", "base_color": [0.1, 0.2, 0.3], "metallic": 0.7, "roughness": 0.3,
+        "specular": 0.6, "specular_tint": 0.2, "sheen": 0.1, "sheen_tint": 0.4, "clearcoat": 0.5,
+        "clearcoat_gloss": 0.8, "anisotropic": 0.25},
+  "p_default": {"type": "principled", "variant": "2015", "base_color": 0.5, "sheen_tint": 0, "clearcoat_gloss": 0},
+  "p_glass": {"type": "principled", "variant": "2015", "specular_transmission": 0.9, "eta": 1.33, "flatness": 0.2,
+              "base_color": 0.5, "sheen_tint": 0, "clearcoat_gloss": 0},
+  "p_thin": {"type": "principled", "variant": "2015", "thin": true, "diffuse_transmission": 1.2,
+             "specular_transmission": 0.3, "base_color": 0.5, "sheen_tint": 0, "eta": 1.5},
   "two": {"type": "lambertian", "reflectance": 0.3}}})"));
 }
 
@@ -297,6 +304,15 @@ TEST(MitsubaXml, DefaultsAndParams) {
     EXPECT_EQ(d.root.find("film")->find("height")->as_number(), 64);
     EXPECT_EQ(error_of(scene("\n<sensor type=\"perspective\"><float name=\"fov\" value=\"$fov\"/></sensor>")),
               "scene.xml:3: undefined parameter '$fov' (declare it with <default name=\"fov\" value=...> or pass it)");
+}
+
+TEST(MitsubaXml, PrincipledEtaOrSpecular) {
+    // Mitsuba's principled takes one of the two (specular sets eta); so does the import.
+    EXPECT_EQ(error_of(scene("<bsdf type=\"principled\" id=\"a\">\n  <float name=\"eta\" value=\"1.4\"/>"
+                             "<float name=\"specular\" value=\"0.3\"/></bsdf>")),
+              "scene.xml:2: bsdf plugin 'principled' takes 'eta' or 'specular', not both (specular sets eta)");
+    // principledthin has neither metallic nor clearcoat.
+    EXPECT_NE(error_of(scene("<bsdf type=\"principledthin\" id=\"a\"><float name=\"metallic\" value=\"1\"/></bsdf>")), "");
 }
 
 TEST(MitsubaXml, RefErrorsNameTheLine) {
