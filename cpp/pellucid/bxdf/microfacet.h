@@ -1,6 +1,7 @@
-// Microfacet normal distributions (GGX / Trowbridge–Reitz and Beckmann) with height-correlated
-// Smith masking–shadowing and exact visible-normal sampling. Value types with identical members,
-// used as the `Distribution` template parameter of the microfacet BxDFs.
+// Microfacet normal distributions (GGX / Trowbridge–Reitz and Beckmann) with Smith
+// masking–shadowing (height-correlated by default, or separable) and exact visible-normal
+// sampling. Value types with identical members, used as the `Distribution` template parameter of
+// the microfacet BxDFs.
 // SPDX-License-Identifier: Apache-2.0
 //
 // Frame: local shading frame, z = macro normal; microfacet normals wm always have wm.z ≥ 0.
@@ -10,9 +11,15 @@
 // et al. 2007 §5.2); alpha_from_roughness(r) = r² maps a perceptual roughness r ∈ [0, 1] to α
 // (Burley 2012, §5.4). Every alpha is clamped to ≥ kMinAlpha = 1e-4 on construction (NaN → 1e-4),
 // so no expression divides by zero; the BxDFs switch to a delta lobe when effectively_smooth().
+// Shadowing: the two-direction term G(wo, wi) is the height-correlated Smith form (default) or the
+// separable product G1(wo)·G1(wi) (the form Mitsuba 3 uses); it is part of the distribution value,
+// so every BxDF that calls G() follows the choice. G1, Λ and the visible-normal density do not
+// depend on it. The separable form ignores the correlation between the heights that mask wo and
+// wi, so it shadows more: G1(wo)G1(wi) ≤ 1/(1 + Λ(wo) + Λ(wi)) (Heitz 2014, §6).
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "pellucid/math/constants.h"
@@ -20,6 +27,15 @@
 #include "pellucid/math/vec.h"
 
 namespace pellucid {
+
+/// Which two-direction Smith masking–shadowing term G(wo, wi) a distribution evaluates.
+enum class SmithShadowing : uint8_t {
+    HeightCorrelated,  ///< G2 = 1/(1 + Λ(wo) + Λ(wi)) (Heitz 2014, eq. 99)
+    Separable,         ///< G2 = G1(wo)·G1(wi) (Heitz 2014, eq. 98)
+};
+inline std::string to_string(SmithShadowing s) {
+    return s == SmithShadowing::Separable ? "separable" : "height_correlated";
+}
 
 namespace microfacet_detail {
 constexpr float kMinAlpha = 1e-4f;
@@ -49,10 +65,14 @@ public:
 
     /// Smith monodirectional masking G1(w) = 1/(1 + Λ(w)) (Heitz 2014, eq. 43); 0 on the horizon.
     float G1(const Vec3f& w) const { return 1.f / (1.f + self().lambda(w)); }
-    /// Height-correlated masking–shadowing G2 = 1/(1 + Λ(wo) + Λ(wi)) (Heitz 2014, eq. 99).
+    /// Masking–shadowing G2(wo, wi) for reflection or transmission (directions on either side):
+    /// height-correlated 1/(1 + Λ(wo) + Λ(wi)) (Heitz 2014, eq. 99) or separable G1(wo)·G1(wi)
+    /// (eq. 98), as shadowing() says. Back-facing microfacets (χ⁺) are the caller's test.
     float G(const Vec3f& wo, const Vec3f& wi) const {
+        if (m_shadowing == SmithShadowing::Separable) return G1(wo) * G1(wi);
         return 1.f / (1.f + self().lambda(wo) + self().lambda(wi));
     }
+    SmithShadowing shadowing() const { return m_shadowing; }
     /// Distribution of visible normals D_wo(wm) = G1(wo)/|cos θo| · D(wm) · |wo·wm|
     /// (Heitz 2014, eq. 38) on the visible set wo·wm > 0 (wo flipped into the upper hemisphere
     /// first), 0 for back-facing microfacets, which sample_visible never returns.
@@ -65,12 +85,14 @@ public:
     }
 
 protected:
-    MicrofacetBase(float ax, float ay)
-        : m_ax(microfacet_detail::clamp_alpha(ax)), m_ay(microfacet_detail::clamp_alpha(ay)) {}
+    MicrofacetBase(float ax, float ay, SmithShadowing s)
+        : m_ax(microfacet_detail::clamp_alpha(ax)), m_ay(microfacet_detail::clamp_alpha(ay)), m_shadowing(s) {}
     std::string params() const {
-        return "alpha_x=" + std::to_string(m_ax) + ", alpha_y=" + std::to_string(m_ay);
+        std::string p = "alpha_x=" + std::to_string(m_ax) + ", alpha_y=" + std::to_string(m_ay);
+        return m_shadowing == SmithShadowing::Separable ? p + ", shadowing=separable" : p;
     }
     float m_ax, m_ay;
+    SmithShadowing m_shadowing;
 
 private:
     const Derived& self() const { return static_cast<const Derived&>(*this); }
@@ -80,8 +102,9 @@ private:
 /// eq. 85).
 class GGX : public MicrofacetBase<GGX> {
 public:
-    explicit GGX(float alpha = 0.1f) : MicrofacetBase(alpha, alpha) {}
-    GGX(float alpha_x, float alpha_y) : MicrofacetBase(alpha_x, alpha_y) {}
+    explicit GGX(float alpha = 0.1f) : MicrofacetBase(alpha, alpha, SmithShadowing::HeightCorrelated) {}
+    GGX(float alpha_x, float alpha_y, SmithShadowing s = SmithShadowing::HeightCorrelated)
+        : MicrofacetBase(alpha_x, alpha_y, s) {}
 
     /// D(wm) = 1 / (π αx αy (x²/αx² + y²/αy² + z²)²) for unit wm, z > 0 (Heitz 2014, eq. 85
     /// multiplied out so no tan θ or cos⁴ θ appears).
@@ -114,8 +137,9 @@ public:
 /// Beckmann distribution (Walter et al. 2007, eq. 25; anisotropic form Heitz 2014, eq. 82).
 class Beckmann : public MicrofacetBase<Beckmann> {
 public:
-    explicit Beckmann(float alpha = 0.1f) : MicrofacetBase(alpha, alpha) {}
-    Beckmann(float alpha_x, float alpha_y) : MicrofacetBase(alpha_x, alpha_y) {}
+    explicit Beckmann(float alpha = 0.1f) : MicrofacetBase(alpha, alpha, SmithShadowing::HeightCorrelated) {}
+    Beckmann(float alpha_x, float alpha_y, SmithShadowing s = SmithShadowing::HeightCorrelated)
+        : MicrofacetBase(alpha_x, alpha_y, s) {}
 
     /// D(wm) = exp(−tan² θm (cos² φ/αx² + sin² φ/αy²)) / (π αx αy cos⁴ θm).
     float D(const Vec3f& wm) const {

@@ -1,40 +1,173 @@
-// Smooth and rough plastic.
+// Smooth and rough plastic, and the rough coat's transmittance table.
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/bxdf/plastic.h"
 
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "pellucid/bxdf/quadrature.h"
 #include "pellucid/sampling/warp.h"
 
 namespace pellucid {
 
-std::string to_string(PlasticVariant v) { return v == PlasticVariant::Coupled ? "coupled" : "sum"; }
+std::string to_string(PlasticVariant v) {
+    switch (v) {
+        case PlasticVariant::Coupled: return "coupled";
+        case PlasticVariant::Linear: return "linear";
+        case PlasticVariant::Sum: break;
+    }
+    return "sum";
+}
+std::string to_string(CoatTransmittance c) { return c == CoatTransmittance::Rough ? "rough" : "smooth"; }
 
-PlasticBase::PlasticBase(float eta, const Spectrum& kd, const Spectrum& ks, PlasticVariant variant)
-    : m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_kd(kd), m_ks(ks), m_variant(variant) {
+// ---------------------------------------------------------------------------------------------
+// RoughCoatTable
+bool RoughCoatTable::Key::operator<(const Key& o) const {
+    if (kind != o.kind) return kind < o.kind;
+    if (shadowing != o.shadowing) return shadowing < o.shadowing;
+    if (alpha_x != o.alpha_x) return alpha_x < o.alpha_x;
+    if (alpha_y != o.alpha_y) return alpha_y < o.alpha_y;
+    return eta < o.eta;
+}
+
+namespace {
+// ∫∫_[0,1]² f(u) du by the 32 × 32 Gauss–Legendre product rule.
+template <class F>
+double integrate_unit_square(F&& f) {
+    const GaussLegendre32& q = gauss_legendre_32();
+    double sum = 0.0;
+    for (int i = 0; i < 32; ++i)
+        for (int j = 0; j < 32; ++j)
+            sum += q.w[i] * q.w[j] * f(Vec2f(float(0.5 + 0.5 * q.x[i]), float(0.5 + 0.5 * q.x[j])));
+    return 0.25 * sum;
+}
+
+// Single-scattering energy that a rough interface of relative IOR eta (the far side's IOR over the
+// near side's) sends from the direction at cos θ = mu into the far side (transmit = true) or back
+// to the near side, as an expectation over visible normals wm ~ D_wo (Heitz 2018, JCGT 7(4), §1):
+//   ∫ D_wo(wm) F' G2(wo, w)/G1(wo) dwm, F' = 1 − F(wo·wm) or F(wo·wm), w the refracted or
+// reflected direction (0 where it leaves on the wrong side, and on total internal reflection).
+template <class D>
+double interface_energy(const D& d, double mu, float eta, bool transmit) {
+    mu = std::max(1e-6, std::min(1.0, mu));
+    Vec3f wo(float(std::sqrt(std::max(0.0, 1.0 - mu * mu))), 0.f, float(mu));
+    float g1 = d.G1(wo);
+    if (!(g1 > 0.f)) return 0.0;
+    return integrate_unit_square([&](const Vec2f& u) {
+        Vec3f wm = d.sample_visible(wo, u);
+        double F = fresnel_dielectric_d(dot(wo, wm), eta);
+        if (transmit) {
+            Vec3f wt;
+            float etap;
+            if (F >= 1.0 || !refract(wo, wm, eta, &etap, &wt) || !(wt.z < 0.f)) return 0.0;
+            return (1.0 - F) * double(d.G(wo, wt)) / g1;
+        }
+        Vec3f wr = reflect(wo, wm);
+        return wr.z > 0.f ? F * double(d.G(wo, wr)) / g1 : 0.0;
+    });
+}
+}  // namespace
+
+template <class D>
+RoughCoatTable RoughCoatTable::compute(const D& d, float eta) {
+    RoughCoatTable t;
+    t.m_key = key_of(d, eta);
+    for (int j = 0; j < kSize; ++j)
+        t.m_t[j] = float(interface_energy(d, double(j) / (kSize - 1), eta, true));
+    // R̄ = 2∫₀¹ R_int(μ) μ dμ, seen from inside (relative IOR 1/η). Split at the smooth interior's
+    // critical cosine μc = √(1 − 1/η²) (η > 1), and on [μc, 1] substitute μ = μc + (1 − μc) s²,
+    // which removes the √(μ − μc) edge R_int has there as α → 0 (as fresnel_dielectric_average).
+    const float eta_in = 1.f / eta;
+    double mu_c = eta > 1.f ? std::sqrt(std::max(0.0, 1.0 - 1.0 / (double(eta) * eta))) : 0.0;
+    double w = 1.0 - mu_c;
+    double rbar = mu_c > 0.0 ? integrate_gauss_legendre(
+                                   [&](double mu) { return interface_energy(d, mu, eta_in, false) * mu; }, 0.0, mu_c)
+                             : 0.0;
+    rbar += integrate_gauss_legendre(
+        [&](double s) {
+            double mu = mu_c + w * s * s;
+            return interface_energy(d, mu, eta_in, false) * mu * 2.0 * w * s;
+        },
+        0.0, 1.0);
+    t.m_rbar = float(std::min(1.0, 2.0 * rbar));
+    return t;
+}
+
+template <class D>
+const RoughCoatTable& RoughCoatTable::get(const D& d, float eta) {
+    // Process-wide, never freed (header comment): std::map nodes do not move, so the references
+    // handed out stay valid. The table is computed outside the lock; a concurrent first request for
+    // the same key computes it twice and keeps the first.
+    static std::mutex mutex;
+    static std::map<Key, std::unique_ptr<const RoughCoatTable>>* cache =
+        new std::map<Key, std::unique_ptr<const RoughCoatTable>>();
+    const Key key = key_of(d, eta);
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        auto it = cache->find(key);
+        if (it != cache->end()) return *it->second;
+    }
+    auto table = std::make_unique<const RoughCoatTable>(compute(d, eta));
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = cache->emplace(key, std::move(table)).first;
+    return *it->second;
+}
+
+float RoughCoatTable::transmittance(float mu) const {
+    float x = clamp(mu, 0.f, 1.f) * float(kSize - 1);
+    int i = std::min(int(x), kSize - 2);
+    float f = x - float(i);
+    return m_t[i] + f * (m_t[i + 1] - m_t[i]);
+}
+
+template const RoughCoatTable& RoughCoatTable::get<GGX>(const GGX&, float);
+template const RoughCoatTable& RoughCoatTable::get<Beckmann>(const Beckmann&, float);
+template RoughCoatTable RoughCoatTable::compute<GGX>(const GGX&, float);
+template RoughCoatTable RoughCoatTable::compute<Beckmann>(const Beckmann&, float);
+
+// ---------------------------------------------------------------------------------------------
+// PlasticBase
+PlasticBase::PlasticBase(float eta, const Spectrum& kd, const Spectrum& ks, PlasticVariant variant,
+                         const RoughCoatTable* coat)
+    : m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_kd(kd), m_ks(ks), m_variant(variant),
+      m_coat(variant == PlasticVariant::Sum ? nullptr : coat) {
     if (m_variant == PlasticVariant::Sum) {
         m_diffuse_scale = m_kd;
         return;
     }
-    float f_dri = 1.f - (1.f - fresnel_dielectric_average(m_eta)) / (m_eta * m_eta);
-    for (int c = 0; c < 3; ++c)
-        m_diffuse_scale[c] = m_kd[c] / (m_eta * m_eta * std::max(1e-6f, 1.f - m_kd[c] * f_dri));
+    m_rbar = m_coat ? m_coat->internal_reflectance()
+                    : 1.f - (1.f - fresnel_dielectric_average(m_eta)) / (m_eta * m_eta);
+    for (int c = 0; c < 3; ++c) {
+        float bounce = m_variant == PlasticVariant::Coupled ? m_kd[c] * m_rbar : m_rbar;
+        m_diffuse_scale[c] = m_kd[c] / (m_eta * m_eta * std::max(1e-6f, 1.f - bounce));
+    }
+}
+
+float PlasticBase::transmittance(float mu) const {
+    return m_coat ? m_coat->transmittance(mu) : 1.f - fresnel_dielectric(mu, m_eta);
 }
 
 Spectrum PlasticBase::diffuse(float cos_o, float cos_i) const {
     if (m_variant == PlasticVariant::Sum) return m_diffuse_scale * (kInvPi * cos_i);
-    float t = (1.f - fresnel_dielectric(cos_i, m_eta)) * (1.f - fresnel_dielectric(cos_o, m_eta));
+    float t = transmittance(cos_i) * transmittance(cos_o);
     return m_diffuse_scale * (t * kInvPi * cos_i);
 }
 
+// Coat lobe ∝ F·Ks, base ∝ t·Kd (t = 1 for "sum"). With the rough table, F rather than 1 − t (which
+// also counts the coat's masking losses, and is > 0 even at η = 1 where the coat reflects nothing).
 float PlasticBase::coat_probability(float cos_o) const {
     float F = fresnel_dielectric(cos_o, m_eta);
+    float T = m_variant == PlasticVariant::Sum ? 1.f : m_coat ? m_coat->transmittance(cos_o) : 1.f - F;
     float s = F * m_ks.average();
-    float d = (m_variant == PlasticVariant::Coupled ? (1.f - F) : 1.f) * m_kd.average();
+    float d = T * m_kd.average();
     return s + d > 0.f ? s / (s + d) : 0.f;
 }
 
 std::string PlasticBase::params() const {
-    return "eta=" + std::to_string(m_eta) + ", diffuse_reflectance=" + m_kd.to_string() +
-           ", specular_reflectance=" + m_ks.to_string() + ", variant=" + pellucid::to_string(m_variant);
+    std::string s = "eta=" + std::to_string(m_eta) + ", diffuse_reflectance=" + m_kd.to_string() +
+                    ", specular_reflectance=" + m_ks.to_string() + ", variant=" + pellucid::to_string(m_variant);
+    return m_coat ? s + ", coat_transmittance=rough" : s;
 }
 
 // ---------------------------------------------------------------------------------------------

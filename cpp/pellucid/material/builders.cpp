@@ -125,11 +125,14 @@ void read_ior(Binder& b, const std::string& key, const char* def_name, float& fi
     field = v;
 }
 
-/// distribution + one of alpha | alpha_u/alpha_v | roughness (α = r²), each constant or textured.
+/// distribution + shadowing + one of alpha | alpha_u/alpha_v | roughness (α = r²), each constant or
+/// textured.
 void read_microfacet(Binder& b, MicrofacetParams& m) {
     Properties& p = b.props();
     std::string d = p.get_choice("distribution", "ggx", "distribution", {"ggx", "beckmann"});
     m.distribution = d == "ggx" ? MicrofacetType::GGX : MicrofacetType::Beckmann;
+    std::string g = p.get_choice("shadowing", "height_correlated", "shadowing", {"height_correlated", "separable"});
+    m.shadowing = g == "separable" ? SmithShadowing::Separable : SmithShadowing::HeightCorrelated;
     bool has_alpha = p.has("alpha"), has_uv = p.has("alpha_u") || p.has("alpha_v"), has_r = p.has("roughness");
     if (int(has_alpha) + int(has_uv) + int(has_r) > 1)
         p.fail(has_r ? "roughness" : "alpha_u", "give only one of alpha, alpha_u/alpha_v, roughness");
@@ -210,8 +213,35 @@ void read_plastic(Binder& b, PlasticParams& q) {
     b.colour("specular_reflectance", q.specular_reflectance);
     read_ior(b, "int_ior", "polypropylene", q.int_ior);
     read_ior(b, "ext_ior", "air", q.ext_ior);
-    std::string v = p.get_choice("variant", "coupled", "variant", {"coupled", "sum"});
-    q.variant = v == "coupled" ? PlasticVariant::Coupled : PlasticVariant::Sum;
+    std::string v = p.get_choice("variant", "coupled", "variant", {"coupled", "linear", "sum"});
+    q.variant = v == "coupled" ? PlasticVariant::Coupled : v == "linear" ? PlasticVariant::Linear : PlasticVariant::Sum;
+}
+
+/// coat_transmittance of rough_plastic. "rough" tabulates the coat once per material (bxdf/plastic.h,
+/// RoughCoatTable): a textured α or IOR would need a table per hit, so it is an error (checked on the
+/// texture bindings recorded for q's α and IOR fields).
+void read_coat_transmittance(Properties& p, const BuildContext& ctx, RoughPlasticParams& q) {
+    std::string c = p.get_choice("coat_transmittance", "smooth", "coat transmittance", {"smooth", "rough"});
+    q.coat_transmittance = c == "rough" ? CoatTransmittance::Rough : CoatTransmittance::Smooth;
+    if (q.coat_transmittance != CoatTransmittance::Rough) return;
+    if (q.plastic.variant == PlasticVariant::Sum)
+        p.fail("coat_transmittance", "'rough' is not used by variant 'sum' (use 'coupled' or 'linear')");
+    if (!ctx.material_textures) return;
+    const char* base = reinterpret_cast<const char*>(&q);
+    auto off = [&](const void* f) { return size_t(static_cast<const char*>(f) - base); };
+    const MaterialTextures& mt = *ctx.material_textures;
+    for (int i = 0; i < mt.count; ++i) {
+        size_t o = mt.bindings[i].offset;
+        std::string key;
+        if (o == off(&q.plastic.int_ior)) key = "int_ior";
+        else if (o == off(&q.plastic.ext_ior)) key = "ext_ior";
+        else if (o == off(&q.microfacet.alpha_u) || o == off(&q.microfacet.alpha_v))
+            for (const char* k : {"roughness", "alpha", "alpha_u", "alpha_v"})
+                if (key.empty() && p.has(k)) key = k;
+        if (!key.empty())
+            p.fail(key, "a texture is not allowed with coat_transmittance 'rough' (the coat's transmittance "
+                        "table is built once per material; give a constant, or use coat_transmittance 'smooth')");
+    }
 }
 }  // namespace
 
@@ -253,10 +283,15 @@ Material build_conductor(Properties& p, const BuildContext& ctx) {
 }
 
 // Kulla-Conty energy compensation: our albedo tables are tabulated for GGX only.
+// They are also tabulated with height-correlated shadowing: the separable G loses more energy than
+// they restore.
 bool read_multiple_scattering(Properties& p, const MicrofacetParams& m) {
     bool on = p.get_bool("multiple_scattering", false);
     if (on && m.distribution != MicrofacetType::GGX)
         p.fail("multiple_scattering", "requires distribution 'ggx' (the Kulla-Conty tables are GGX only)");
+    if (on && m.shadowing != SmithShadowing::HeightCorrelated)
+        p.fail("multiple_scattering",
+               "requires shadowing 'height_correlated' (the Kulla-Conty tables are tabulated with it)");
     return on;
 }
 
@@ -303,6 +338,7 @@ Material build_rough_plastic(Properties& p, const BuildContext& ctx) {
     Binder b(p, ctx, q);
     read_microfacet(b, q.microfacet);
     read_plastic(b, q.plastic);
+    read_coat_transmittance(p, ctx, q);
     return RoughPlasticMaterial(q);
 }
 

@@ -22,8 +22,9 @@ std::string to_string(MicrofacetType t) { return t == MicrofacetType::GGX ? "ggx
 
 std::string MicrofacetParams::to_string() const {
     std::string s = "distribution=" + pellucid::to_string(distribution);
-    if (alpha_u == alpha_v) return s + ", alpha=" + format_float(alpha_u);
-    return s + ", alpha_u=" + format_float(alpha_u) + ", alpha_v=" + format_float(alpha_v);
+    s += alpha_u == alpha_v ? ", alpha=" + format_float(alpha_u)
+                            : ", alpha_u=" + format_float(alpha_u) + ", alpha_v=" + format_float(alpha_v);
+    return shadowing == SmithShadowing::Separable ? s + ", shadowing=separable" : s;
 }
 std::string ConductorIORParams::to_string() const {
     std::string s = preset < 0 ? "eta=" + format_spectrum(eta) + ", k=" + format_spectrum(k)
@@ -49,12 +50,15 @@ BxDF make_oren_nayar(const OrenNayarParams& p) {
     float rough = p.variant == OrenNayarVariant::Classic ? radians(p.sigma_degrees) : p.roughness;
     return OrenNayar(p.reflectance, rough, p.variant);
 }
+template <class D>
+D make_distribution(const MicrofacetParams& m) {
+    return D(m.alpha_u, m.alpha_v, m.shadowing);
+}
 BxDF make_rough_conductor(const RoughConductorParams& p) {
     ConductorFresnel fr = make_fresnel(p.ior);
     if (p.microfacet.distribution == MicrofacetType::Beckmann)
-        return RoughConductorBeckmann(Beckmann(p.microfacet.alpha_u, p.microfacet.alpha_v), fr, p.specular_reflectance);
-    return RoughConductor(GGX(p.microfacet.alpha_u, p.microfacet.alpha_v), fr, p.specular_reflectance,
-                          p.multiple_scattering);
+        return RoughConductorBeckmann(make_distribution<Beckmann>(p.microfacet), fr, p.specular_reflectance);
+    return RoughConductor(make_distribution<GGX>(p.microfacet), fr, p.specular_reflectance, p.multiple_scattering);
 }
 // `distribution` picks the template argument (as make_rough_conductor); Kulla–Conty is GGX only
 // (the builder rejects beckmann + multiple_scattering).
@@ -62,19 +66,24 @@ BxDF make_rough_dielectric(const RoughDielectricParams& p) {
     const DielectricParams& d = p.dielectric;
     const MicrofacetParams& m = p.microfacet;
     if (m.distribution == MicrofacetType::Beckmann)
-        return RoughDielectric<Beckmann>(Beckmann(m.alpha_u, m.alpha_v), d.eta(), d.specular_reflectance,
+        return RoughDielectric<Beckmann>(make_distribution<Beckmann>(m), d.eta(), d.specular_reflectance,
                                          d.specular_transmittance);
-    return RoughDielectric<GGX>(GGX(m.alpha_u, m.alpha_v), d.eta(), d.specular_reflectance, d.specular_transmittance,
+    return RoughDielectric<GGX>(make_distribution<GGX>(m), d.eta(), d.specular_reflectance, d.specular_transmittance,
                                 p.multiple_scattering);
 }
-BxDF make_rough_plastic(const RoughPlasticParams& p) {
+// The BxDF, and p.coat_table set to the table it uses (RoughPlastic builds or finds the table; a
+// matching table passed in is kept, so the per-hit rebuild of a textured material only compares keys).
+template <class D>
+BxDF make_rough_plastic_resolving(RoughPlasticParams& p) {
     const PlasticParams& q = p.plastic;
-    const MicrofacetParams& m = p.microfacet;
-    float eta = q.int_ior / q.ext_ior;
-    if (m.distribution == MicrofacetType::Beckmann)
-        return RoughPlastic<Beckmann>(Beckmann(m.alpha_u, m.alpha_v), eta, q.diffuse_reflectance,
-                                      q.specular_reflectance, q.variant);
-    return RoughPlastic<GGX>(GGX(m.alpha_u, m.alpha_v), eta, q.diffuse_reflectance, q.specular_reflectance, q.variant);
+    RoughPlastic<D> b(make_distribution<D>(p.microfacet), q.int_ior / q.ext_ior, q.diffuse_reflectance,
+                      q.specular_reflectance, q.variant, p.coat_transmittance, p.coat_table);
+    p.coat_table = b.base().coat_table();
+    return b;
+}
+BxDF make_rough_plastic_resolving(RoughPlasticParams& p) {
+    if (p.microfacet.distribution == MicrofacetType::Beckmann) return make_rough_plastic_resolving<Beckmann>(p);
+    return make_rough_plastic_resolving<GGX>(p);
 }
 }  // namespace
 
@@ -113,9 +122,12 @@ PlasticMaterial::PlasticMaterial(const PlasticParams& p)
       m_bxdf(SmoothPlastic(p.int_ior / p.ext_ior, p.diffuse_reflectance, p.specular_reflectance, p.variant)) {}
 std::string PlasticMaterial::to_string() const { return "PlasticMaterial[" + m_p.to_string() + "]"; }
 
-RoughPlasticMaterial::RoughPlasticMaterial(const RoughPlasticParams& p) : m_p(p), m_bxdf(make_rough_plastic(p)) {}
+// m_p is constructed before m_bxdf (declaration order), which then sets m_p.coat_table.
+RoughPlasticMaterial::RoughPlasticMaterial(const RoughPlasticParams& p)
+    : m_p(p), m_bxdf(make_rough_plastic_resolving(m_p)) {}
 std::string RoughPlasticMaterial::to_string() const {
-    return "RoughPlasticMaterial[" + m_p.microfacet.to_string() + ", " + m_p.plastic.to_string() + "]";
+    return "RoughPlasticMaterial[" + m_p.microfacet.to_string() + ", " + m_p.plastic.to_string() +
+           ", coat_transmittance=" + pellucid::to_string(m_p.coat_transmittance) + "]";
 }
 
 std::string PrincipledMaterial::to_string() const {

@@ -7,6 +7,7 @@
 #pragma once
 #include <string>
 
+#include "pellucid/bxdf/microfacet.h"
 #include "pellucid/math/spectrum.h"
 
 namespace pellucid {
@@ -16,9 +17,11 @@ std::string to_string(MicrofacetType t);
 
 /// Microfacet roughness as read from a scene description: α along the tangent (u) and bitangent (v).
 /// α ∈ [0, 1] (the builders clamp α > 1 to 1); α < 1e-3 makes the BxDF a delta lobe (microfacet.h).
+/// `shadowing` picks the Smith G2 form (key "shadowing": "height_correlated" or "separable").
 struct MicrofacetParams {
     MicrofacetType distribution = MicrofacetType::GGX;
     float alpha_u = 0.1f, alpha_v = 0.1f;
+    SmithShadowing shadowing = SmithShadowing::HeightCorrelated;
     std::string to_string() const;
 };
 

@@ -8,10 +8,15 @@
 // | diffuse_reflectance  | colour       | 0.5             | base albedo Kd, in [0, 1]                 |
 // | specular_reflectance | colour       | 1               | coat multiplier Ks, in [0, 1]             |
 // | int_ior, ext_ior     | float/string | "polypropylene", "air" | coat IOR (η = int_ior/ext_ior), as for `dielectric` |
-// | variant              | string       | "coupled"       | "coupled" (energy-conserving, Weidlich & Wilkie 2007) or "sum" (Kd/π + coat) |
+// | variant              | string       | "coupled"       | "coupled" (energy-conserving, Weidlich & Wilkie 2007), "linear" (Mitsuba's nonlinear = false) or "sum" (Kd/π + coat) |
 // `rough_plastic` adds `distribution` ("ggx" or "beckmann"), `alpha` (default 0.1), `alpha_u`/`alpha_v`,
-// `roughness`, as for `rough_conductor`.
-// JSON: {"type": "rough_plastic", "diffuse_reflectance": [0.1, 0.3, 0.6], "alpha": 0.2}
+// `roughness` and `shadowing` ("height_correlated" or "separable"), as for `rough_conductor`, and
+// | coat_transmittance   | string       | "smooth"        | "smooth" (1 − F) or "rough" (the rough coat's table; not with variant "sum") |
+// With coat_transmittance = "rough" the table is built once per material at scene build
+// (bxdf/plastic.h, RoughCoatTable), so α, roughness and the IORs must be constants there (a texture
+// is an error); textured colours are fine (the per-hit BxDF reuses the table).
+// JSON: {"type": "rough_plastic", "diffuse_reflectance": [0.1, 0.3, 0.6], "alpha": 0.2,
+//        "variant": "linear", "coat_transmittance": "rough"}
 #pragma once
 #include <string>
 
@@ -44,6 +49,11 @@ private:
 struct RoughPlasticParams {
     MicrofacetParams microfacet;
     PlasticParams plastic;
+    CoatTransmittance coat_transmittance = CoatTransmittance::Smooth;
+    /// Derived, not a scene parameter: the coat table the material resolved at build (nullptr for
+    /// the smooth transmittance). Carried here so that the per-hit rebuild of a textured material
+    /// (material/textured.h copies these Params) reuses it instead of looking it up.
+    const RoughCoatTable* coat_table = nullptr;
 };
 
 class RoughPlasticMaterial {

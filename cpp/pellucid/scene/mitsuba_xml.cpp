@@ -623,6 +623,7 @@ private:
             out = make("rough_conductor", n);
             map_params(out, c, what, cat(metal, rough), {"sample_visible"});
             set_default(out, "distribution", Node::string("beckmann"));
+            out.set("shadowing", Node::string("separable"));  // Mitsuba's G = G1(wi) G1(wo)
         } else if (type == "dielectric") {
             out = make("dielectric", n);
             map_params(out, c, what, glass);
@@ -630,20 +631,29 @@ private:
             out = make("rough_dielectric", n);
             map_params(out, c, what, cat(glass, rough), {"sample_visible"});
             set_default(out, "distribution", Node::string("beckmann"));
+            out.set("shadowing", Node::string("separable"));
         } else if (type == "thindielectric") {
             out = make("thin_dielectric", n);
             map_params(out, c, what, glass);
         } else if (type == "plastic" || type == "roughplastic") {
             bool is_rough = type == "roughplastic";
             out = make(is_rough ? "rough_plastic" : "plastic", n);
-            if (Prop* nl = take(c, "nonlinear"))
-                if (nl->value.is_bool() && nl->value.as_bool())
-                    log_warning(where(nl->node) + ": 'nonlinear' of " + what +
-                                " is ignored (pellucid's plastic has one internal-scattering model)");
+            // nonlinear = false (Mitsuba's default): Kd/(1 − R̄), our "linear"; true: Kd/(1 − Kd R̄), "coupled".
+            bool nonlinear = false;
+            if (Prop* nl = take(c, "nonlinear")) {
+                if (!nl->value.is_bool()) fail(nl->node, what + " 'nonlinear' must be a boolean");
+                nonlinear = nl->value.as_bool();
+            }
+            out.set("variant", Node::string(nonlinear ? "coupled" : "linear"));
             map_params(out, c, what,
                        is_rough ? cat(plastic, {{"distribution", "distribution"}, {"alpha", "alpha"}}) : plastic,
                        {"sample_visible"});
-            if (is_rough) set_default(out, "distribution", Node::string("beckmann"));
+            if (is_rough) {
+                set_default(out, "distribution", Node::string("beckmann"));
+                // The coat's tabulated rough transmittance and separable G, as Mitsuba's roughplastic.
+                out.set("coat_transmittance", Node::string("rough"));
+                out.set("shadowing", Node::string("separable"));
+            }
         } else if (type == "principled" || type == "principledthin") {
             // Mitsuba 3's principled is the Burley 2015 BSDF: our principled variant "2015"
             // (principledthin: its thin mode). Sampling rates change only the noise.

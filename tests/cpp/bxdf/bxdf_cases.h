@@ -111,7 +111,8 @@ struct BxDFCases<MicrofacetReflection<D, ConductorFresnel>> {
     using T = MicrofacetReflection<D, ConductorFresnel>;
     static std::vector<Case<T>> cases() {
         std::vector<Case<T>> c{{"Cu_iso0.3", T(D(0.3f), metal("Cu"))},
-                               {"Al_aniso0.15x0.45", T(D(0.15f, 0.45f), metal("Al"))}};
+                               {"Al_aniso0.15x0.45", T(D(0.15f, 0.45f), metal("Al"))},
+                               {"Au_separable0.4x0.2", T(D(0.4f, 0.2f, SmithShadowing::Separable), metal("Au"))}};
         if constexpr (std::is_same_v<D, GGX>) {
             c.push_back({"Au_ms_alpha0.6", T(D(0.6f), metal("Au"), Spectrum(1.f), true)});
             for (float a : {0.5f, 1.f}) {
@@ -130,6 +131,8 @@ struct BxDFCases<MicrofacetReflection<D, ConductorFresnel>> {
             for (float k : {0.f, 1e3f})
                 for (float eta : {1.f, 1.5f, 0.2f})
                     for (bool ms : {false, true}) v.emplace_back(D(a, 0.5f * a), ConductorFresnel{Spectrum(eta), Spectrum(k)}, Spectrum(1.f), ms);
+        for (float a : sweep_alphas())
+            v.emplace_back(D(a, 0.5f * a, SmithShadowing::Separable), ConductorFresnel{Spectrum(1.5f), Spectrum(0.f)});
         return v;
     }
 };
@@ -176,7 +179,9 @@ struct BxDFCases<RoughDielectric<D>> {
         Case<T> b{"eta1.33_aniso_importance", T(D(0.2f, 0.5f), 1.333f)};
         b.wos = wo_both();
         b.mode = TransportMode::Importance;
-        std::vector<Case<T>> c{a, b};
+        Case<T> sep{"eta1.5_separable0.4x0.25", T(D(0.4f, 0.25f, SmithShadowing::Separable), 1.5f)};
+        sep.wos = wo_both();
+        std::vector<Case<T>> c{a, b, sep};
         if constexpr (std::is_same_v<D, Beckmann>) {
             Case<T> inv{"eta1/1.5_alpha0.6", T(D(0.6f), 1.f / 1.5f)};
             inv.wos = wo_both();
@@ -209,6 +214,8 @@ struct BxDFCases<RoughDielectric<D>> {
         for (float a : sweep_alphas())
             for (float eta : sweep_etas())
                 for (bool ms : {false, true}) v.emplace_back(D(a), eta, Spectrum(1.f), Spectrum(1.f), ms);
+        for (float a : sweep_alphas())
+            for (float eta : {1.5f, 1.f / 1.5f}) v.emplace_back(D(a, a, SmithShadowing::Separable), eta);
         return v;
     }
 };
@@ -220,15 +227,22 @@ struct BxDFCases<SmoothPlastic> {
         white.lossless = true;
         white.furnace_tol = 1e-4f;  // quadrature of F_avg (1e-6) and float sums
         white.chi2 = false;
+        // Linear: albedo Ks F + Kd (1 − F) (plastic.h), so 1 for Kd = Ks = 1.
+        Case<SmoothPlastic> lin_white{"linear_white",
+                                      SmoothPlastic(1.49f, Spectrum(1.f), Spectrum(1.f), PlasticVariant::Linear)};
+        lin_white.lossless = true;
+        lin_white.furnace_tol = 1e-4f;
+        lin_white.chi2 = false;
         return {{"coupled", SmoothPlastic(1.49f, Spectrum(0.2f, 0.5f, 0.8f), Spectrum(1.f))},
                 {"sum", SmoothPlastic(1.5f, Spectrum(0.5f), Spectrum(0.5f), PlasticVariant::Sum)},
-                white};
+                {"linear", SmoothPlastic(1.49f, Spectrum(0.8f, 0.45f, 0.15f), Spectrum(0.9f), PlasticVariant::Linear)},
+                white, lin_white};
     }
     static std::vector<SmoothPlastic> sweep() {
         std::vector<SmoothPlastic> v;
         for (float eta : sweep_etas())
             for (float r : sweep_reflectances())
-                for (auto var : {PlasticVariant::Coupled, PlasticVariant::Sum})
+                for (auto var : {PlasticVariant::Coupled, PlasticVariant::Sum, PlasticVariant::Linear})
                     v.emplace_back(eta, Spectrum(r), Spectrum(1.f - r), var);
         return v;
     }
@@ -238,14 +252,36 @@ template <class D>
 struct BxDFCases<RoughPlastic<D>> {
     using T = RoughPlastic<D>;
     static std::vector<Case<T>> cases() {
+        const auto sep = SmithShadowing::Separable;
+        const auto rough = CoatTransmittance::Rough;
+        // The rough coat's table with white Kd = Ks = 1: a single-scattering coat loses energy at
+        // large α, so these are checked for E ≤ 1 only (test_plastic.cpp has the closed forms).
+        Case<T> white{"coupled_rough_white_alpha0.6",
+                      T(D(0.6f), 1.5f, Spectrum(1.f), Spectrum(1.f), PlasticVariant::Coupled, rough)};
+        white.chi2 = false;
+        Case<T> lin_white{"linear_rough_separable_white_alpha0.3",
+                          T(D(0.3f, 0.3f, sep), 1.49f, Spectrum(1.f), Spectrum(1.f), PlasticVariant::Linear, rough)};
+        lin_white.chi2 = false;
         return {{"coupled_alpha0.2", T(D(0.2f), 1.49f, Spectrum(0.2f, 0.5f, 0.8f), Spectrum(1.f))},
-                {"sum_alpha0.4", T(D(0.4f), 1.5f, Spectrum(0.5f), Spectrum(0.5f), PlasticVariant::Sum)}};
+                {"sum_alpha0.4", T(D(0.4f), 1.5f, Spectrum(0.5f), Spectrum(0.5f), PlasticVariant::Sum)},
+                {"linear_alpha0.15", T(D(0.15f), 1.49f, Spectrum(0.8f, 0.45f, 0.15f), Spectrum(1.f), PlasticVariant::Linear)},
+                {"linear_rough_separable_alpha0.3",
+                 T(D(0.3f, 0.3f, sep), 1.49f, Spectrum(0.15f, 0.45f, 0.8f), Spectrum(1.f), PlasticVariant::Linear, rough)},
+                {"coupled_rough_alpha0.5",
+                 T(D(0.5f), 1.6f, Spectrum(0.6f, 0.4f, 0.2f), Spectrum(0.7f), PlasticVariant::Coupled, rough)},
+                white, lin_white};
     }
     static std::vector<T> sweep() {
         std::vector<T> v;
         for (float a : sweep_alphas())
             for (float eta : sweep_etas())
                 for (float r : sweep_reflectances()) v.emplace_back(D(a), eta, Spectrum(r), Spectrum(1.f));
+        // The rough coat's table (built once per (α, η): a subset of the grid keeps the sweep fast).
+        for (float a : {1e-3f, 0.1f, 1.f})
+            for (float eta : {1.f, 1.5f, 1.f / 1.5f, 2.42f})
+                for (auto var : {PlasticVariant::Coupled, PlasticVariant::Linear})
+                    v.emplace_back(D(a, a, SmithShadowing::Separable), eta, Spectrum(1.f), Spectrum(1.f), var,
+                                   CoatTransmittance::Rough);
         return v;
     }
 };

@@ -80,7 +80,7 @@ TEST(Materials, ErrorsNameKeyPathParameterAndValue) {
     EXPECT_EQ(material_error(R"({"type": "oren_nayar", "variant": "fancy"})"),
               "scene.json: materials.m.variant: unknown variant 'fancy' (known: eon, classic)");
     EXPECT_EQ(material_error(R"({"type": "plastic", "variant": "layered"})"),
-              "scene.json: materials.m.variant: unknown variant 'layered' (known: coupled, sum)");
+              "scene.json: materials.m.variant: unknown variant 'layered' (known: coupled, linear, sum)");
     EXPECT_EQ(material_error(R"({"type": "rough_conductor", "fresnel": "approx"})"),
               "scene.json: materials.m.fresnel: unknown fresnel mode 'approx' (known: exact, schlick)");
     EXPECT_EQ(material_error(R"({"type": "dielectric", "int_ior": "glas"})").rfind(

@@ -18,7 +18,7 @@ import pathlib
 import sys
 
 HERE = pathlib.Path(__file__).resolve().parent
-SCENES = ["aniso_sphere", "cornell_mini", "cube_uv", "glass", "metals", "principled", "spheres", "textures"]
+SCENES = ["aniso_sphere", "cornell_mini", "cube_uv", "glass", "metals", "plastics", "principled", "spheres", "textures"]
 PASSES, SPP = 16, 256
 
 # Dr.Jit's LLVM backend needs a recent libLLVM (as bench/peers/mitsuba_runner.py).
