@@ -644,12 +644,12 @@ private:
                 if (!nl->value.is_bool()) fail(nl->node, what + " 'nonlinear' must be a boolean");
                 nonlinear = nl->value.as_bool();
             }
-            out.set("variant", Node::string(nonlinear ? "coupled" : "linear"));
             map_params(out, c, what,
                        is_rough ? cat(plastic, {{"distribution", "distribution"}, {"alpha", "alpha"}}) : plastic,
                        {"sample_visible"});
+            if (is_rough) set_default(out, "distribution", Node::string("beckmann"));
+            out.set("variant", Node::string(nonlinear ? "coupled" : "linear"));
             if (is_rough) {
-                set_default(out, "distribution", Node::string("beckmann"));
                 // The coat's tabulated rough transmittance and separable G, as Mitsuba's roughplastic.
                 out.set("coat_transmittance", Node::string("rough"));
                 out.set("shadowing", Node::string("separable"));

@@ -8,6 +8,7 @@
 #include "pellucid/bxdf/batch.h"
 #include "pellucid/material/bsdf_probe.h"
 #include "pellucid/material/builders.h"
+#include "pellucid/material/textured.h"
 #include "pellucid/scene/build.h"
 #include "pellucid/scene/json_io.h"
 #include "pellucid/scene/registry.h"
@@ -169,6 +170,79 @@ TEST(Materials, TinyAlphaCollapsesToTheDeltaLobe) {
     EXPECT_EQ(flags(plastic), BxDFFlags::SpecularReflection | BxDFFlags::DiffuseReflection);
     // Just above the threshold the lobe is glossy.
     EXPECT_EQ(flags(bxdf_from(R"({"type": "rough_conductor", "alpha": 2e-3})")), BxDFFlags::GlossyReflection);
+}
+
+// The plastic variants, the rough coat's transmittance and the shadowing option reach the BxDF;
+// their invalid combinations are errors that name the key.
+TEST(Materials, PlasticOptionsAndShadowing) {
+    BxDF lin = bxdf_from(R"({"type": "plastic", "variant": "linear"})");
+    EXPECT_NE(std::get<SmoothPlastic>(lin).to_string().find("variant=linear"), std::string::npos);
+    BxDF rp = bxdf_from(R"({"type": "rough_plastic", "distribution": "beckmann", "alpha": 0.2, "variant": "linear",
+                            "coat_transmittance": "rough", "shadowing": "separable"})");
+    const auto& b = std::get<RoughPlastic<Beckmann>>(rp);
+    ASSERT_NE(b.base().coat_table(), nullptr);
+    EXPECT_EQ(b.base().coat_table(),
+              &RoughCoatTable::get(Beckmann(0.2f, 0.2f, SmithShadowing::Separable), 1.49f / 1.000277f));
+    EXPECT_EQ(std::get<RoughPlastic<GGX>>(bxdf_from(R"({"type": "rough_plastic"})")).base().coat_table(), nullptr);
+    BxDF rc = bxdf_from(R"({"type": "rough_conductor", "alpha": 0.3, "shadowing": "separable"})");
+    EXPECT_NE(std::get<RoughConductor>(rc).to_string().find("shadowing=separable"), std::string::npos);
+    BxDF rd = bxdf_from(R"({"type": "rough_dielectric", "distribution": "beckmann", "shadowing": "separable"})");
+    EXPECT_NE(std::get<RoughDielectric<Beckmann>>(rd).to_string().find("shadowing=separable"), std::string::npos);
+    EXPECT_NE(to_string(material_from(R"({"type": "rough_plastic", "coat_transmittance": "rough",
+        "shadowing": "separable"})")).find("shadowing=separable, diffuse_reflectance"), std::string::npos);
+
+    EXPECT_EQ(material_error(R"({"type": "rough_plastic", "coat_transmittance": "rough", "variant": "sum"})"),
+              "scene.json: materials.m.coat_transmittance: 'rough' is not used by variant 'sum' (use 'coupled' or "
+              "'linear')");
+    EXPECT_EQ(material_error(R"({"type": "rough_plastic", "coat_transmittance": "table"})"),
+              "scene.json: materials.m.coat_transmittance: unknown coat transmittance 'table' (known: smooth, rough)");
+    EXPECT_EQ(material_error(R"({"type": "plastic", "coat_transmittance": "rough"})"),
+              "scene.json: materials.m.coat_transmittance: unknown parameter");
+    EXPECT_EQ(material_error(R"({"type": "rough_conductor", "shadowing": "smith"})"),
+              "scene.json: materials.m.shadowing: unknown shadowing 'smith' (known: height_correlated, separable)");
+    EXPECT_EQ(material_error(R"({"type": "rough_dielectric", "multiple_scattering": true, "shadowing": "separable"})"),
+              "scene.json: materials.m.multiple_scattering: requires shadowing 'height_correlated' (the Kulla-Conty "
+              "tables are tabulated with it)");
+}
+
+// coat_transmittance "rough" builds its table once per material: a textured colour is fine and the
+// BxDF built at each hit reuses the material's table (no per-hit table); a textured α or IOR is an error.
+TEST(Materials, RoughCoatTableIsBuiltOncePerMaterial) {
+    const char* shapes = R"("shapes": [{"type": "sphere", "material": "m"}]})";
+    auto make = [&](const std::string& mat) {
+        SceneDesc d;
+        d.source = "scene.json";
+        d.root = parse_json(R"({"materials": {"m": )" + mat + "}, " + shapes, "scene.json");
+        return build_scene(d);
+    };
+    auto scene = make(R"({"type": "rough_plastic", "coat_transmittance": "rough", "alpha": 0.25,
+        "diffuse_reflectance": {"type": "checkerboard", "color0": 0.1, "color1": 0.9}})");
+    const auto& mat = std::get<RoughPlasticMaterial>(scene->materials.at(0));
+    const RoughCoatTable* table = mat.params().coat_table;
+    ASSERT_NE(table, nullptr);
+    EXPECT_EQ(table, &RoughCoatTable::get(GGX(0.25f), 1.49f / 1.000277f));
+    ASSERT_TRUE(scene->material_textures.at(0).has_bindings());
+    SurfaceInteraction si;
+    TextureEvalContext ctx;
+    for (float u : {0.1f, 0.6f}) {
+        ctx.uv = Vec2f(u, 0.3f);
+        BxDF b = get_textured_bxdf(scene->materials[0], scene->material_textures[0], scene->textures, ctx, si);
+        EXPECT_EQ(std::get<RoughPlastic<GGX>>(b).base().coat_table(), table);
+    }
+    for (const char* key : {"alpha", "roughness", "int_ior", "ext_ior"}) {
+        try {
+            make(std::string(R"({"type": "rough_plastic", "coat_transmittance": "rough", ")") + key +
+                 R"(": {"type": "checkerboard", "color0": 0.1, "color1": 0.3}})");
+            ADD_FAILURE() << key << ": expected an error";
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()),
+                      std::string("scene.json: materials.m.") + key +
+                          ": a texture is not allowed with coat_transmittance 'rough' (the coat's transmittance table "
+                          "is built once per material; give a constant, or use coat_transmittance 'smooth')");
+        }
+    }
+    // The smooth transmittance takes a textured α.
+    EXPECT_NO_THROW(make(R"({"type": "rough_plastic", "alpha": {"type": "checkerboard", "color0": 0.1, "color1": 0.3}})"));
 }
 
 TEST(Materials, ClampsAndMappings) {

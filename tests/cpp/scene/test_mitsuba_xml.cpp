@@ -193,6 +193,7 @@ TEST(MitsubaXml, BsdfMappings) {
   <bsdf type="thindielectric" id="pane"><float name="int_ior" value="1.5"/></bsdf>
   <bsdf type="plastic" id="red"><rgb name="diffuse_reflectance" value="0.5 0.1 0.1"/><float name="int_ior" value="1.9"/></bsdf>
   <bsdf type="roughplastic" id="rp"><float name="alpha" value="0.1"/><string name="distribution" value="ggx"/></bsdf>
+  <bsdf type="plastic" id="nl"><boolean name="nonlinear" value="true"/></bsdf>
   <bsdf type="principled" id="p"><rgb name="base_color" value="0.1 0.2 0.3"/><float name="metallic" value="0.7"/>
     <float name="roughness" value="0.3"/><float name="specular" value="0.6"/><float name="spec_tint" value="0.2"/>
     <float name="sheen" value="0.1"/><float name="sheen_tint" value="0.4"/><float name="clearcoat" value="0.5"/>
@@ -214,6 +215,7 @@ TEST(MitsubaXml, BsdfMappings) {
   "red": {"type": "plastic", "diffuse_reflectance": [0.5, 0.1, 0.1], "int_ior": 1.9, "variant": "linear"},
   "rp": {"type": "rough_plastic", "alpha": 0.1, "distribution": "ggx", "variant": "linear",
          "coat_transmittance": "rough", "shadowing": "separable"},
+  "nl": {"type": "plastic", "variant": "coupled"},
   "p": {"type": "principled", "variant": "2015", "base_color": [0.1, 0.2, 0.3], "metallic": 0.7, "roughness": 0.3,
         "specular": 0.6, "specular_tint": 0.2, "sheen": 0.1, "sheen_tint": 0.4, "clearcoat": 0.5,
         "clearcoat_gloss": 0.8, "anisotropic": 0.25},
