@@ -44,14 +44,16 @@ double integrate_unit_square(F&& f) {
 }
 
 // Single-scattering energy that a rough interface of relative IOR eta (the far side's IOR over the
-// near side's) sends from the direction at cos θ = mu into the far side (transmit = true) or back
-// to the near side, as an expectation over visible normals wm ~ D_wo (Heitz 2018, JCGT 7(4), §1):
+// near side's) sends from the direction at cos θ = mu, azimuth phi, into the far side (transmit =
+// true) or back to the near side, as an expectation over visible normals wm ~ D_wo (Heitz 2018,
+// JCGT 7(4), §1):
 //   ∫ D_wo(wm) F' G2(wo, w)/G1(wo) dwm, F' = 1 − F(wo·wm) or F(wo·wm), w the refracted or
 // reflected direction (0 where it leaves on the wrong side, and on total internal reflection).
 template <class D>
-double interface_energy(const D& d, double mu, float eta, bool transmit) {
+double interface_energy_at(const D& d, double mu, double phi, float eta, bool transmit) {
     mu = std::max(1e-6, std::min(1.0, mu));
-    Vec3f wo(float(std::sqrt(std::max(0.0, 1.0 - mu * mu))), 0.f, float(mu));
+    double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+    Vec3f wo(float(s * std::cos(phi)), float(s * std::sin(phi)), float(mu));
     float g1 = d.G1(wo);
     if (!(g1 > 0.f)) return 0.0;
     return integrate_unit_square([&](const Vec2f& u) {
@@ -66,6 +68,17 @@ double interface_energy(const D& d, double mu, float eta, bool transmit) {
         Vec3f wr = reflect(wo, wm);
         return wr.z > 0.f ? F * double(d.G(wo, wr)) / g1 : 0.0;
     });
+}
+// The same, averaged over the azimuth of wo: the table depends on θ only. An isotropic distribution
+// needs one azimuth; an anisotropic one is averaged with the midpoint rule at 8 azimuths in
+// [0, π/2] (D is symmetric under x → −x and y → −y, and the integrand is smooth and periodic in φ).
+template <class D>
+double interface_energy(const D& d, double mu, float eta, bool transmit) {
+    if (d.alpha_x() == d.alpha_y()) return interface_energy_at(d, mu, 0.0, eta, transmit);
+    constexpr int kPhi = 8;
+    double sum = 0.0;
+    for (int k = 0; k < kPhi; ++k) sum += interface_energy_at(d, mu, 0.5 * M_PI * (k + 0.5) / kPhi, eta, transmit);
+    return sum / kPhi;
 }
 }  // namespace
 
