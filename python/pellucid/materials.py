@@ -107,17 +107,19 @@ def rough_conductor(material: Optional[str] = None, *, eta: Optional[Colour] = N
                     specular_reflectance: Optional[Colour] = None, fresnel: Optional[str] = None,
                     distribution: Optional[str] = None, alpha: Optional[float] = None,
                     alpha_u: Optional[float] = None, alpha_v: Optional[float] = None,
-                    roughness: Optional[float] = None, multiple_scattering: Optional[bool] = None) -> Material:
+                    roughness: Optional[float] = None, multiple_scattering: Optional[bool] = None,
+                    shadowing: Optional[str] = None) -> Material:
     """Microfacet metal: the ``conductor`` parameters plus ``distribution`` (``"ggx"`` default,
-    ``"beckmann"``), one of ``alpha`` / ``alpha_u`` + ``alpha_v`` / ``roughness`` (α = r²), and
-    ``multiple_scattering`` (Kulla–Conty energy compensation, GGX only).
+    ``"beckmann"``), one of ``alpha`` / ``alpha_u`` + ``alpha_v`` / ``roughness`` (α = r²),
+    ``multiple_scattering`` (Kulla–Conty energy compensation, GGX only) and ``shadowing``
+    (``"height_correlated"`` default, ``"separable"``).
 
     docs/scene-format.md, ``### rough_conductor``.
     """
     return _make("rough_conductor", dict(material=material, eta=eta, k=k, specular_reflectance=specular_reflectance,
                                          fresnel=fresnel, distribution=distribution, alpha=alpha, alpha_u=alpha_u,
                                          alpha_v=alpha_v, roughness=roughness,
-                                         multiple_scattering=multiple_scattering))
+                                         multiple_scattering=multiple_scattering, shadowing=shadowing))
 
 
 @_with_surface_keys
@@ -139,17 +141,17 @@ def rough_dielectric(int_ior: Optional[IOR] = None, *, ext_ior: Optional[IOR] = 
                      specular_transmittance: Optional[Colour] = None, distribution: Optional[str] = None,
                      alpha: Optional[float] = None, alpha_u: Optional[float] = None,
                      alpha_v: Optional[float] = None, roughness: Optional[float] = None,
-                     multiple_scattering: Optional[bool] = None) -> Material:
+                     multiple_scattering: Optional[bool] = None, shadowing: Optional[str] = None) -> Material:
     """Rough interface (Walter et al. 2007): the ``dielectric`` parameters plus ``distribution``
-    (``"ggx"`` or ``"beckmann"``), one of ``alpha`` / ``alpha_u`` + ``alpha_v`` / ``roughness``, and
-    ``multiple_scattering`` (Kulla–Conty energy compensation, GGX only).
+    (``"ggx"`` or ``"beckmann"``), one of ``alpha`` / ``alpha_u`` + ``alpha_v`` / ``roughness``,
+    ``multiple_scattering`` (Kulla–Conty energy compensation, GGX only) and ``shadowing``.
 
     docs/scene-format.md, ``### rough_dielectric``.
     """
     return _make("rough_dielectric", dict(int_ior=int_ior, ext_ior=ext_ior, specular_reflectance=specular_reflectance,
                                           specular_transmittance=specular_transmittance, distribution=distribution,
                                           alpha=alpha, alpha_u=alpha_u, alpha_v=alpha_v, roughness=roughness,
-                                          multiple_scattering=multiple_scattering))
+                                          multiple_scattering=multiple_scattering, shadowing=shadowing))
 
 
 @_with_surface_keys
@@ -169,7 +171,7 @@ def plastic(diffuse_reflectance: Optional[Colour] = None, *, specular_reflectanc
             int_ior: Optional[IOR] = None, ext_ior: Optional[IOR] = None,
             variant: Optional[str] = None) -> Material:
     """A smooth dielectric coat over a Lambertian base. ``variant``: ``"coupled"`` (default,
-    energy-conserving) or ``"sum"``.
+    energy-conserving), ``"linear"`` (Mitsuba's default plastic) or ``"sum"``.
 
     docs/scene-format.md, ``### plastic``.
     """
@@ -182,16 +184,19 @@ def rough_plastic(diffuse_reflectance: Optional[Colour] = None, *, specular_refl
                   int_ior: Optional[IOR] = None, ext_ior: Optional[IOR] = None, variant: Optional[str] = None,
                   distribution: Optional[str] = None, alpha: Optional[float] = None,
                   alpha_u: Optional[float] = None, alpha_v: Optional[float] = None,
-                  roughness: Optional[float] = None) -> Material:
-    """``plastic`` with a GGX coat: the ``plastic`` parameters plus ``distribution`` and one of
-    ``alpha`` / ``alpha_u`` + ``alpha_v`` / ``roughness``.
+                  roughness: Optional[float] = None, shadowing: Optional[str] = None,
+                  coat_transmittance: Optional[str] = None) -> Material:
+    """``plastic`` with a rough coat: the ``plastic`` parameters plus ``distribution``, one of
+    ``alpha`` / ``alpha_u`` + ``alpha_v`` / ``roughness``, ``shadowing`` and ``coat_transmittance``
+    (``"smooth"`` default, ``"rough"``: the rough coat's tabulated transmittance).
 
     docs/scene-format.md, ``### rough_plastic``.
     """
     return _make("rough_plastic", dict(diffuse_reflectance=diffuse_reflectance,
                                        specular_reflectance=specular_reflectance, int_ior=int_ior, ext_ior=ext_ior,
                                        variant=variant, distribution=distribution, alpha=alpha, alpha_u=alpha_u,
-                                       alpha_v=alpha_v, roughness=roughness))
+                                       alpha_v=alpha_v, roughness=roughness, shadowing=shadowing,
+                                       coat_transmittance=coat_transmittance))
 
 
 @_with_surface_keys

@@ -18,7 +18,8 @@
 // | alpha_u, alpha_v     | float    | alpha   | anisotropic α along the tangent / bitangent    |
 // | material, eta, k     |          |         | as for "conductor"                             |
 // | specular_reflectance | spectrum | 1       | multiplier on F                                |
-// | multiple_scattering  | bool     | false   | Kulla–Conty compensation (GGX only)            |
+// | shadowing            | string   | "height_correlated" | or "separable" (microfacet.h)      |
+// | multiple_scattering  | bool     | false   | Kulla–Conty compensation (GGX, height-correlated only) |
 // JSON: {"type": "rough_conductor", "material": "Al", "distribution": "ggx", "alpha_u": 0.05,
 //        "alpha_v": 0.3, "multiple_scattering": true}
 // Scene-facing parameter rules (roughness r with α = r², clamps, errors): material/conductor.h.

@@ -19,7 +19,8 @@
 // RoughDielectric<Distribution> ("rough_dielectric"): the above plus
 // | distribution           | string        | "ggx"   | "ggx" or "beckmann"                       |
 // | alpha, alpha_u, alpha_v| float         | 0.1     | as for rough_conductor                    |
-// | multiple_scattering    | bool          | false   | Kulla–Conty compensation (GGX only)       |
+// | shadowing              | string        | "height_correlated" | or "separable" (microfacet.h) |
+// | multiple_scattering    | bool          | false   | Kulla–Conty compensation (GGX, height-correlated only) |
 // JSON: {"type": "rough_dielectric", "int_ior": 1.5, "distribution": "ggx", "alpha": 0.3}
 //
 // Kulla–Conty for the dielectric (Kulla & Conty 2017, "Revisiting Physically Based Shading at

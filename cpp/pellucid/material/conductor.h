@@ -17,7 +17,8 @@
 // | alpha               | float  | 0.1     | isotropic α ≥ 0 (> 1 clamped to 1; < 1e-3 → delta mirror) |
 // | alpha_u, alpha_v    | float  | —       | anisotropic α (alpha_v defaults to alpha_u); not with alpha |
 // | roughness           | float  | —       | perceptual r ∈ [0, 1] instead of α: α = r² (Burley 2012 §5.4) |
-// | multiple_scattering | bool   | false   | Kulla–Conty energy compensation (ggx only)                |
+// | shadowing           | string | "height_correlated" | or "separable": the Smith G form (bxdf/microfacet.h) |
+// | multiple_scattering | bool   | false   | Kulla–Conty energy compensation (ggx only; height_correlated only) |
 // JSON: {"type": "rough_conductor", "material": "Al", "alpha_u": 0.05, "alpha_v": 0.3,
 //        "multiple_scattering": true}
 #pragma once

@@ -152,7 +152,7 @@ TEST(RoughCoatTable, SingleScatteringOnlyLosesEnergy) {
 // Beckmann G1 is a rational fit, microfacet.h). Mitsuba's R̄ is 2 × the mean of R_int(μ_j) μ_j over
 // its 64 nodes, a rectangle rule that weights each node 1/64 where the trapezoid rule on the same
 // nodes has 1/63: it comes out 63/64 of the integral (within 2e-3), about 1.5 % below ours, so
-// Mitsuba's linear diffuse is 1.2–1.7 % darker (docs/mitsuba-import.md).
+// Mitsuba's linear diffuse is 1.0–2.1 % darker at these four (docs/materials.md, Plastic).
 struct MitsubaCoat {
     const char* distribution;
     float alpha, rbar, t[5];
