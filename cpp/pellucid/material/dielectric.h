@@ -11,9 +11,9 @@
 // JSON: {"type": "dielectric", "int_ior": "water", "ext_ior": "air"}
 //
 // `rough_dielectric` (RoughDielectric<GGX|Beckmann>, Walter et al. 2007): the above plus
-// `distribution` ("ggx" or "beckmann"), `alpha`, `alpha_u`/`alpha_v` or `roughness` and `shadowing` exactly as for
-// `rough_conductor`, and `multiple_scattering` (bool, default false: Kulla–Conty compensation of
-// the reflection + transmission energy, ggx only; bxdf/kulla_conty.h).
+// `distribution` ("ggx" or "beckmann"), `alpha`, `alpha_u`/`alpha_v` or `roughness`, and
+// `shadowing`, exactly as for `rough_conductor`, and `multiple_scattering` (bool, default false:
+// Kulla–Conty compensation of the reflection + transmission energy, ggx only; bxdf/kulla_conty.h).
 // JSON: {"type": "rough_dielectric", "int_ior": 1.5, "alpha": 0.3, "multiple_scattering": true}
 #pragma once
 #include <string>

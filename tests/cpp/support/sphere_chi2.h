@@ -128,8 +128,10 @@ Chi2Result sphere_chi2(const SampleFn& sample, const PdfFn& pdf, uint64_t seed, 
             // composite 3-point rule: the pdf may be discontinuous inside a cell (the rough-dielectric
             // transmission cut-off where the generalised half vector reaches the horizon; the
             // shading horizon of a bumped surface), which one 6 × 6 rule cannot see. This only
-            // makes the expectation more accurate.
-            if (sqr(float(h.obs[k] - expected[k])) > 16.0 * std::max(expected[k], 1.0))
+            // makes the expectation more accurate. A cell the 6 × 6 rule sees as empty is always
+            // re-integrated when it holds samples (4 samples against 0 sit exactly on the 4σ line).
+            if (sqr(float(h.obs[k] - expected[k])) > 16.0 * std::max(expected[k], 1.0) ||
+                (expected[k] == 0.0 && h.obs[k] > 0.0))
                 expected[k] = n * sphere_cell_integral(pdf, it, ip, 32, 3, o) + delta[k];
         }
     double mass = 0.0;
