@@ -6,6 +6,7 @@
 
 #include "bind.h"
 #include "pellucid/api.h"
+#include "pellucid/scene/mitsuba_table.h"
 #include "pellucid/scene/registry.h"
 #include "pellucid/util/error.h"
 #include "pellucid/util/limits.h"
@@ -55,6 +56,16 @@ void bind_scene(py::module_& m) {
         return std::const_pointer_cast<Scene>(load_file(path, lenient));
     }, py::arg("path"), py::arg("lenient") = false, py::call_guard<py::gil_scoped_release>(),
        "Load and build a scene file (.json or Mitsuba 3 .xml; lenient: unsupported XML elements warn).");
+    m.def("mitsuba_import_table", [] {
+        std::vector<std::map<std::string, py::object>> out;
+        for (const MitsubaPlugin& p : mitsuba_import_table()) {
+            py::list params;
+            for (const MitsubaParam& q : p.params) params.append(py::make_tuple(q.mitsuba, q.ours));
+            out.push_back({{"kind", py::str(p.kind)}, {"plugin", py::str(p.plugin)}, {"type", py::str(p.ours)},
+                           {"params", params}});
+        }
+        return out;
+    }, "The Mitsuba XML importer's mappings: [{kind, plugin, type, params: [(mitsuba, ours or 'ignored')]}].");
     m.def("registry_types", &registry_types, "Registered type names per family (materials, shapes, ...).");
     m.def("record_parameters", [](const py::dict& d, const std::string& base_dir) {
         std::vector<py::tuple> out;

@@ -15,6 +15,8 @@ def load_dict(d: Dict[str, Any], base_dir: str = ...) -> Scene: """Build a scene
 
 def load_file(path: str, lenient: bool = ...) -> Scene: """Load and build a scene file (.json or Mitsuba 3 .xml; lenient: unsupported XML elements warn)."""
 
+def mitsuba_import_table() -> List[Dict[str, object]]: """The Mitsuba XML importer's mappings: [{kind, plugin, type, params: [(mitsuba, ours or 'ignored')]}]."""
+
 def read_image(path: str) -> NDArray[np.float32]: """Read an image as a linear float32 (H, W, 3) array."""
 
 def record_parameters(d: Dict[str, Any], base_dir: str = ...) -> List[Tuple[str, str, List[str]]]: """Build d; return (path, type, keys looked up) per object."""

@@ -6,12 +6,13 @@ tests/data/mitsuba/make_refs.py's ``render_reference``), otherwise the committed
 tests/data/mitsuba/ref/<scene>.exr (mean of 16 passes x 256 spp, Mitsuba 3.9.1 llvm_ad_rgb) and
 <scene>.var.exr (variance of that mean), produced by the same script with the peer venv.
 
-z = |ours - ref| / sqrt(var_ours + var_ref + (1e-5 max(|ours|, |ref|))^2) per pixel channel, ours with the film's variance of the
-mean; the critical |z| is two-sided α = 0.01 Šidák-corrected over all channels of the image (as
-bench/cornell.py and Mitsuba's own render tests). Each scene is 32x32 (cube_uv and aniso_sphere 48x32,
-spheres 64x48) at its $spp default (256: below ~128 spp the per-pixel variance estimates of small highlights
-are too noisy for the test; at 256 the pass fraction over seeds 0-9 is 0.995-1.000; cube_uv's is
-0.999-1.000 over seeds 0-4; aniso_sphere's and spheres' 0.998-1.000 over seeds 0-9), so the module takes about three
+The z-test is tests/python/zcheck.py's: z = |ours - ref| / sqrt(var_ours + var_ref + floor) per
+pixel channel, ours with the film's variance of the mean; the critical |z| is two-sided α = 0.01
+Šidák-corrected over all channels of the image (as bench/cornell.py and Mitsuba's own render
+tests). Each scene is 32x32 (cube_uv and aniso_sphere 48x32, spheres 64x48) at its $spp default
+(256: below ~128 spp the per-pixel variance estimates of small highlights are too noisy for the
+test; at 256 the pass fraction over seeds 0-9 is 0.995-1.000; cube_uv's is 0.999-1.000 over seeds
+0-4; aniso_sphere's and spheres' 0.998-1.000 over seeds 0-9), so the module takes about three
 seconds.
 
 Scope: what the scenes use has the same definition in both renderers (metals.xml's explicit eta/k;
@@ -34,7 +35,6 @@ the sphere's own; with that, 85 % of its pixel channels passed.
 from __future__ import annotations
 
 import importlib.util
-import math
 import pathlib
 import sys
 
@@ -42,29 +42,11 @@ import numpy as np
 import pytest
 
 import pellucid
+from zcheck import z_pass_fraction
 
 DATA = pathlib.Path(__file__).resolve().parents[2] / "tests" / "data" / "mitsuba"
 SCENES = ["aniso_sphere", "cornell_mini", "cube_uv", "glass", "metals", "plastics", "principled", "spheres", "textures"]
 SEED = 7
-
-
-def critical_z(n: int, alpha: float = 0.01) -> float:
-    """|z| with two-sided tail probability 1 - (1 - alpha)^(1/n) (bisection on erfc)."""
-    a1 = 1.0 - (1.0 - alpha) ** (1.0 / n)
-    lo, hi = 0.0, 40.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if math.erfc(mid / math.sqrt(2.0)) > a1 else (lo, mid)
-    return lo
-
-
-def z_pass_fraction(a, va, b, vb) -> tuple[float, float]:
-    # Pixels that see only a constant emitter have zero variance in both renderers; their means then
-    # differ only by float summation order, hence the 1e-5 relative floor on the deviation.
-    floor = (1e-5 * np.maximum(np.abs(a), np.abs(b))) ** 2 + 1e-12
-    z = np.abs(a - b) / np.sqrt(va + vb + floor)
-    zc = critical_z(a.size)
-    return float(np.mean(z <= zc)), zc
 
 
 def reference(name: str):

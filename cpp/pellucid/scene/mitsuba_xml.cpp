@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "pellucid/scene/mitsuba_table.h"
 #include "pellucid/util/error.h"
 #include "pellucid/util/log.h"
 
@@ -81,8 +82,6 @@ Node vec_node(const std::vector<double>& v) {
     for (double x : v) a.push_back(num(x));
     return a;
 }
-
-using NameMap = std::vector<std::pair<const char*, const char*>>;  // Mitsuba name -> our name
 
 class Converter {
 public:
@@ -399,23 +398,31 @@ private:
         return nullptr;
     }
 
-    /// Copy the remaining parameters under their new names; the rest is unsupported.
-    void map_params(Node& out, Collected& c, const std::string& what, const NameMap& names,
-                    const std::vector<const char*>& ignored = {}) {
+    /// The importer table's entry for an accepted plugin (the caller checked it is accepted).
+    static const MitsubaPlugin& entry(const char* kind, const std::string& type) {
+        const MitsubaPlugin* p = find_mitsuba_plugin(kind, type);
+        if (!p) throw Error(std::string("internal: no importer table entry for ") + kind + " '" + type + "'");
+        return *p;
+    }
+
+    /// Copy the remaining parameters under the names of the plugin's table entry, log the ignored
+    /// ones; the rest is unsupported. Converted parameters must have been taken by the caller.
+    void map_params(Node& out, Collected& c, const std::string& what, const MitsubaPlugin& plugin) {
         for (Prop& p : c.props) {
             if (p.used) continue;
             p.used = true;
-            auto it = std::find_if(names.begin(), names.end(), [&](const auto& m) { return p.name == m.first; });
-            if (it != names.end()) {
-                if (out.find(it->second)) fail(p.node, "parameter '" + p.name + "' given twice");
-                out.set(it->second, p.value);
-                continue;
-            }
-            if (std::find_if(ignored.begin(), ignored.end(), [&](const char* s) { return p.name == s; }) != ignored.end()) {
+            auto it = std::find_if(plugin.params.begin(), plugin.params.end(),
+                                   [&](const MitsubaParam& m) { return p.name == m.mitsuba; });
+            if (it == plugin.params.end()) {
+                unsupported(p.node, "unsupported parameter '" + p.name + "' of " + what);
+            } else if (it->use == MitsubaParamUse::ignored) {
                 log_info(where(p.node) + ": parameter '" + p.name + "' of " + what + " is ignored");
-                continue;
+            } else if (it->use == MitsubaParamUse::converted) {
+                fail(p.node, "internal: parameter '" + p.name + "' of " + what + " was not converted");
+            } else {
+                if (out.find(it->ours)) fail(p.node, "parameter '" + p.name + "' given twice");
+                out.set(it->ours, p.value);
             }
-            unsupported(p.node, "unsupported parameter '" + p.name + "' of " + what);
         }
     }
 
@@ -443,29 +450,26 @@ private:
         }
         std::string type = attr(n, "type");
         std::string what = "texture plugin '" + type + "'";
+        const MitsubaPlugin* plugin = find_mitsuba_plugin("texture", type);
+        if (!plugin) {
+            unsupported(n, "unsupported " + what);
+            return std::nullopt;
+        }
         Collected c = collect(n);
-        Node out;
+        Node out = make(plugin->ours, n);
         if (type == "bitmap") {
-            out = make("image", n);
             // raw="true" means linear values; without it our default applies (sRGB for 8/16-bit files,
             // linear for float files, and linear for bump and normal maps: docs/mitsuba-import.md).
             if (Prop* raw = take(c, "raw")) {
                 if (!raw->value.is_bool()) fail(raw->node, "bitmap 'raw' must be a boolean");
                 if (raw->value.as_bool()) out.set("color_space", Node::string("linear"));
             }
-            map_params(out, c, what,
-                       {{"filename", "filename"}, {"filter_type", "filter"}, {"wrap_mode", "wrap_mode"},
-                        {"to_uv", "to_uv"}},
-                       {"format"});
+            map_params(out, c, what, *plugin);
             if (!out.find("filename")) fail(n, "bitmap texture needs a 'filename'");
-        } else if (type == "checkerboard") {
-            out = make("checkerboard", n);
-            map_params(out, c, what, {{"color0", "color0"}, {"color1", "color1"}, {"to_uv", "to_uv"}});
+        } else {  // checkerboard
+            map_params(out, c, what, *plugin);
             // Mitsuba's checkerboard is point-sampled; keep its definition so renders agree.
             out.set("filtered", Node::boolean(false));
-        } else {
-            unsupported(n, "unsupported " + what);
-            return std::nullopt;
         }
         no_objects(c, what);
         if (auto id = opt_attr(n, "id")) register_id(n, *id, {"texture", out, 0});
@@ -495,11 +499,16 @@ private:
     std::optional<Node> convert_bsdf(pugi::xml_node n) {
         std::string type = attr(n, "type");
         std::string what = "bsdf plugin '" + type + "'";
+        const MitsubaPlugin* plugin = find_mitsuba_plugin("bsdf", type);
+        if (!plugin) {
+            unsupported(n, "unsupported " + what);
+            return std::nullopt;
+        }
         if (type == "twosided") {
             // Our materials reflect on both sides already; twosided only unwraps.
             Collected c = collect(n);
             Node none = Node::object();
-            map_params(none, c, what, {});
+            map_params(none, c, what, *plugin);
             std::vector<pugi::xml_node> inner;
             for (pugi::xml_node o : c.objects) {
                 std::string t = o.name();
@@ -566,45 +575,29 @@ private:
                                 " is not supported: pellucid always corrects perturbed normals that face away from "
                                 "the viewer");
             }
-            if (bump) map_params(out, c, what, {{"scale", "scale"}});
-            else map_params(out, c, what, {{"normalmap", "normalmap"}});
+            map_params(out, c, what, *plugin);
             if (!inner) fail(n, what + " needs exactly one nested bsdf; it has none");
             if (bump && textures.empty()) fail(n, what + " needs exactly one nested texture (under any name); it has none");
-            if (!bump && !out.find("normalmap")) fail(n, "normalmap needs a texture named 'normalmap'");
+            if (!bump && !out.find("normal_map")) fail(n, "normalmap needs a texture named 'normalmap'");
             // Our materials carry bump and normal maps as keys: copy the wrapped material and add them.
             Node mat = *inner;
             if (mat.is_string()) mat = *m_materials.find(mat.as_string());
             if (bump) {
                 mat.set("bump_map", textures[0].second);
-                if (const Node* sc = out.find("scale")) mat.set("bump_scale", *sc);
+                if (const Node* sc = out.find("bump_scale")) mat.set("bump_scale", *sc);
             } else {
-                mat.set("normal_map", *out.find("normalmap"));
+                mat.set("normal_map", *out.find("normal_map"));
             }
             if (const Node* ts = out.find("terminator_softening")) mat.set("terminator_softening", *ts);
             return mat;
         }
 
         Collected c = collect(n);
-        Node out;
-        const NameMap ior = {{"int_ior", "int_ior"}, {"ext_ior", "ext_ior"}};
-        const NameMap rough = {{"distribution", "distribution"}, {"alpha", "alpha"},
-                               {"alpha_u", "alpha_u"}, {"alpha_v", "alpha_v"}};
-        auto cat = [](NameMap a, const NameMap& b) {
-            a.insert(a.end(), b.begin(), b.end());
-            return a;
-        };
-        const NameMap metal = {{"material", "material"}, {"eta", "eta"}, {"k", "k"},
-                               {"specular_reflectance", "specular_reflectance"}};
-        const NameMap glass = cat(ior, {{"specular_reflectance", "specular_reflectance"},
-                                        {"specular_transmittance", "specular_transmittance"}});
-        const NameMap plastic = cat(ior, {{"diffuse_reflectance", "diffuse_reflectance"},
-                                          {"specular_reflectance", "specular_reflectance"}});
+        Node out = make(plugin->ours, n);
         if (type == "diffuse") {
-            out = make("lambertian", n);
-            map_params(out, c, what, {{"reflectance", "reflectance"}});
+            map_params(out, c, what, *plugin);
         } else if (type == "roughdiffuse") {
             // Mitsuba's alpha is an RMS slope; its Oren-Nayar sigma (radians) is alpha / sqrt(2).
-            out = make("oren_nayar", n);
             out.set("variant", Node::string("classic"));
             double alpha = 0.2;
             if (Prop* a = take(c, "alpha")) {
@@ -615,38 +608,30 @@ private:
                 alpha = a->value.as_number();
             }
             out.set("sigma", num(alpha / std::sqrt(2.0) * 180.0 / kPiD));
-            map_params(out, c, what, {{"reflectance", "reflectance"}}, {"use_fast_approx"});
+            map_params(out, c, what, *plugin);
         } else if (type == "conductor") {
-            out = make("conductor", n);
-            map_params(out, c, what, metal);
+            map_params(out, c, what, *plugin);
         } else if (type == "roughconductor") {
-            out = make("rough_conductor", n);
-            map_params(out, c, what, cat(metal, rough), {"sample_visible"});
+            map_params(out, c, what, *plugin);
             set_default(out, "distribution", Node::string("beckmann"));
             out.set("shadowing", Node::string("separable"));  // Mitsuba's G = G1(wi) G1(wo)
         } else if (type == "dielectric") {
-            out = make("dielectric", n);
-            map_params(out, c, what, glass);
+            map_params(out, c, what, *plugin);
         } else if (type == "roughdielectric") {
-            out = make("rough_dielectric", n);
-            map_params(out, c, what, cat(glass, rough), {"sample_visible"});
+            map_params(out, c, what, *plugin);
             set_default(out, "distribution", Node::string("beckmann"));
             out.set("shadowing", Node::string("separable"));
         } else if (type == "thindielectric") {
-            out = make("thin_dielectric", n);
-            map_params(out, c, what, glass);
+            map_params(out, c, what, *plugin);
         } else if (type == "plastic" || type == "roughplastic") {
             bool is_rough = type == "roughplastic";
-            out = make(is_rough ? "rough_plastic" : "plastic", n);
             // nonlinear = false (Mitsuba's default): Kd/(1 − R̄), our "linear"; true: Kd/(1 − Kd R̄), "coupled".
             bool nonlinear = false;
             if (Prop* nl = take(c, "nonlinear")) {
                 if (!nl->value.is_bool()) fail(nl->node, what + " 'nonlinear' must be a boolean");
                 nonlinear = nl->value.as_bool();
             }
-            map_params(out, c, what,
-                       is_rough ? cat(plastic, {{"distribution", "distribution"}, {"alpha", "alpha"}}) : plastic,
-                       {"sample_visible"});
+            map_params(out, c, what, *plugin);
             if (is_rough) set_default(out, "distribution", Node::string("beckmann"));
             out.set("variant", Node::string(nonlinear ? "coupled" : "linear"));
             if (is_rough) {
@@ -658,24 +643,10 @@ private:
             // Mitsuba 3's principled is the Burley 2015 BSDF: our principled variant "2015"
             // (principledthin: its thin mode). Sampling rates change only the noise.
             bool thin = type == "principledthin";
-            out = make("principled", n);
             out.set("variant", Node::string("2015"));
             if (thin) out.set("thin", Node::boolean(true));
-            NameMap names = {{"base_color", "base_color"}, {"roughness", "roughness"},
-                             {"anisotropic", "anisotropic"}, {"spec_trans", "specular_transmission"},
-                             {"eta", "eta"}, {"spec_tint", "specular_tint"}, {"sheen", "sheen"},
-                             {"sheen_tint", "sheen_tint"}, {"flatness", "flatness"}};
-            if (thin) {
-                names.push_back({"diff_trans", "diffuse_transmission"});
-                map_params(out, c, what, names,
-                           {"diffuse_reflectance_sampling_rate", "specular_reflectance_sampling_rate",
-                            "specular_transmittance_sampling_rate", "diffuse_transmittance_sampling_rate"});
-            } else {
-                names.insert(names.end(), {{"metallic", "metallic"}, {"specular", "specular"},
-                                           {"clearcoat", "clearcoat"}, {"clearcoat_gloss", "clearcoat_gloss"}});
-                map_params(out, c, what, names,
-                           {"diffuse_reflectance_sampling_rate", "main_specular_sampling_rate",
-                            "clearcoat_sampling_rate"});
+            map_params(out, c, what, *plugin);
+            if (!thin) {
                 if (out.find("eta") && out.find("specular"))
                     fail(n, what + " takes 'eta' or 'specular', not both (specular sets eta)");
             }
@@ -685,8 +656,7 @@ private:
             if (thin) set_default(out, "eta", num(1.5));
             else set_default(out, "clearcoat_gloss", num(0.0));
         } else {
-            unsupported(n, "unsupported " + what);
-            return std::nullopt;
+            fail(n, "internal: no conversion for " + what);
         }
         no_objects(c, what);
         return out;
@@ -696,22 +666,14 @@ private:
     std::optional<Node> convert_shape(pugi::xml_node n) {
         std::string type = attr(n, "type");
         std::string what = "shape plugin '" + type + "'";
-        Node out;
-        NameMap names = {{"to_world", "to_world"}, {"flip_normals", "flip_normals"}};
-        if (type == "obj" || type == "ply") {
-            names.push_back({"filename", "filename"});
-            names.push_back({"face_normals", "face_normals"});
-            if (type == "obj") names.push_back({"flip_tex_coords", "flip_tex_coords"});
-        } else if (type == "sphere") {
-            names.push_back({"center", "center"});
-            names.push_back({"radius", "radius"});
-        } else if (type != "rectangle" && type != "cube" && type != "disk") {
+        const MitsubaPlugin* plugin = find_mitsuba_plugin("shape", type);
+        if (!plugin) {
             unsupported(n, "unsupported " + what);
             return std::nullopt;
         }
-        out = make(type, n);
+        Node out = make(plugin->ours, n);
         Collected c = collect(n);
-        map_params(out, c, what, names);
+        map_params(out, c, what, *plugin);
         if (type == "obj" || type == "ply") {
             if (!out.find("filename")) fail(n, type + " shape needs a 'filename'");
             set_default(out, "face_normals", Node::boolean(false));
@@ -759,8 +721,9 @@ private:
             return std::nullopt;
         }
         Collected c = collect(n);
-        Node out = make("area", n);
-        map_params(out, c, "emitter plugin 'area'", {{"radiance", "radiance"}});
+        const MitsubaPlugin& plugin = entry("emitter", "area");
+        Node out = make(plugin.ours, n);
+        map_params(out, c, "emitter plugin 'area'", plugin);
         no_objects(c, "emitter plugin 'area'");
         return out;
     }
@@ -768,24 +731,15 @@ private:
     std::optional<Node> convert_light(pugi::xml_node n) {
         std::string type = attr(n, "type");
         std::string what = "emitter plugin '" + type + "'";
-        NameMap names;
-        if (type == "point") names = {{"position", "position"}, {"intensity", "intensity"}, {"to_world", "to_world"}};
-        else if (type == "spot")
-            names = {{"intensity", "intensity"}, {"cutoff_angle", "cutoff_angle"},
-                     {"beam_width", "beam_width"}, {"to_world", "to_world"}};
-        else if (type == "directional")
-            names = {{"irradiance", "irradiance"}, {"direction", "direction"}, {"to_world", "to_world"}};
-        else if (type == "constant") names = {{"radiance", "radiance"}};
-        else if (type == "envmap") names = {{"filename", "filename"}, {"scale", "scale"}, {"to_world", "to_world"}};
-        else if (type == "area") fail(n, "an 'area' emitter must be nested in a <shape>");
-        else {
+        if (type == "area") fail(n, "an 'area' emitter must be nested in a <shape>");
+        const MitsubaPlugin* plugin = find_mitsuba_plugin("emitter", type);
+        if (!plugin) {
             unsupported(n, "unsupported " + what);
             return std::nullopt;
         }
         Collected c = collect(n);
-        Node out = make(type, n);
-        map_params(out, c, what, names, type == "envmap" ? std::vector<const char*>{"mis_compensation"}
-                                                         : std::vector<const char*>{});
+        Node out = make(plugin->ours, n);
+        map_params(out, c, what, *plugin);
         no_objects(c, what);
         if (type == "envmap" && !out.find("filename")) fail(n, "envmap needs a 'filename'");
         return out;
@@ -794,16 +748,15 @@ private:
     // ---- sensor, film, sampler, integrator ------------------------------------------------------
     void convert_sensor(pugi::xml_node n) {
         std::string type = attr(n, "type");
-        if (type != "perspective") {
-            unsupported(n, "unsupported sensor plugin '" + type + "' (known: perspective)");
+        const MitsubaPlugin* plugin = find_mitsuba_plugin("sensor", type);
+        if (!plugin) {
+            unsupported(n, "unsupported sensor plugin '" + type + "' (known: " + mitsuba_known_plugins("sensor") + ")");
             return;
         }
         if (m_camera) fail(n, "more than one <sensor>");
         Collected c = collect(n);
-        Node cam = make("perspective", n);
-        map_params(cam, c, "sensor plugin 'perspective'",
-                   {{"fov", "fov"}, {"fov_axis", "fov_axis"}, {"to_world", "to_world"}},
-                   {"near_clip", "far_clip"});
+        Node cam = make(plugin->ours, n);
+        map_params(cam, c, "sensor plugin '" + type + "'", *plugin);
         for (pugi::xml_node o : c.objects) {
             std::string t = o.name();
             if (t == "film") convert_film(o);
@@ -815,15 +768,15 @@ private:
 
     void convert_film(pugi::xml_node n) {
         std::string type = attr(n, "type");
-        if (type != "hdrfilm") {
-            unsupported(n, "unsupported film plugin '" + type + "' (known: hdrfilm)");
+        const MitsubaPlugin* plugin = find_mitsuba_plugin("film", type);
+        if (!plugin) {
+            unsupported(n, "unsupported film plugin '" + type + "' (known: " + mitsuba_known_plugins("film") + ")");
             return;
         }
         Collected c = collect(n);
-        Node film = Node::object();
+        Node film = Node::object();  // our film is not typed
         film.line = line(n);
-        map_params(film, c, "film plugin 'hdrfilm'", {{"width", "width"}, {"height", "height"}},
-                   {"pixel_format", "component_format", "file_format", "banner", "sample_border"});
+        map_params(film, c, "film plugin '" + type + "'", *plugin);
         set_default(film, "width", Node::number(768, true));  // Mitsuba's defaults
         set_default(film, "height", Node::number(576, true));
         for (pugi::xml_node o : c.objects) {
@@ -833,16 +786,14 @@ private:
             }
             std::string ft = attr(o, "type");
             std::string what = "rfilter plugin '" + ft + "'";
-            NameMap names;
-            if (ft == "box" || ft == "tent") names = {{"radius", "radius"}};
-            else if (ft == "gaussian") names = {{"stddev", "stddev"}};
-            else {
-                unsupported(o, "unsupported " + what + " (known: box, tent, gaussian)");
+            const MitsubaPlugin* filter = find_mitsuba_plugin("rfilter", ft);
+            if (!filter) {
+                unsupported(o, "unsupported " + what + " (known: " + mitsuba_known_plugins("rfilter") + ")");
                 continue;
             }
             Collected fc = collect(o);
-            Node f = make(ft, o);
-            map_params(f, fc, what, names);
+            Node f = make(filter->ours, o);
+            map_params(f, fc, what, *filter);
             no_objects(fc, what);
             film.set("filter", f);
         }
@@ -851,18 +802,16 @@ private:
 
     void convert_sampler(pugi::xml_node n) {
         std::string type = attr(n, "type");
-        static const char* kKnown[] = {"independent", "stratified", "multijitter", "orthogonal",
-                                       "ldsampler", "low_discrepancy"};
-        if (std::find(std::begin(kKnown), std::end(kKnown), type) == std::end(kKnown)) {
+        const MitsubaPlugin* plugin = find_mitsuba_plugin("sampler", type);
+        if (!plugin) {
             unsupported(n, "unsupported sampler plugin '" + type + "'");
             return;
         }
         // Mitsuba's stratified / low-discrepancy samplers become our Owen-scrambled Sobol sampler:
         // a different point set (docs/mitsuba-import.md), the same estimate in expectation.
         Collected c = collect(n);
-        Node s = make(type == "independent" ? "independent" : "sobol", n);
-        map_params(s, c, "sampler plugin '" + type + "'", {{"sample_count", "sample_count"}, {"seed", "seed"}},
-                   {"jitter", "dimension"});
+        Node s = make(plugin->ours, n);
+        map_params(s, c, "sampler plugin '" + type + "'", *plugin);
         set_default(s, "sample_count", Node::number(4, true));  // Mitsuba's default
         no_objects(c, "a sampler");
         m_sampler = s;
@@ -870,13 +819,15 @@ private:
 
     void convert_integrator(pugi::xml_node n) {
         std::string type = attr(n, "type");
-        if (type != "path" && type != "volpath") {
-            unsupported(n, "unsupported integrator plugin '" + type + "' (known: path, volpath)");
+        const MitsubaPlugin* plugin = find_mitsuba_plugin("integrator", type);
+        if (!plugin) {
+            unsupported(n, "unsupported integrator plugin '" + type + "' (known: " + mitsuba_known_plugins("integrator") +
+                               ")");
             return;
         }
         Collected c = collect(n);
-        Node it = make("path", n);
-        map_params(it, c, "integrator plugin '" + type + "'", {{"max_depth", "max_depth"}, {"rr_depth", "rr_depth"}});
+        Node it = make(plugin->ours, n);
+        map_params(it, c, "integrator plugin '" + type + "'", *plugin);
         no_objects(c, "an integrator");
         m_integrator = it;
     }
