@@ -62,10 +62,10 @@ std::vector<MitsubaPlugin> make_table() {
         // warns (we always correct such normals).
         {"bsdf", "bumpmap", "bump_map",
          {{"scale", "bump_scale"}, {"use_shadowing_function", "terminator_softening", kConverted},
-          {"flip_invalid_normals", "ignored", kConverted}}},
+          ignored("flip_invalid_normals")}},
         {"bsdf", "normalmap", "normal_map",
          {{"normalmap", "normal_map"}, {"use_shadowing_function", "terminator_softening", kConverted},
-          {"flip_invalid_normals", "ignored", kConverted}}},
+          ignored("flip_invalid_normals")}},
         // ---- textures
         {"texture", "bitmap", "image",
          {{"filename", "filename"}, {"filter_type", "filter"}, {"wrap_mode", "wrap_mode"}, {"to_uv", "to_uv"},
