@@ -7,8 +7,18 @@
 
 namespace pellucid {
 
+namespace {
+/// A box of radius ½ gives each sample weight 1 in its own pixel and 0 elsewhere: splatting with it
+/// is filter sampling.
+bool is_one_pixel_box(const Filter& f) {
+    const auto* b = std::get_if<BoxFilter>(&f);
+    return b && b->radius == 0.5f;
+}
+}  // namespace
+
 Film::Film(int width, int height, std::optional<Filter> splat)
     : m_width(width), m_height(height), m_splat(std::move(splat)) {
+    if (m_splat && is_one_pixel_box(*m_splat)) m_splat.reset();
     if (m_splat) {
         // Pixel centres px + ½ within the radius r of a sample in [x, x + 1) satisfy
         // |px − x| <= ⌈r − ½⌉.
@@ -20,32 +30,55 @@ Film::Film(int width, int height, std::optional<Filter> splat)
 }
 
 void Film::splat(int x, int y, float fx, float fy, const Spectrum& L) {
+    if (!m_splat) {
+        add_sample(x, y, L);
+        return;
+    }
     constexpr int kMaxTaps = 2 * 16 + 1;  // filters are limited to a 16-pixel radius (registry.cpp)
-    const int m = std::min(m_margin, 16);
-    float wx[kMaxTaps], wy[kMaxTaps];
-    eval_filter_taps(*m_splat, float(x - m) + 0.5f - fx, 2 * m + 1, wx);
-    eval_filter_taps(*m_splat, float(y - m) + 0.5f - fy, 2 * m + 1, wy);
-    m_splats[size_t(y) * m_width + x].n += 1;
+    const int m = std::min(m_margin, 16), n_taps = 2 * m + 1;
+    // Row and column weights of this sample and of the previous sample of the same pixel (zero if
+    // there is none): the pair gives each target one successive difference (film.h).
+    float wx[kMaxTaps], wy[kMaxTaps], px[kMaxTaps], py[kMaxTaps];
+    eval_filter_taps(*m_splat, float(x - m) + 0.5f - fx, n_taps, wx);
+    eval_filter_taps(*m_splat, float(y - m) + 0.5f - fy, n_taps, wy);
+    SplatPixel& src = m_splats[size_t(y) * m_width + x];
+    const bool has_prev = src.n > 0;
+    if (has_prev) {
+        eval_filter_taps(*m_splat, float(x - m) + 0.5f - src.last_fx, n_taps, px);
+        eval_filter_taps(*m_splat, float(y - m) + 0.5f - src.last_fy, n_taps, py);
+    } else {
+        std::fill(px, px + n_taps, 0.f);
+        std::fill(py, py + n_taps, 0.f);
+    }
     const double l[3] = {L[0], L[1], L[2]};
+    const double lp[3] = {src.last_l[0], src.last_l[1], src.last_l[2]};
     for (int j = -m; j <= m; ++j) {
-        int py = y + j;
-        if (py < 0 || py >= m_height || !(wy[j + m] > 0.f)) continue;
+        const int ty = y + j;
+        if (ty < 0 || ty >= m_height || !(wy[j + m] > 0.f || py[j + m] > 0.f)) continue;
         for (int i = -m; i <= m; ++i) {
-            int px = x + i;
-            if (px < 0 || px >= m_width) continue;
-            double w = double(wx[i + m]) * double(wy[j + m]);
-            if (!(w > 0.0)) continue;
-            SplatPixel& p = m_splats[size_t(py) * m_width + px];
-            double w2 = w * w;
-            p.w += w;
-            p.w2 += w2;
-            for (int k = 0; k < 3; ++k) {
-                p.wl[k] += w * l[k];
-                p.w2l[k] += w2 * l[k];
-                p.w2l2[k] += w2 * l[k] * l[k];
+            const int tx = x + i;
+            if (tx < 0 || tx >= m_width) continue;
+            const double w = double(wx[i + m]) * double(wy[j + m]);
+            const double wp = double(px[i + m]) * double(py[j + m]);
+            if (!(w > 0.0) && !(wp > 0.0)) continue;
+            SplatPixel& t = m_splats[size_t(ty) * m_width + tx];
+            t.w += w;
+            for (int k = 0; k < 3; ++k) t.wl[k] += w * l[k];
+            if (has_prev) {
+                const double dw = w - wp;
+                t.dw2 += dw * dw;
+                for (int k = 0; k < 3; ++k) {
+                    const double dl = w * l[k] - wp * lp[k];
+                    t.dl2[k] += dl * dl;
+                    t.dldw[k] += dl * dw;
+                }
             }
         }
     }
+    src.n += 1;
+    src.last_fx = fx;
+    src.last_fy = fy;
+    for (int k = 0; k < 3; ++k) src.last_l[k] = L[k];
 }
 
 void Film::pixel_stats(size_t i, double mean[3], double var[3]) const {
@@ -62,13 +95,14 @@ void Film::pixel_stats(size_t i, double mean[3], double var[3]) const {
         for (int k = 0; k < 3; ++k) mean[k] = var[k] = 0.0;
         return;
     }
-    const double n_eff = p.w * p.w / p.w2;
-    const double correction = n_eff > 1.0 + 1e-9 ? n_eff / (n_eff - 1.0) : 0.0;
+    // n/(2(n − 1)) turns the n − 1 successive differences of each stratum into n Var_q (film.h).
+    const double n = double(p.n);
+    const double scale = p.n > 1 ? n / (2.0 * (n - 1.0)) / (p.w * p.w) : 0.0;
     for (int k = 0; k < 3; ++k) {
-        double r = p.wl[k] / p.w;
-        double s = p.w2l2[k] - 2.0 * r * p.w2l[k] + r * r * p.w2;  // Σ w²(L − R)²
+        const double r = p.wl[k] / p.w;
+        const double s = p.dl2[k] - 2.0 * r * p.dldw[k] + r * r * p.dw2;  // Σ (Δ(wL) − R Δw)²
         mean[k] = r;
-        var[k] = std::max(0.0, s) / (p.w * p.w) * correction;
+        var[k] = std::max(0.0, s) * scale;
     }
 }
 
