@@ -1,5 +1,5 @@
 // The splatting film (image/film.h): a 1-pixel box is filter sampling, its variance is the
-// successive-difference formula (checked by hand on a few samples) and is calibrated against the
+// formula over pairs of samples (checked by hand on a few samples) and is calibrated against the
 // spread of independent renders (with and without path noise, on an edge-only image where the
 // i.i.d. formula overestimates by 40 %), it estimates the same filtered image as filter sampling
 // (per-pixel z-test, two-sided α = 0.01 Šidák-corrected over the pixel channels, ≥ 99.75 % must
@@ -66,18 +66,28 @@ TEST(FilmSplat, OnePixelBoxIsFilterSampling) {
     EXPECT_EQ(a.samples(1, 1), b.samples(1, 1));
 }
 
-TEST(FilmSplat, VarianceIsTheSuccessiveDifferenceFormula) {
+TEST(FilmSplat, VarianceIsThePairFormula) {
     // A 3×1 film and a tent of radius 1 (margin 1): three samples in each pixel, at known x (y at
     // the row's centre, so the row weight is 1). For every target pixel t, written out here:
-    // R = Σ wL / Σ w and Var = n/(2(n − 1)) Σ_q Σ_j (w_j+1 L_j+1 − w_j L_j − R (w_j+1 − w_j))² / (Σ w)²,
-    // the inner sum over the successive samples j, j + 1 of each source pixel q, n = 3.
+    // R = Σ wL / Σ w and Var = n/(2⌊n/2⌋) Σ_q (w₁L₁ − w₀L₀ − R (w₁ − w₀))² / (Σ w)², the sum over the
+    // first pair (samples 0 and 1) of each source pixel q, n = 3 (sample 2 has no partner yet). The
+    // film is fed twice: pixel by pixel (a pair's second sample finds its partner's taps in the
+    // per-thread cache) and interleaved over the pixels (it evaluates them again); both must agree
+    // bit for bit.
     const float fx[3][3] = {{0.2f, 0.9f, 0.5f}, {1.1f, 1.6f, 1.95f}, {2.3f, 2.5f, 2.05f}};
     const float Lv[3][3] = {{1.f, 3.f, 2.f}, {0.5f, 4.f, 1.f}, {2.f, 2.f, 6.f}};
-    Film f(3, 1, Filter(TentFilter{1.f}));
-    ASSERT_EQ(f.splat_margin(), 1);
-    for (int j = 0; j < 3; ++j)  // interleaved over the pixels: pairs are per source pixel
-        for (int q = 0; q < 3; ++q) f.splat(q, 0, fx[q][j], 0.5f, Spectrum(Lv[q][j], 2.f * Lv[q][j], 1.f));
-    Image m = f.mean(), v = f.variance();
+    Film a(3, 1, Filter(TentFilter{1.f})), b(3, 1, Filter(TentFilter{1.f}));
+    ASSERT_EQ(a.splat_margin(), 1);
+    auto sample = [&](Film& f, int q, int j) { f.splat(q, 0, fx[q][j], 0.5f, Spectrum(Lv[q][j], 2.f * Lv[q][j], 1.f)); };
+    for (int q = 0; q < 3; ++q)
+        for (int j = 0; j < 3; ++j) sample(a, q, j);
+    for (int j = 0; j < 3; ++j)
+        for (int q = 0; q < 3; ++q) sample(b, q, j);
+    Image m = a.mean(), v = a.variance(), mb = b.mean(), vb = b.variance();
+    for (size_t i = 0; i < m.data.size(); ++i) {
+        EXPECT_EQ(m.data[i], mb.data[i]);
+        EXPECT_EQ(v.data[i], vb.data[i]);
+    }
     for (int t = 0; t < 3; ++t) {
         auto w = [&](float x) { return std::max(0.0, 1.0 - std::fabs(t + 0.5 - double(x))); };
         double sw = 0, swl = 0;
@@ -85,13 +95,12 @@ TEST(FilmSplat, VarianceIsTheSuccessiveDifferenceFormula) {
             for (int j = 0; j < 3; ++j) sw += w(fx[q][j]), swl += w(fx[q][j]) * Lv[q][j];
         const double R = swl / sw;
         double s = 0;
-        for (int q = 0; q < 3; ++q)
-            for (int j = 0; j + 1 < 3; ++j) {
-                const double wa = w(fx[q][j]), wb = w(fx[q][j + 1]);
-                const double d = wb * Lv[q][j + 1] - wa * Lv[q][j] - R * (wb - wa);
-                s += d * d;
-            }
-        const double var = 3.0 / 4.0 * s / (sw * sw);
+        for (int q = 0; q < 3; ++q) {
+            const double wa = w(fx[q][0]), wb = w(fx[q][1]);
+            const double d = wb * Lv[q][1] - wa * Lv[q][0] - R * (wb - wa);
+            s += d * d;
+        }
+        const double var = 3.0 / 2.0 * s / (sw * sw);
         EXPECT_NEAR(m.data[3 * t], R, 1e-6 * R) << t;
         EXPECT_NEAR(m.data[3 * t + 1], 2 * R, 2e-6 * R) << t;
         EXPECT_NEAR(m.data[3 * t + 2], 1.0, 1e-6) << t;
@@ -208,9 +217,9 @@ TEST(FilmSplat, VarianceMatchesSpreadOfRendersAtEdges) {
     // from where the samples land in their pixels, and samples are stratified by pixel. K = 128
     // renders at 16 spp. Per pixel channel that varies, r = (mean film variance) / (spread of the
     // renders); with a calibrated film r ≈ (K − 1)/χ²(K − 1), whose median is 1.005. The median over
-    // the ≈ 250 channels (correlated: they lie along a few edges) has a standard deviation of 0.035
-    // (ten sets of seeds: 0.95–1.08); it must lie in [0.88, 1.13]. The i.i.d. (Cochran) formula gives
-    // 1.4 here; dropping the stratification factor n/(2(n − 1)) doubles it. No channel that varies
+    // the ≈ 250 channels (correlated: they lie along a few edges) has a standard deviation of 0.03
+    // (ten sets of seeds: 0.94–1.05); it must lie in [0.88, 1.13]. The i.i.d. (Cochran) formula gives
+    // 1.4 here; dropping the factor n/(2⌊n/2⌋) of the pairs doubles it. No channel that varies
     // across the renders may have a zero film variance.
     constexpr int K = 128;
     const Spread s = spread_of_renders(
