@@ -9,28 +9,30 @@ tests/data/mitsuba/ref/<scene>.exr (mean of 16 passes x 256 spp, Mitsuba 3.9.1 l
 The z-test is tests/python/zcheck.py's: z = |ours - ref| / sqrt(var_ours + var_ref + floor) per
 pixel channel, ours with the film's variance of the mean; the critical |z| is two-sided α = 0.01
 Šidák-corrected over all channels of the image (as bench/cornell.py and Mitsuba's own render
-tests). Each scene is 32x32 (cube_uv and aniso_sphere 48x32, spheres 64x48) at its $spp default
-(256: below ~128 spp the per-pixel variance estimates of small highlights are too noisy for the
-test; at 256 the pass fraction over seeds 0-9 is 0.995-1.000; cube_uv's is 0.999-1.000 over seeds
-0-4; aniso_sphere's and spheres' 0.998-1.000 over seeds 0-9), so the module takes about three
-seconds.
+tests). Each scene is 32x32 (cube_uv, aniso_sphere and principled 48x32, spheres 64x48) at its $spp
+default (256: below ~128 spp the per-pixel variance estimates of small highlights are too noisy for
+the test; at 256 the pass fraction over seeds 0-9 is 0.995-1.000; cube_uv's is 0.999-1.000 over
+seeds 0-4; aniso_sphere's 0.998-1.000, plastics' 0.998-1.000, principled's 0.9967-0.9996 and
+spheres' 0.9996-1.000 over seeds 0-9), so the module takes a few seconds.
 
-Scope: what the scenes use has the same definition in both renderers (metals.xml's explicit eta/k;
-spheres.xml's named metal `Cu`, whose RGB (eta, k) we reduce from Mitsuba's spectral data as Mitsuba
-does, docs/materials.md; isotropic roughness on the cube; Mitsuba's plastic with nonlinear=true; see
-docs/materials.md "Mitsuba 3 comparison"). At 256 spp the per-pixel test on spheres.xml does not
-detect a change of a few percent in Cu's reflectance (the sphere covers few pixels): the named-metal
-data are checked by test_conductor_names.py. spheres.xml uses a box filter; with a gaussian filter
-only 98.6 % of its channels pass: at high-contrast edges (the highlight on the sphere's rim, the
-floor's far edge) Mitsuba's splatted gaussian reconstruction and our filter-importance-sampled one
-differ. Writing these scenes found two importer differences, now fixed (docs/mitsuba-import.md):
-OBJ/PLY files without vertex normals get computed smooth normals in Mitsuba, and emitting shapes
-without a bsdf are black in Mitsuba. cube_uv.xml found a third, now fixed: the cube's per-face uv
-layout (hence its tangents and the orientation of anisotropic roughness) differed from Mitsuba's;
-with the old layout only 71 % of its pixel channels passed. aniso_sphere.xml found a fourth, now
-fixed: a rotated sphere's uv and tangents
-(hence its texture and the orientation of anisotropic roughness) followed the world z axis instead of
-the sphere's own; with that, 85 % of its pixel channels passed.
+Scope: each scene exercises importer features whose definition we match: metals.xml explicit eta/k;
+spheres.xml the named metal `Cu` (RGB (eta, k) reduced from Mitsuba's spectral data as Mitsuba does,
+docs/materials.md) and Mitsuba's default gaussian rfilter, which the importer reconstructs as
+Mitsuba does (splatting, with a Gaussian that reaches 0 at its radius); plastics.xml plastic and
+roughplastic with Mitsuba's default nonlinear=false (our "linear" variant, the rough coat's
+tabulated transmittance, separable Smith shadowing); principled.xml the 2015 Disney BSDF and
+principledthin; aniso_sphere.xml anisotropic roughness and a texture on rotated spheres. At 256 spp
+the per-pixel test on spheres.xml does not detect a change of a few percent in Cu's reflectance
+(the sphere covers few pixels): the named-metal data are checked by test_conductor_names.py. The
+generated parity matrix (test_parity_matrix.py) covers every importer mapping.
+
+What these scenes found, now fixed (docs/mitsuba-import.md): OBJ/PLY files without vertex normals
+get computed smooth normals in Mitsuba, and emitting shapes without a bsdf are black in Mitsuba;
+cube_uv.xml: the cube's per-face uv layout differed from Mitsuba's (71 % of channels passed);
+aniso_sphere.xml: a rotated sphere's uv and tangents followed the world z axis instead of the
+sphere's own (85 %); plastics.xml: nonlinear=false was imported as the coupled plastic (88 %, image
+mean -4.5 %); spheres.xml with the gaussian rfilter: filter sampling with a truncated Gaussian
+(98.3-98.7 %, max |z| 49, at the floor's far edge and the sphere's rim).
 """
 from __future__ import annotations
 

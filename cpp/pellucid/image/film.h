@@ -3,12 +3,31 @@
 //  - filter sampling (default): one sample, one pixel, weight 1; running mean and variance by
 //    Welford 1962, exact for independent samples;
 //  - splatting: each sample is added to every pixel within the filter radius with weight w = f(Δx)f(Δy)
-//    and the pixel is the ratio Σ wL / Σ w (Mitsuba 3's ImageBlock). Neighbouring samples share
+//    and the pixel is the ratio R = Σ wL / Σ w (Mitsuba 3's ImageBlock). Neighbouring samples share
 //    pixels, so per-pixel noise is lower at equal spp (neighbouring pixels are correlated instead).
-//    Its variance is the delta-method (linearised) variance of the ratio estimator,
-//    Var R ≈ Σ w²(L − R)² / (Σ w)² (Cochran 1977, Sampling Techniques, eq. 6.13), kept from the
-//    running sums Σw, Σw², Σw²L and Σw²L², with the small-sample factor n_eff/(n_eff − 1),
-//    n_eff = (Σw)²/Σw² (Kish 1965), so that w = 1 gives the unbiased sample variance again.
+//    A box of radius ½ splats every sample into its own pixel with weight 1, which is filter
+//    sampling: the film then does exactly that (as Mitsuba 3's ImageBlock, which drops that filter).
+//
+// The variance of a splatted pixel. To first order (the delta method; Cochran 1977, Sampling
+// Techniques, §6.3) R − R₀ ≈ Σ_j z_j / E[Σ w] with z_j = w_j (L_j − R₀), so Var R ≈ Var(Σ z) / (Σ w)².
+// The samples are not one i.i.d. population: every pixel q of the footprint contributes its own n_q
+// samples, uniform in q, so the sample positions are stratified by pixel and the weights w are random
+// within each stratum. Hence Var(Σ z) = Σ_q n_q Var_q(z), the within-stratum variances only
+// (Cochran 1977, eq. 5.3). The i.i.d. estimate Σ z_j² also counts the spread of the stratum means
+// E_q[z] (an image with an edge but no noise at all would get a large variance) and overestimates
+// (by 40 % in the median on an edge-only image). The film estimates each Var_q from pairs within
+// the stratum: a pixel's samples 2i and 2i + 1 are i.i.d., so E[(z_b − z_a)²] = 2 Var_q(z), whatever
+// the weights and the values do (with the sobol sampler the pair is stratified and the estimate is
+// conservative, as Welford's is for filter sampling). Each source pixel keeps its last sample; the second sample of a
+// pair adds, in each target pixel, the pair's differences Δ(wL) and Δw (second minus first, of
+// w L and of w there) to Σ Δ(wL)², Σ Δ(wL)Δw and Σ Δw², from which
+// Σ (Δz)² = Σ Δ(wL)² − 2R Σ Δ(wL)Δw + R² Σ Δw² (R₀ ≈ R), and
+//    Var R ≈ n/(2⌊n/2⌋) · Σ (Δz)² / (Σ w)²,
+// n the samples per pixel (⌊n/2⌋ pairs per stratum; exact when all pixels of the footprint have n
+// samples, as after every complete pass). Pixels with fewer than 2 samples report 0, as with filter
+// sampling. Pairs cost what the i.i.d. sums cost (the first sample of a pair updates only Σ w and
+// Σ wL); successive differences (von Neumann et al. 1941) would use about a third more of the
+// information but cost 40 % more per splat (measured: 96 ns against 70 ns). Tests: tests/cpp/image/test_film_splat.cpp.
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <cstdint>
@@ -23,7 +42,8 @@ namespace pellucid {
 
 class Film {
 public:
-    /// splat: the filter to splat with, or nullopt for filter sampling (add_sample).
+    /// splat: the filter to splat with, or nullopt for filter sampling (add_sample). A box of radius
+    /// ½ is filter sampling (splats() is then false).
     Film(int width, int height, std::optional<Filter> splat = std::nullopt);
     int width() const { return m_width; }
     int height() const { return m_height; }
@@ -45,6 +65,7 @@ public:
     }
     /// Splat one sample taken at film position (fx, fy) (pixel units) inside pixel (x, y) to every
     /// pixel whose centre lies within the filter radius. Writes pixels up to splat_margin() away.
+    /// Without a splat filter (splats() false) it is add_sample(x, y, L).
     void splat(int x, int y, float fx, float fy, const Spectrum& L);
 
     /// Per-pixel estimate, float RGB.
@@ -69,11 +90,16 @@ private:
         uint64_t n = 0;
     };
     struct SplatPixel {
+        // As a target: sums over the samples splatted here.
         double wl[3] = {0, 0, 0};    ///< Σ w L
-        double w2l[3] = {0, 0, 0};   ///< Σ w² L
-        double w2l2[3] = {0, 0, 0};  ///< Σ w² L²
-        double w = 0, w2 = 0;        ///< Σ w, Σ w²
-        uint64_t n = 0;              ///< samples taken in this pixel
+        double w = 0;                ///< Σ w
+        // Sums over the pairs of samples within each source pixel (Δ = second − first).
+        double dl2[3] = {0, 0, 0};   ///< Σ Δ(wL)²
+        double dldw[3] = {0, 0, 0};  ///< Σ Δ(wL)·Δw
+        double dw2 = 0;              ///< Σ Δw²
+        // As a source: the samples taken in this pixel and the last of them.
+        uint64_t n = 0;
+        float last_fx = 0, last_fy = 0, last_l[3] = {0, 0, 0};
     };
     // Estimate and variance of pixel i, channel k.
     void pixel_stats(size_t i, double mean[3], double var[3]) const;
@@ -81,6 +107,7 @@ private:
     int m_width, m_height;
     std::optional<Filter> m_splat;
     int m_margin = 0;
+    uint64_t m_id = 0;  ///< unique per splatting Film: the key of splat()'s per-thread tap cache
     std::vector<Pixel> m_pixels;      // filter sampling
     std::vector<SplatPixel> m_splats; // splatting
 };

@@ -10,6 +10,7 @@
 // | box      | radius    | 0.5     | half-width in pixels                  |
 // | tent     | radius    | 1.0     | half-width in pixels                  |
 // | gaussian | stddev    | 0.5     | standard deviation in pixels; radius 4·stddev (Mitsuba 3) |
+// |          | shift     | false   | subtract the value at the radius (pbrt-v4, Mitsuba 3)       |
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -35,32 +36,75 @@ struct TentFilter {
     float radius_px() const { return radius; }
     std::string to_string() const { return "TentFilter[radius=" + std::to_string(radius) + "]"; }
 };
+/// A Gaussian of standard deviation σ, cut at the radius r = 4σ, with one of two profiles:
+///  - truncated (default): g(x) = exp(−x²/2σ²) for |x| < r, which steps down by g(r) = e⁻⁸ ≈ 3.4e-4
+///    at the radius;
+///  - shifted (shift = true): max(0, g(x) − g(r)), which reaches 0 continuously at the radius (the
+///    Gaussian of pbrt-v4 §8.8.4 and of Mitsuba 3's `gaussian` rfilter; the Mitsuba importer selects
+///    it). The two differ in the tail: at |x| = 2σ the shifted weight is 99.7 % of the truncated
+///    one, at 3.8σ 54 %.
+/// Filter sampling draws offsets from the same profile: the truncated one by inverting the normal CDF,
+/// the shifted one by solving its CDF, A·erf(x/(σ√2)) − g(r)·x with A = σ√(π/2), by safeguarded
+/// Newton steps from the truncated inverse.
 struct GaussianFilter {
     float stddev = 0.5f;
-    Vec2f sample(Vec2f u) const {
-        // Separable: each axis is a Gaussian truncated at 4·stddev, sampled by inverting its CDF.
-        return Vec2f(sample_truncated_gaussian(u.x, stddev, 4.f * stddev, m_erf_r),
-                     sample_truncated_gaussian(u.y, stddev, 4.f * stddev, m_erf_r));
+    bool shift = false;
+
+    explicit GaussianFilter(float s = 0.5f, bool shift_to_zero = false)
+        : stddev(s), shift(shift_to_zero), m_radius(4.f * s), m_k(1.f / (2.f * s * s)),
+          m_bias(shift_to_zero ? std::exp(-8.f) : 0.f),
+          m_erf_r(std::erf(4.f * s / (s * 1.41421356f))) {}
+
+    Vec2f sample(Vec2f u) const { return Vec2f(sample_1d(u.x), sample_1d(u.y)); }
+    /// One axis: an offset in [−r, r] with density proportional to eval.
+    float sample_1d(float u) const {
+        const float x = sample_truncated_gaussian(u, stddev, m_radius, m_erf_r);
+        if (!shift) return x;
+        // Solve G(t) = |2u − 1|·G(r) for t in [0, r], G(t) = A·erf(t/(σ√2)) − b·t, G' = g(t) − b.
+        const double sig = stddev, b = m_bias, r = m_radius, a = 1.0 / (sig * 1.4142135623730951);
+        const double A = sig * 1.2533141373155003;  // σ√(π/2)
+        const double s = 2.0 * double(u) - 1.0, target = std::fabs(s) * (A * std::erf(a * r) - b * r);
+        double t = std::min(double(std::fabs(x)), r), lo = 0.0, hi = r;
+        for (int it = 0; it < 32; ++it) {
+            const double G = A * std::erf(a * t) - b * t - target;
+            if (G > 0.0) hi = t;
+            else lo = t;
+            const double dG = std::exp(-t * t * double(m_k)) - b;
+            double next = dG > 0.0 ? t - G / dG : 0.5 * (lo + hi);
+            if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);  // Newton left the bracket: bisect
+            if (std::fabs(next - t) <= 1e-7 * r) {
+                t = next;
+                break;
+            }
+            t = next;
+        }
+        return float(s < 0.0 ? -t : t);
     }
-    /// The same truncated Gaussian the sampler draws from (unnormalised: splat weights are ratios).
     float eval(float x) const {
-        return std::fabs(x) < 4.f * stddev ? std::exp(-x * x / (2.f * stddev * stddev)) : 0.f;
+        if (!(std::fabs(x) < m_radius)) return 0.f;
+        const float g = std::exp(-x * x * m_k);
+        return shift ? std::max(0.f, g - m_bias) : g;
     }
-    float radius_px() const { return 4.f * stddev; }
+    float radius_px() const { return m_radius; }
     /// w[i] = eval(x0 + i) with two exponentials instead of n: with k = 1/(2σ²),
     /// e(x + 1) = e(x)·exp(−(2x + 1)k), and that ratio itself shrinks by exp(−2k) a step.
     void taps(float x0, int n, float* w) const {
-        const float k = 1.f / (2.f * stddev * stddev), q = std::exp(-2.f * k), r_max = 4.f * stddev;
-        float e = std::exp(-x0 * x0 * k), r = std::exp(-(2.f * x0 + 1.f) * k);
+        const float q = std::exp(-2.f * m_k);
+        float e = std::exp(-x0 * x0 * m_k), r = std::exp(-(2.f * x0 + 1.f) * m_k);
         for (int i = 0; i < n; ++i) {
-            w[i] = std::fabs(x0 + float(i)) < r_max ? e : 0.f;
+            w[i] = std::fabs(x0 + float(i)) < m_radius ? std::max(0.f, e - m_bias) : 0.f;
             e *= r;
             r *= q;
         }
     }
-    explicit GaussianFilter(float s = 0.5f) : stddev(s), m_erf_r(std::erf(4.f * s / (s * 1.41421356f))) {}
-    float m_erf_r;  ///< erf(radius/(σ√2)), the CDF range of the truncated Gaussian
-    std::string to_string() const { return "GaussianFilter[stddev=" + std::to_string(stddev) + "]"; }
+    std::string to_string() const {
+        return "GaussianFilter[stddev=" + std::to_string(stddev) + (shift ? ", shift" : "") + "]";
+    }
+
+    float m_radius;  ///< 4σ
+    float m_k;       ///< 1/(2σ²)
+    float m_bias;    ///< g(r) = e⁻⁸ when shifted, else 0
+    float m_erf_r;   ///< erf(r/(σ√2)), the CDF range of the truncated Gaussian
 };
 using Filter = std::variant<BoxFilter, TentFilter, GaussianFilter>;
 inline Vec2f sample_filter(const Filter& f, Vec2f u) {

@@ -795,8 +795,17 @@ private:
             Node f = make(filter->ours, o);
             map_params(f, fc, what, *filter);
             no_objects(fc, what);
+            // Mitsuba's Gaussian subtracts its value at the radius (docs/mitsuba-import.md).
+            if (ft == "gaussian") f.set("shift", Node::boolean(true));
             film.set("filter", f);
         }
+        if (!film.find("filter")) {  // Mitsuba's default rfilter
+            Node f = make("gaussian", n);
+            f.set("shift", Node::boolean(true));
+            film.set("filter", f);
+        }
+        // Mitsuba splats every sample into all pixels within the filter radius.
+        film.set("reconstruction", Node::string("splatting"));
         m_film = film;
     }
 

@@ -170,7 +170,7 @@ Filter build_tent(Properties& p) {
 Filter build_gaussian(Properties& p) {
     float s = p.get_float("stddev", 0.5f);
     p.check_range("stddev", s, 1e-3f, 4.f);
-    return GaussianFilter(s);
+    return GaussianFilter(s, p.get_bool("shift", false));
 }
 }  // namespace
 

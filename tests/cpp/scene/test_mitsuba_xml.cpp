@@ -106,16 +106,18 @@ TEST(MitsubaXml, SensorFilmSamplerIntegrator) {
                             R"({
   "camera": {"type": "perspective", "fov": 39.3, "fov_axis": "smaller",
              "to_world": [{"look_at": {"origin": [0, 1, 6.8], "target": [0, 1, 0], "up": [0, 1, 0]}}]},
-  "film": {"width": 320, "height": 240, "filter": {"type": "tent", "radius": 1.5}},
+  "film": {"width": 320, "height": 240, "filter": {"type": "tent", "radius": 1.5}, "reconstruction": "splatting"},
   "sampler": {"type": "independent", "sample_count": 64, "seed": 3},
   "integrator": {"type": "path", "max_depth": 8, "rr_depth": 3}})"));
 }
 
 TEST(MitsubaXml, MitsubaDefaultsWhereOursDiffer) {
-    // hdrfilm is 768x576 and the sampler takes 4 samples unless told otherwise; volpath -> path.
+    // hdrfilm is 768x576 with a (shifted) gaussian rfilter and the sampler takes 4 samples unless told
+    // otherwise; volpath -> path.
     EXPECT_TRUE(converts_to(scene(R"(<integrator type="volpath"/>
   <sensor type="perspective"><film type="hdrfilm"/><sampler type="independent"/></sensor>)"),
-                            R"({"camera": {"type": "perspective"}, "film": {"width": 768, "height": 576},
+                            R"({"camera": {"type": "perspective"}, "film": {"width": 768, "height": 576,
+                                "filter": {"type": "gaussian", "shift": true}, "reconstruction": "splatting"},
                                 "sampler": {"type": "independent", "sample_count": 4},
                                 "integrator": {"type": "path"}})"));
 }
