@@ -94,7 +94,9 @@ std::vector<MitsubaPlugin> make_table() {
          {{"fov", "fov"}, {"fov_axis", "fov_axis"}, to_world, ignored("near_clip"), ignored("far_clip")}},
         {"film", "hdrfilm", "film",
          {{"width", "width"}, {"height", "height"}, ignored("pixel_format"), ignored("component_format"),
-          ignored("file_format"), ignored("banner"), ignored("sample_border")}},
+          ignored("file_format"), ignored("banner"),
+          // sample_border selects the reconstruction: false splatting, true filter sampling.
+          {"sample_border", "reconstruction", kConverted}}},
         {"rfilter", "box", "box", {{"radius", "radius"}}},
         {"rfilter", "tent", "tent", {{"radius", "radius"}}},
         {"rfilter", "gaussian", "gaussian", {{"stddev", "stddev"}}},

@@ -776,6 +776,11 @@ private:
         Collected c = collect(n);
         Node film = Node::object();  // our film is not typed
         film.line = line(n);
+        bool sample_border = false;
+        if (Prop* sb = take(c, "sample_border")) {
+            if (!sb->value.is_bool()) fail(sb->node, "film 'sample_border' must be a boolean");
+            sample_border = sb->value.as_bool();
+        }
         map_params(film, c, "film plugin '" + type + "'", *plugin);
         set_default(film, "width", Node::number(768, true));  // Mitsuba's defaults
         set_default(film, "height", Node::number(576, true));
@@ -804,8 +809,11 @@ private:
             f.set("shift", Node::boolean(true));
             film.set("filter", f);
         }
-        // Mitsuba splats every sample into all pixels within the filter radius.
-        film.set("reconstruction", Node::string("splatting"));
+        // Mitsuba splats every sample into all pixels within the filter radius; with sample_border it
+        // also samples a border of one filter radius outside the film, so that a pixel at the edge
+        // weighs the whole filter. Filter sampling has exactly that expectation: each pixel
+        // integrates its full filter (pbrt-v4 §8.8), and its samples land in that pixel only.
+        film.set("reconstruction", Node::string(sample_border ? "filter_sampling" : "splatting"));
         m_film = film;
     }
 
