@@ -121,13 +121,24 @@ void TriangleMesh::validate(const std::string& where) const {
 }
 
 void TriangleMesh::compute_smooth_normals() {
+    // Angle-weighted face normals (Thürmer & Wüthrich 1998, "Computing Vertex Normals from Polygonal
+    // Facets", JGT 3(1)): each face adds its unit normal times its interior angle at the vertex, so
+    // the result does not depend on how a surface is split into triangles (area weights do), and it
+    // is the rule Mitsuba 3 uses for meshes without normals.
     normals.assign(positions.size(), Normal3f(0.f));
     for (size_t t = 0; t < triangle_count(); ++t) {
-        uint32_t i0 = indices[3 * t], i1 = indices[3 * t + 1], i2 = indices[3 * t + 2];
-        Vec3f n = cross(positions[i1] - positions[i0], positions[i2] - positions[i0]);  // |n| = 2·area
-        normals[i0] += n;
-        normals[i1] += n;
-        normals[i2] += n;
+        const uint32_t v[3] = {indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+        Vec3f n = cross(positions[v[1]] - positions[v[0]], positions[v[2]] - positions[v[0]]);
+        if (!(length2(n) > 0.f)) continue;
+        n = normalize(n);
+        for (int k = 0; k < 3; ++k) {
+            Vec3f a = positions[v[(k + 1) % 3]] - positions[v[k]], b = positions[v[(k + 2) % 3]] - positions[v[k]];
+            float la = length(a), lb = length(b);
+            if (!(la > 0.f && lb > 0.f)) continue;
+            // The angle between a and b, by atan2 (accurate for small and obtuse angles alike).
+            float angle = std::atan2(length(cross(a, b)), dot(a, b));
+            normals[v[k]] += angle * n;
+        }
     }
     for (auto& n : normals) n = length2(n) > 0.f ? normalize(n) : Normal3f(0, 0, 1);
 }

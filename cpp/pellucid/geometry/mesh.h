@@ -48,7 +48,7 @@ struct TriangleMesh {
     /// Triangle `tri`'s unit geometric normal, dp/du and dp/dv (pbrt-v4 §6.5.3); the shading frame
     /// is set from the geometric normal only (flat shading, vertex normals ignored).
     FlatTriangle flat_triangle(size_t tri) const;
-    /// Area-weighted vertex normals.
+    /// Angle-weighted vertex normals (Thürmer & Wüthrich 1998), as Mitsuba 3 computes them.
     void compute_smooth_normals();
 
     static TriangleMesh rectangle();  ///< [-1,1]² in the z = 0 plane, normal +z (Mitsuba's)

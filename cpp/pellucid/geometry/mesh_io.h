@@ -19,7 +19,7 @@ namespace pellucid {
 struct MeshLoadOptions {
     /// Ignore the file's vertex normals (flat shading), Mitsuba's `face_normals`.
     bool face_normals = false;
-    /// Compute area-weighted vertex normals when the file has none (and face_normals is off).
+    /// Compute angle-weighted vertex normals when the file has none (and face_normals is off).
     bool smooth_normals = false;
     /// v -> 1 - v on load (Mitsuba's OBJ `flip_tex_coords`).
     bool flip_tex_coords = false;

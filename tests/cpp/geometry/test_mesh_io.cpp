@@ -309,3 +309,16 @@ TEST(MeshIO, LargeBinaryPlyMemoryPerTriangle) {
     EXPECT_LT(per_tri, 24.1);
     fs::remove(p);
 }
+
+TEST(MeshNormals, ComputedNormalsAreAngleWeighted) {
+    // A vertex shared by a face with a 90° corner (normal +z) and a face with a 45° corner (normal +x):
+    // angle weights give normalize(π/2·z + π/4·x); area weights would follow the larger face.
+    TriangleMesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0},  // face 0, 1, 2 in z = 0: right angle at the origin
+                   {0, 0, -1}, {0, 4, -4}};           // face 0, 3, 4 in x = 0: 45° there, 4x the area
+    m.indices = {0, 1, 2, 0, 3, 4};
+    m.compute_smooth_normals();
+    const Vec3f n0 = m.normals[0];
+    EXPECT_NEAR(n0.z, 1.f / std::sqrt(5.f) * 2.f, 1e-5f) << to_string(n0);
+    EXPECT_NEAR(std::fabs(n0.x), 1.f / std::sqrt(5.f), 1e-5f) << to_string(n0);
+}
