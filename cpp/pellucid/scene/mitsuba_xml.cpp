@@ -551,20 +551,16 @@ private:
             if (textures.size() > 1)
                 fail(textures[1].first, what + " takes exactly one nested texture (under any name); the first is on "
                                             "line " + std::to_string(line(textures[0].first)));
-            // Mitsuba's two options for perturbed normals, both on by default. Ours:
-            // use_shadowing_function selects our terminator softening (Chiang et al. 2019, where
-            // Mitsuba uses Estevez et al. 2019); invalid normals are always corrected (bent toward
-            // the viewer, where Mitsuba mirrors them), so false only warns. docs/mitsuba-import.md.
+            // Mitsuba's two options for perturbed normals, both on by default:
+            // use_shadowing_function → terminator_softening (with Mitsuba's Estevez et al. 2019
+            // term, below); flip_invalid_normals → invalid_normals "mirror" or "keep".
             if (Prop* sh = take(c, "use_shadowing_function")) {
                 if (!sh->value.is_bool()) fail(sh->node, "'use_shadowing_function' of " + what + " must be a boolean");
                 out.set("terminator_softening", sh->value);
             }
             if (Prop* fl = take(c, "flip_invalid_normals")) {
                 if (!fl->value.is_bool()) fail(fl->node, "'flip_invalid_normals' of " + what + " must be a boolean");
-                if (!fl->value.as_bool())
-                    log_warning(where(fl->node) + ": 'flip_invalid_normals' false of " + what +
-                                " is not supported: pellucid always corrects perturbed normals that face away from "
-                                "the viewer");
+                if (!fl->value.as_bool()) out.set("invalid_normals", Node::string("keep"));
             }
             if (bump) map_params(out, c, what, {{"scale", "scale"}});
             else map_params(out, c, what, {{"normalmap", "normalmap"}});
@@ -581,6 +577,10 @@ private:
                 mat.set("normal_map", *out.find("normalmap"));
             }
             if (const Node* ts = out.find("terminator_softening")) mat.set("terminator_softening", *ts);
+            // Mitsuba's gradient, frame, flip and shadowing term (docs/mitsuba-import.md).
+            mat.set("bump_model", Node::string("mitsuba"));
+            mat.set("terminator_model", Node::string("estevez"));
+            mat.set("invalid_normals", out.find("invalid_normals") ? *out.find("invalid_normals") : Node::string("mirror"));
             return mat;
         }
 
