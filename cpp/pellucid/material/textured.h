@@ -42,8 +42,8 @@ struct TextureBinding {
 ///    unperturbed shading s Gram–Schmidt-ed against n'.
 enum class BumpModel : uint8_t { Footprint, Mitsuba };
 /// What is done to a perturbed normal that puts the viewer below its horizon (key `invalid_normals`).
-///  - Bend (default): remove just enough of n's component along wo that wo sits at cos = 0.02
-///    above it.
+///  - Bend (default): remove just enough of n's component along wo that wo sits slightly above it
+///    (cos 0.02 before renormalising).
 ///  - Mirror (Mitsuba's flip_invalid_normals, after Schüssler et al. 2017): negate n's tangential
 ///    part in the unperturbed shading frame.
 ///  - Keep: leave it (such a viewer sees black).
