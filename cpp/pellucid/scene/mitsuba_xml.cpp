@@ -570,11 +570,18 @@ private:
             // Our materials carry bump and normal maps as keys: copy the wrapped material and add them.
             Node mat = *inner;
             if (mat.is_string()) mat = *m_materials.find(mat.as_string());
+            // A bitmap without raw: Mitsuba decodes sRGB-encoded (8/16-bit) files, bump and normal
+            // maps too, where our data textures default to linear; "auto" decodes as Mitsuba does.
+            auto decoded = [](Node t) {
+                if (t.is_object() && !t.find("color_space") && t.find("type") && t.find("type")->as_string() == "image")
+                    t.set("color_space", Node::string("auto"));
+                return t;
+            };
             if (bump) {
-                mat.set("bump_map", textures[0].second);
+                mat.set("bump_map", decoded(textures[0].second));
                 if (const Node* sc = out.find("scale")) mat.set("bump_scale", *sc);
             } else {
-                mat.set("normal_map", *out.find("normalmap"));
+                mat.set("normal_map", decoded(*out.find("normalmap")));
             }
             if (const Node* ts = out.find("terminator_softening")) mat.set("terminator_softening", *ts);
             // Mitsuba's gradient, frame, flip and shadowing term (docs/mitsuba-import.md).
