@@ -44,7 +44,7 @@ import pytest
 import pellucid
 
 DATA = pathlib.Path(__file__).resolve().parents[2] / "tests" / "data" / "mitsuba"
-SCENES = ["aniso_sphere", "cornell_mini", "cube_uv", "glass", "metals", "plastics", "principled", "spheres", "textures"]
+SCENES = ["aniso_sphere", "bumpmap", "cornell_mini", "cube_uv", "glass", "metals", "plastics", "principled", "spheres", "textures"]
 SEED = 7
 
 
