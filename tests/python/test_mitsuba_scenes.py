@@ -29,7 +29,11 @@ layout (hence its tangents and the orientation of anisotropic roughness) differe
 with the old layout only 71 % of its pixel channels passed. aniso_sphere.xml found a fourth, now
 fixed: a rotated sphere's uv and tangents
 (hence its texture and the orientation of anisotropic roughness) followed the world z axis instead of
-the sphere's own; with that, 85 % of its pixel channels passed.
+the sphere's own; with that, 85 % of its pixel channels passed. bumpmap.xml (48x32) checks Mitsuba's
+bumpmap and normalmap, which the importer maps to bump_model "mitsuba", invalid_normals "mirror"
+and terminator_model "estevez" (docs/scene-format.md); with our default bump model, invalid-normal
+treatment and terminator term, and heights read linearly without `raw`, its image mean was 3.7 %
+below Mitsuba's and 93 % of its pixel channels passed.
 """
 from __future__ import annotations
 
