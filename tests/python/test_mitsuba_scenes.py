@@ -21,7 +21,9 @@ docs/materials.md) and Mitsuba's default gaussian rfilter, which the importer re
 Mitsuba does (splatting, with a Gaussian that reaches 0 at its radius); plastics.xml plastic and
 roughplastic with Mitsuba's default nonlinear=false (our "linear" variant, the rough coat's
 tabulated transmittance, separable Smith shadowing); principled.xml the 2015 Disney BSDF and
-principledthin; aniso_sphere.xml anisotropic roughness and a texture on rotated spheres. At 256 spp
+principledthin; aniso_sphere.xml anisotropic roughness and a texture on rotated spheres;
+bumpmap.xml (48x32) Mitsuba's bumpmap and normalmap (bump_model "mitsuba", invalid_normals
+"mirror", terminator_model "estevez", sRGB-decoded heights). At 256 spp
 the per-pixel test on spheres.xml does not detect a change of a few percent in Cu's reflectance
 (the sphere covers few pixels): the named-metal data are checked by test_conductor_names.py. The
 generated parity matrix (test_parity_matrix.py) covers every importer mapping.
@@ -32,7 +34,9 @@ cube_uv.xml: the cube's per-face uv layout differed from Mitsuba's (71 % of chan
 aniso_sphere.xml: a rotated sphere's uv and tangents followed the world z axis instead of the
 sphere's own (85 %); plastics.xml: nonlinear=false was imported as the coupled plastic (88 %, image
 mean -4.5 %); spheres.xml with the gaussian rfilter: filter sampling with a truncated Gaussian
-(98.3-98.7 %, max |z| 49, at the floor's far edge and the sphere's rim).
+(98.3-98.7 %, max |z| 49, at the floor's far edge and the sphere's rim); bumpmap.xml: our default
+bump model, invalid-normal treatment and terminator term, and heights read linearly (93 %, image
+mean -3.7 %).
 """
 from __future__ import annotations
 
@@ -47,7 +51,7 @@ import pellucid
 from zcheck import z_pass_fraction
 
 DATA = pathlib.Path(__file__).resolve().parents[2] / "tests" / "data" / "mitsuba"
-SCENES = ["aniso_sphere", "cornell_mini", "cube_uv", "glass", "metals", "plastics", "principled", "spheres", "textures"]
+SCENES = ["aniso_sphere", "bumpmap", "cornell_mini", "cube_uv", "glass", "metals", "plastics", "principled", "spheres", "textures"]
 SEED = 7
 
 

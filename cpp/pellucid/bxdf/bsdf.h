@@ -11,6 +11,14 @@
 
 namespace pellucid {
 
+/// Which shadowing term soften_terminator() applies.
+///  - Chiang: Chiang et al. 2019, "Taming the Shadow Terminator", eq. 4.
+///  - Estevez: Conty Estevez, Lecocq and Stein 2019, "A Microfacet-Based Shadowing Function to Solve
+///    the Bump Terminator Problem" (Ray Tracing Gems, ch. 12): a GGX Smith G1 of the light direction
+///    about n0, 2/(1 + √(1 + α²·tan²θ)), whose roughness grows with the perturbation:
+///    α² = min(0.125·tan²θ(ns about n0), 1). Mitsuba 3's bumpmap and normalmap use it.
+enum class TerminatorModel : uint8_t { Chiang, Estevez };
+
 class BSDF {
 public:
     /// Owns a copy of bxdf.
@@ -21,7 +29,7 @@ public:
     static BSDF borrowing(const BxDF* bxdf, const Frame& shading, const Normal3f& ng) { return BSDF(bxdf, shading, ng); }
     BSDF(const BSDF& o)
         : m_own(o.m_own), m_bxdf(m_own ? &*m_own : o.m_bxdf), m_frame(o.m_frame), m_ng(o.m_ng), m_n0(o.m_n0),
-          m_soften(o.m_soften) {}
+          m_soften(o.m_soften), m_terminator(o.m_terminator) {}
     BSDF& operator=(const BSDF& o) {
         if (this != &o) {
             m_own = o.m_own;
@@ -30,6 +38,7 @@ public:
             m_ng = o.m_ng;
             m_n0 = o.m_n0;
             m_soften = o.m_soften;
+            m_terminator = o.m_terminator;
         }
         return *this;
     }
@@ -43,9 +52,12 @@ public:
     /// eval(Importance, wo, wi)/|ng·wi| = eval(Radiance, wi, wo)/|ng·wo| (Veach 1997, eq. 5.14)
     /// holds with it too. The factor is in [0, 1]: it only removes energy (it is not
     /// energy-preserving by design), and is exactly 1 where the shading normal is n0.
-    void soften_terminator(const Normal3f& n0) {
+    /// With TerminatorModel::Estevez the factor is that term instead (see the enum), for the same
+    /// light direction, and for transmission too.
+    void soften_terminator(const Normal3f& n0, TerminatorModel model = TerminatorModel::Chiang) {
         m_soften = true;
         m_n0 = n0;
+        m_terminator = model;
     }
 
     BxDFFlags flags() const { return pellucid::flags(*m_bxdf); }
@@ -108,11 +120,23 @@ private:
     // Chiang et al. 2019, eq. 4, for the light direction `light` (local; light_w in world) seen
     // from `other` (local).
     float terminator(const Vec3f& other, const Vec3f& light, const Vec3f& light_w) const {
+        if (m_terminator == TerminatorModel::Estevez) return estevez(light_w);
         if (other.z * light.z <= 0.f) return 1.f;  // transmission: no terminator
         float cos_s = std::fabs(light.z), cos_0 = std::fabs(dot(m_n0, light_w)), n0_ns = std::fabs(dot(m_n0, m_frame.n));
         if (!(cos_s * n0_ns > 0.f)) return 1.f;
         float g = std::min(1.f, cos_0 / (cos_s * n0_ns));
         return g * (1.f + g * (1.f - g));  // −g³ + g² + g
+    }
+
+    // Conty Estevez et al. 2019 (Ray Tracing Gems ch. 12): the GGX G1 with α² = min(tan²θ_d/8, 1), θ_d the
+    // angle between the shading and the unperturbed normal), of the light direction about n0.
+    float estevez(const Vec3f& light_w) const {
+        float c_n = dot(m_n0, m_frame.n), c_l = dot(m_n0, light_w);
+        float c_n2 = c_n * c_n, c_l2 = c_l * c_l;
+        if (!(c_l2 > 0.f)) return 0.f;
+        float alpha2 = c_n2 > 0.f ? std::min(0.125f * (1.f - c_n2) / c_n2, 1.f) : 1.f;
+        float tan2_l = std::max(0.f, 1.f - c_l2) / c_l2;
+        return 2.f / (1.f + std::sqrt(1.f + alpha2 * tan2_l));
     }
 
     std::optional<BxDF> m_own;  ///< the BxDF, when this BSDF owns it
@@ -121,5 +145,6 @@ private:
     Normal3f m_ng;
     Normal3f m_n0{0.f};
     bool m_soften = false;
+    TerminatorModel m_terminator = TerminatorModel::Chiang;
 };
 }  // namespace pellucid

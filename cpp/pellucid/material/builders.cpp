@@ -388,11 +388,12 @@ Material build_principled(Properties& p, const BuildContext& ctx) {
 }
 
 namespace {
-// Keys every material takes: bump_map / bump_scale, normal_map / normal_map_convention, and
-// terminator_softening (material/textured.h).
+// Keys every material takes: bump_map / bump_scale / bump_model, normal_map /
+// normal_map_convention, invalid_normals, and terminator_softening / terminator_model
+// (material/textured.h).
 void read_normal_perturbation(Properties& p, const BuildContext& ctx) {
     static const char* keys[] = {"bump_map", "bump_scale", "bump_step_scale", "normal_map", "normal_map_convention",
-                                 "terminator_softening"};
+                                 "terminator_softening", "bump_model", "invalid_normals", "terminator_model"};
     bool any = false;
     for (const char* k : keys) any = any || p.has(k);
     if (!any) return;
@@ -409,6 +410,14 @@ void read_normal_perturbation(Properties& p, const BuildContext& ctx) {
     mt.normal_map_directx =
         p.get_choice("normal_map_convention", "opengl", "normal map convention", {"opengl", "directx"}) == "directx";
     mt.terminator_softening = p.get_bool("terminator_softening", true);
+    mt.bump_model = p.get_choice("bump_model", "footprint", "bump model", {"footprint", "mitsuba"}) == "mitsuba"
+                        ? BumpModel::Mitsuba
+                        : BumpModel::Footprint;
+    const std::string inv = p.get_choice("invalid_normals", "bend", "invalid normal treatment", {"bend", "mirror", "keep"});
+    mt.invalid_normals = inv == "mirror" ? InvalidNormals::Mirror : inv == "keep" ? InvalidNormals::Keep : InvalidNormals::Bend;
+    mt.terminator_model = p.get_choice("terminator_model", "chiang", "terminator model", {"chiang", "estevez"}) == "estevez"
+                              ? TerminatorModel::Estevez
+                              : TerminatorModel::Chiang;
 }
 }  // namespace
 

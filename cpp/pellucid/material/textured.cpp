@@ -91,6 +91,37 @@ Normal3f bump_normal(const TextureList& textures, uint32_t height, float scale, 
     return dot(np, n) < 0.f ? -np : np;  // keep the side of the unbumped shading normal
 }
 
+Normal3f bump_normal_mitsuba(const SurfaceInteraction& si, const Normal3f& n, float scale, const Vec2f& grad) {
+    // Mitsuba 3's bumpmap: the tangents are first projected onto the plane of n (they need not be
+    // tangent to it: a mesh's interpolated normal), then tilted by the scaled height gradient:
+    //   ∂p'/∂u = ∂p/∂u − n(n·∂p/∂u) + g_u·n,   n' = normalize(∂p'/∂u × ∂p'/∂v).
+    // There is no B·∂n/∂u term, so a constant height changes nothing.
+    Vec3f tu = si.dpdu + n * (scale * grad.x - dot(n, si.dpdu));
+    Vec3f tv = si.dpdv + n * (scale * grad.y - dot(n, si.dpdv));
+    Vec3f np = cross(tu, tv);
+    float len = length(np);
+    if (!(len > 0.f) || !std::isfinite(len)) return n;
+    np /= len;
+    return dot(np, si.ng) < 0.f ? -np : np;  // the side of the geometric normal
+}
+
+namespace {
+// The height gradient for BumpModel::Mitsuba, before `scale`: Mitsuba's bilinear luminance
+// gradient where the texture has one; otherwise the texture's analytic gradient, else a forward
+// difference over the footprint steps (Mitsuba refuses such textures; we fall back).
+Vec2f mitsuba_height_gradient(const MaterialTextures& mt, const TextureList& textures, const TextureEvalContext& ctx,
+                              const SurfaceInteraction& si) {
+    const uint32_t id = uint32_t(mt.bump);
+    float gu, gv;
+    if (texture_luminance_gradient_uv(textures, id, ctx, &gu, &gv)) return Vec2f(gu, gv);
+    if (texture_gradient_uv(textures, id, ctx, si.dpdu, si.dpdv, &gu, &gv)) return Vec2f(gu, gv);
+    Vec2f d = bump_steps(ctx) * mt.bump_step_scale;
+    float b = height_at(textures, id, 1.f, ctx, si, 0.f, 0.f);
+    return Vec2f((height_at(textures, id, 1.f, ctx, si, d.x, 0.f) - b) / d.x,
+                 (height_at(textures, id, 1.f, ctx, si, 0.f, d.y) - b) / d.y);
+}
+}  // namespace
+
 Frame perturbed_shading_frame(const MaterialTextures& mt, const TextureList& textures, const TextureEvalContext& ctx,
                               const SurfaceInteraction& si) {
     Normal3f n = si.shading.n;
@@ -108,20 +139,35 @@ Frame perturbed_shading_frame(const MaterialTextures& mt, const TextureList& tex
         float len = length(w);
         if (len > 0.f && std::isfinite(len)) n = w / len;
     }
+    const bool mitsuba = mt.bump_model == BumpModel::Mitsuba;
     if (mt.bump >= 0) {
-        Vec2f d = bump_steps(ctx) * mt.bump_step_scale;
-        n = bump_normal(textures, uint32_t(mt.bump), mt.bump_scale, ctx, si, n, d.x, d.y, true);
+        if (mitsuba) {
+            n = bump_normal_mitsuba(si, n, mt.bump_scale, mitsuba_height_gradient(mt, textures, ctx, si));
+        } else {
+            Vec2f d = bump_steps(ctx) * mt.bump_step_scale;
+            n = bump_normal(textures, uint32_t(mt.bump), mt.bump_scale, ctx, si, n, d.x, d.y, true);
+        }
     }
-    // A perturbed normal can put the viewer below the shading hemisphere while it is above the
-    // geometric one: then no light could ever be reflected (black pixels along silhouettes). Remove
-    // just enough of n's component along wo that wo sits slightly above it (a minimal change).
-    float side = dot(si.wo, si.ng) >= 0.f ? 1.f : -1.f;
-    constexpr float kMinCos = 0.02f;
-    if (side * dot(si.wo, n) < kMinCos) {
-        Vec3f fixed = n - si.wo * (dot(si.wo, n) - side * kMinCos);
-        float len = length(fixed);
-        if (len > 0.f) n = fixed / len;
+    if (mt.invalid_normals == InvalidNormals::Bend) {
+        // A perturbed normal can put the viewer below the shading hemisphere while it is above the
+        // geometric one: then no light could ever be reflected (black pixels along silhouettes).
+        // Remove just enough of n's component along wo that wo sits slightly above it (a minimal
+        // change).
+        float side = dot(si.wo, si.ng) >= 0.f ? 1.f : -1.f;
+        constexpr float kMinCos = 0.02f;
+        if (side * dot(si.wo, n) < kMinCos) {
+            Vec3f fixed = n - si.wo * (dot(si.wo, n) - side * kMinCos);
+            float len = length(fixed);
+            if (len > 0.f) n = fixed / len;
+        }
+    } else if (mt.invalid_normals == InvalidNormals::Mirror) {
+        // Schüssler et al. 2017 (§ "flipping" of invalid normals), as Mitsuba 3 does it: where the
+        // viewer is on different sides of n and of the unperturbed normal, negate n's tangential
+        // part in the unperturbed shading frame. That puts the viewer above n: with n0 the
+        // unperturbed normal, wo·n' = 2(wo·n0)(n·n0) − wo·n, which has the sign of wo·n0.
+        Vec3f nl = si.shading.to_local(n), wl = si.shading.to_local(si.wo);
+        if (wl.z * dot(wl, nl) <= 0.f) n = si.shading.to_world(Vec3f(-nl.x, -nl.y, nl.z));
     }
-    return Frame::from_xz(si.dpdu, n);
+    return mitsuba ? Frame::from_xz(si.shading.s, n) : Frame::from_xz(si.dpdu, n);
 }
 }  // namespace pellucid

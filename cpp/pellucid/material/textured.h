@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "pellucid/bxdf/bsdf.h"
 #include "pellucid/geometry/interaction.h"
 #include "pellucid/material/material.h"
 #include "pellucid/texture/texture.h"
@@ -31,6 +32,23 @@ struct TextureBinding {
     float lo = 0.f, hi = 1.f;  ///< the parameter's valid range; texture values are clamped into it
 };
 
+/// How a bump map turns heights into a shading normal (key `bump_model`).
+///  - Footprint (default): the bumped surface F' = F + B·n with its B·∂n/∂u term, ∂B/∂u from the
+///    texture's analytic gradient or a finite difference of its channel mean over one pixel
+///    footprint (filtered lookups); frame s from ∂p/∂u.
+///  - Mitsuba (Mitsuba 3's bumpmap): ∂B/∂u the exact derivative of the bilinear interpolation of the
+///    full-resolution image's luminance (texture_luminance_gradient_uv); tangents projected onto
+///    the plane of n before adding g·n, no B·∂n/∂u term; n' flipped to the side of ng; frame s the
+///    unperturbed shading s Gram–Schmidt-ed against n'.
+enum class BumpModel : uint8_t { Footprint, Mitsuba };
+/// What is done to a perturbed normal that puts the viewer below its horizon (key `invalid_normals`).
+///  - Bend (default): remove just enough of n's component along wo that wo sits slightly above it
+///    (cos 0.02 before renormalising).
+///  - Mirror (Mitsuba's flip_invalid_normals, after Schüssler et al. 2017): negate n's tangential
+///    part in the unperturbed shading frame.
+///  - Keep: leave it (such a viewer sees black).
+enum class InvalidNormals : uint8_t { Bend, Mirror, Keep };
+
 /// Everything textured about one material (fixed size: no heap, copied with the scene).
 struct MaterialTextures {
     static constexpr int kMaxBindings = 16;
@@ -41,8 +59,12 @@ struct MaterialTextures {
     float bump_step_scale = 1.f;  ///< multiplies the footprint step Δu (for studies; 1 = one footprint)
     int32_t normal_map = -1;  ///< tangent-space normal map, or -1
     bool normal_map_directx = false;  ///< DirectX convention (green = −bitangent)
-    /// Soften the shadow terminator of perturbed normals (Chiang et al. 2019); on by default.
+    BumpModel bump_model = BumpModel::Footprint;
+    InvalidNormals invalid_normals = InvalidNormals::Bend;
+    /// Soften the shadow terminator of perturbed normals; on by default, with Chiang et al. 2019's
+    /// term unless terminator_model says Estevez (bxdf/bsdf.h).
     bool terminator_softening = true;
+    TerminatorModel terminator_model = TerminatorModel::Chiang;
 
     bool has_bindings() const { return count > 0; }
     bool perturbs_normal() const { return bump >= 0 || normal_map >= 0; }
@@ -52,8 +74,8 @@ struct MaterialTextures {
 BxDF get_textured_bxdf(const Material& m, const MaterialTextures& mt, const TextureList& textures,
                        const TextureEvalContext& ctx, const SurfaceInteraction& si);
 
-/// Shading frame with a bump map (F' = F + B·n, finite differences over one pixel footprint, see
-/// the .cpp) or a tangent-space normal map applied. Returns the new shading frame.
+/// Shading frame with a bump map (by mt.bump_model, see the .cpp) or a tangent-space normal map
+/// applied, and invalid normals treated by mt.invalid_normals. Returns the new shading frame.
 Frame perturbed_shading_frame(const MaterialTextures& mt, const TextureList& textures, const TextureEvalContext& ctx,
                               const SurfaceInteraction& si);
 
@@ -61,6 +83,11 @@ Frame perturbed_shading_frame(const MaterialTextures& mt, const TextureList& tex
 /// ∂n/∂v), from explicit steps Δu, Δv (exposed for the convergence tests).
 Normal3f bump_normal(const TextureList& textures, uint32_t height, float scale, const TextureEvalContext& ctx,
                      const SurfaceInteraction& si, const Normal3f& n, float du, float dv, bool allow_analytic);
+
+/// The bumped normal of BumpModel::Mitsuba about n (before any invalid-normal treatment): tangents
+/// ∂p/∂u − n(n·∂p/∂u) + g_u·n (likewise v), g = scale·∇B in uv, n' = their normalised cross
+/// product on the side of si.ng. `grad` is g/scale; exposed for the frame tests.
+Normal3f bump_normal_mitsuba(const SurfaceInteraction& si, const Normal3f& n, float scale, const Vec2f& grad);
 
 /// The finite-difference steps bump mapping uses: half the pixel footprint in u and v
 /// (½(|∂u/∂x| + |∂u/∂y|)), and 5e-4 (in uv units) where the hit has no footprint.

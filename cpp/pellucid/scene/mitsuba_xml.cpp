@@ -560,20 +560,16 @@ private:
             if (textures.size() > 1)
                 fail(textures[1].first, what + " takes exactly one nested texture (under any name); the first is on "
                                             "line " + std::to_string(line(textures[0].first)));
-            // Mitsuba's two options for perturbed normals, both on by default. Ours:
-            // use_shadowing_function selects our terminator softening (Chiang et al. 2019, where
-            // Mitsuba uses Estevez et al. 2019); invalid normals are always corrected (bent toward
-            // the viewer, where Mitsuba mirrors them), so false only warns. docs/mitsuba-import.md.
+            // Mitsuba's two options for perturbed normals, both on by default:
+            // use_shadowing_function → terminator_softening (with Mitsuba's Estevez et al. 2019
+            // term, below); flip_invalid_normals → invalid_normals "mirror" or "keep".
             if (Prop* sh = take(c, "use_shadowing_function")) {
                 if (!sh->value.is_bool()) fail(sh->node, "'use_shadowing_function' of " + what + " must be a boolean");
                 out.set("terminator_softening", sh->value);
             }
             if (Prop* fl = take(c, "flip_invalid_normals")) {
                 if (!fl->value.is_bool()) fail(fl->node, "'flip_invalid_normals' of " + what + " must be a boolean");
-                if (!fl->value.as_bool())
-                    log_warning(where(fl->node) + ": 'flip_invalid_normals' false of " + what +
-                                " is not supported: pellucid always corrects perturbed normals that face away from "
-                                "the viewer");
+                if (!fl->value.as_bool()) out.set("invalid_normals", Node::string("keep"));
             }
             map_params(out, c, what, *plugin);
             if (!inner) fail(n, what + " needs exactly one nested bsdf; it has none");
@@ -582,13 +578,24 @@ private:
             // Our materials carry bump and normal maps as keys: copy the wrapped material and add them.
             Node mat = *inner;
             if (mat.is_string()) mat = *m_materials.find(mat.as_string());
+            // A bitmap without raw: Mitsuba decodes sRGB-encoded (8/16-bit) files, bump and normal
+            // maps too, where our data textures default to linear; "auto" decodes as Mitsuba does.
+            auto decoded = [](Node t) {
+                if (t.is_object() && !t.find("color_space") && t.find("type") && t.find("type")->as_string() == "image")
+                    t.set("color_space", Node::string("auto"));
+                return t;
+            };
             if (bump) {
-                mat.set("bump_map", textures[0].second);
+                mat.set("bump_map", decoded(textures[0].second));
                 if (const Node* sc = out.find("bump_scale")) mat.set("bump_scale", *sc);
             } else {
-                mat.set("normal_map", *out.find("normal_map"));
+                mat.set("normal_map", decoded(*out.find("normal_map")));
             }
             if (const Node* ts = out.find("terminator_softening")) mat.set("terminator_softening", *ts);
+            // Mitsuba's gradient, frame, flip and shadowing term (docs/mitsuba-import.md).
+            mat.set("bump_model", Node::string("mitsuba"));
+            mat.set("terminator_model", Node::string("estevez"));
+            mat.set("invalid_normals", out.find("invalid_normals") ? *out.find("invalid_normals") : Node::string("mirror"));
             return mat;
         }
 

@@ -196,7 +196,7 @@ BSDF Scene::textured_bsdf(const SurfaceInteraction& si) const {
     BxDF bxdf = get_textured_bxdf(materials[si.material_id], mt, textures, ctx, si);
     if (!mt.perturbs_normal()) return BSDF(bxdf, si.shading, si.ng);
     BSDF b(bxdf, perturbed_shading_frame(mt, textures, ctx, si), si.ng);
-    if (mt.terminator_softening) b.soften_terminator(si.shading.n);
+    if (mt.terminator_softening) b.soften_terminator(si.shading.n, mt.terminator_model);
     return b;
 }
 

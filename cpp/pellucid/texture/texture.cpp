@@ -204,6 +204,45 @@ bool texture_gradient_uv(const TextureList& list, uint32_t id, const TextureEval
     }, list[id]);
 }
 
+namespace {
+// Per-channel (u, v) gradients of the full-resolution bilinear interpolation (see
+// texture_luminance_gradient_uv).
+bool bilinear_gradient_uv(const TextureList& list, uint32_t id, const TextureEvalContext& ctx, Spectrum* du,
+                          Spectrum* dv) {
+    return std::visit([&](const auto& t) -> bool {
+        using T = std::decay_t<decltype(t)>;
+        if constexpr (std::is_same_v<T, ConstantTexture>) {
+            *du = *dv = Spectrum(0.f);
+            return true;
+        } else if constexpr (std::is_same_v<T, ImageTexture>) {
+            Vec2f st = t.to_uv.point(ctx.uv);
+            Spectrum ds, dt;
+            lookup_image_texture_gradient(t.handle, t.wrap, st.x, st.y, &ds, &dt);
+            // Chain rule through st = A·uv + b: ∂f/∂u = a00·∂f/∂s + a10·∂f/∂t, ∂f/∂v = a01·∂f/∂s + a11·∂f/∂t.
+            *du = ds * t.to_uv.a00 + dt * t.to_uv.a10;
+            *dv = ds * t.to_uv.a01 + dt * t.to_uv.a11;
+            return true;
+        } else if constexpr (std::is_same_v<T, ScaleTexture>) {
+            if (!bilinear_gradient_uv(list, t.texture, ctx, du, dv)) return false;
+            *du = *du * t.scale;
+            *dv = *dv * t.scale;
+            return true;
+        } else {
+            return false;
+        }
+    }, list[id]);
+}
+}  // namespace
+
+bool texture_luminance_gradient_uv(const TextureList& list, uint32_t id, const TextureEvalContext& ctx, float* dfdu,
+                                   float* dfdv) {
+    Spectrum du, dv;
+    if (!bilinear_gradient_uv(list, id, ctx, &du, &dv)) return false;
+    *dfdu = du.luminance();
+    *dfdv = dv.luminance();
+    return true;
+}
+
 std::string to_string(const Texture& tex) {
     return std::visit([](const auto& t) -> std::string {
         using T = std::decay_t<decltype(t)>;

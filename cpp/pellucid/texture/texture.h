@@ -99,6 +99,14 @@ Spectrum eval_texture(const TextureList& list, uint32_t id, const TextureEvalCon
 bool texture_gradient_uv(const TextureList& list, uint32_t id, const TextureEvalContext& ctx, const Vec3f& dpdu,
                          const Vec3f& dpdv, float* dfdu, float* dfdv, Spectrum* value = nullptr);
 
+/// Mitsuba's bump-map gradient (bump_model "mitsuba", Mitsuba 3's bitmap `eval_1_grad`): the exact
+/// (u, v) derivative of the bilinear interpolation of the full-resolution image's luminance
+/// (Rec. 709 weights), whatever the texture's filter and with no footprint, through `to_uv`. Also
+/// for constant textures (0) and scale textures of such textures. Returns false for other textures
+/// (bump mapping then uses texture_gradient_uv or finite differences).
+bool texture_luminance_gradient_uv(const TextureList& list, uint32_t id, const TextureEvalContext& ctx, float* dfdu,
+                                   float* dfdv);
+
 /// Perlin's improved noise in [-1, 1] (roughly) and its gradient.
 float perlin_noise(const Vec3f& p, Vec3f* gradient = nullptr);
 

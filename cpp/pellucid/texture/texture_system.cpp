@@ -180,6 +180,29 @@ Spectrum lookup_image_texture(const ImageTextureHandle& h, TextureFilter filter,
     return Spectrum(r[0], r[1], r[2]);
 }
 
+Spectrum lookup_image_texture_gradient(const ImageTextureHandle& h, TextureWrap wrap, float s, float t,
+                                       Spectrum* dvalue_ds, Spectrum* dvalue_dt) {
+    OIIO::TextureSystem* ts = texture_system();
+    OIIO::TextureOpt opt;
+    opt.swrap = opt.twrap = to_oiio(wrap);
+    opt.mipmode = OIIO::TextureOpt::MipModeNoMIP;
+    opt.interpmode = OIIO::TextureOpt::InterpBilinear;
+    float r[3] = {0.f, 0.f, 0.f}, ds[3] = {0.f, 0.f, 0.f}, dt[3] = {0.f, 0.f, 0.f};
+    auto* handle = static_cast<OIIO::TextureSystem::TextureHandle*>(h.handle);
+    int n = h.channels >= 3 ? 3 : 1;
+    thread_local OIIO::TextureSystem::Perthread* thread_info = ts->get_perthread_info();
+    // OIIO differentiates its bilinear interpolation exactly when asked for dresultds/dresultdt.
+    ts->texture(handle, thread_info, opt, s, t, 0.f, 0.f, 0.f, 0.f, n, r, ds, dt);
+    if (n == 1) {
+        *dvalue_ds = Spectrum(ds[0]);
+        *dvalue_dt = Spectrum(dt[0]);
+        return Spectrum(r[0]);
+    }
+    *dvalue_ds = Spectrum(ds[0], ds[1], ds[2]);
+    *dvalue_dt = Spectrum(dt[0], dt[1], dt[2]);
+    return Spectrum(r[0], r[1], r[2]);
+}
+
 int write_level_index_mipmap(const std::string& path, int size) {
     auto out = OIIO::ImageOutput::create(path);
     if (!out || !out->supports("mipmap")) throw Error(path + ": cannot write a MIP-mapped file");

@@ -48,6 +48,13 @@ ImageTextureHandle open_image_texture(const std::string& path, TextureColorSpace
 Spectrum lookup_image_texture(const ImageTextureHandle& h, TextureFilter filter, TextureWrap wrap, float s,
                               float t, float dsdx, float dtdx, float dsdy, float dtdy);
 
+/// Bilinear lookup at the full-resolution level (no MIP map, no footprint) at (s, t), with the exact
+/// derivatives of that bilinear interpolation with respect to s and t (texel centres at
+/// (i + ½)/width, so ∂/∂s = width × the difference of neighbouring texels, blended in t). The
+/// bump gradient of Mitsuba's bitmap texture is this derivative (bump_model "mitsuba").
+Spectrum lookup_image_texture_gradient(const ImageTextureHandle& h, TextureWrap wrap, float s, float t,
+                                       Spectrum* dvalue_ds, Spectrum* dvalue_dt);
+
 /// Testing aid: write a tiled, MIP-mapped float image whose level k holds the constant value k, to
 /// check which level a lookup reads. Returns the level count.
 int write_level_index_mipmap(const std::string& path, int size);

@@ -86,14 +86,17 @@ TEST(MitsubaBumpmap, ScaleAndPerturbedNormalOptions) {
     EXPECT_EQ(m.find("bump_scale")->as_number(), 0.3);
     ASSERT_NE(m.find("terminator_softening"), nullptr);
     EXPECT_FALSE(m.find("terminator_softening")->as_bool());
-    // Mitsuba's defaults (scale 1, both options true) are ours: nothing is written.
+    // Mitsuba's defaults (scale 1, both options true) write only Mitsuba's model: its gradient and
+    // frame, the mirroring of invalid normals and the Estevez shadowing term.
     d = parse(scene(checker("name=\"a\"") + "<bsdf type=\"diffuse\"/>"));
     EXPECT_EQ(material_of(d).find("bump_scale"), nullptr);
     EXPECT_EQ(material_of(d).find("terminator_softening"), nullptr);
-    // flip_invalid_normals = false cannot be honoured: a warning names the line.
-    LogCapture log;
-    parse(scene(checker("name=\"a\"") + "<bsdf type=\"diffuse\"/>\n<boolean name=\"flip_invalid_normals\" value=\"false\"/>"));
-    EXPECT_TRUE(log.has("scene.xml:6: 'flip_invalid_normals' false of bsdf plugin 'bumpmap' is not supported")) << log.warnings.size();
+    EXPECT_EQ(material_of(d).find("bump_model")->as_string(), "mitsuba");
+    EXPECT_EQ(material_of(d).find("invalid_normals")->as_string(), "mirror");
+    EXPECT_EQ(material_of(d).find("terminator_model")->as_string(), "estevez");
+    // flip_invalid_normals = false leaves invalid normals as they are.
+    d = parse(scene(checker("name=\"a\"") + "<bsdf type=\"diffuse\"/>\n<boolean name=\"flip_invalid_normals\" value=\"false\"/>"));
+    EXPECT_EQ(material_of(d).find("invalid_normals")->as_string(), "keep");
     // normalmap takes the same two options.
     d = parse("<scene version=\"3.0.0\"><shape type=\"sphere\"><bsdf type=\"normalmap\">" + checker("name=\"normalmap\"") +
               "<bsdf type=\"diffuse\"/><boolean name=\"use_shadowing_function\" value=\"false\"/></bsdf></shape></scene>");

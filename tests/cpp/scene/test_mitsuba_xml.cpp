@@ -272,8 +272,10 @@ TEST(MitsubaXml, WrappersAndTextures) {
           "coat_transmittance": "rough", "shadowing": "separable"},
   "bumpy": {"type": "lambertian", "reflectance": {"type": "checkerboard", "color0": 0.1, "color1": 0.9,
                                                    "to_uv": [{"scale": [4, 4, 1]}], "filtered": false},
-            "bump_map": {"type": "image", "color_space": "linear", "filename": "bump.png"}, "bump_scale": 0.5},
-  "nm": {"type": "conductor", "normal_map": {"type": "image", "filename": "n.png"}}}})"));
+            "bump_map": {"type": "image", "color_space": "linear", "filename": "bump.png"}, "bump_scale": 0.5,
+            "bump_model": "mitsuba", "terminator_model": "estevez", "invalid_normals": "mirror"},
+  "nm": {"type": "conductor", "normal_map": {"type": "image", "filename": "n.png", "color_space": "auto"},
+         "bump_model": "mitsuba", "terminator_model": "estevez", "invalid_normals": "mirror"}}})"));
 }
 
 TEST(MitsubaXml, Lights) {

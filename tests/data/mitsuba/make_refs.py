@@ -7,7 +7,8 @@ Run with the peer venv (bench/peers/setup_mitsuba.sh), from anywhere:
 For each scene named (default: all of SCENES) it renders `passes` independent passes (seeds
 0..passes-1) of `spp` samples per pixel with Mitsuba's llvm_ad_rgb variant (scalar_rgb when LLVM is
 unavailable) and writes ref/<scene>.exr (the mean of the passes) and ref/<scene>.var.exr (the variance of that mean,
-sample variance over passes / passes). The test imports `render_reference` from this file when
+sample variance over passes / passes). Before rendering it writes the 8-bit PNGs that bumpmap.xml
+reads (bump_height.png, bump_normals.png; deterministic, see make_bump_assets) where missing. The test imports `render_reference` from this file when
 `mitsuba` is importable in the test's own interpreter, so the direct and committed paths agree.
 """
 from __future__ import annotations
@@ -18,7 +19,7 @@ import pathlib
 import sys
 
 HERE = pathlib.Path(__file__).resolve().parent
-SCENES = ["aniso_sphere", "cornell_mini", "cube_uv", "glass", "metals", "plastics", "principled", "spheres", "textures"]
+SCENES = ["aniso_sphere", "bumpmap", "cornell_mini", "cube_uv", "glass", "metals", "plastics", "principled", "spheres", "textures"]
 PASSES, SPP = 16, 256
 
 # Dr.Jit's LLVM backend needs a recent libLLVM (as bench/peers/mitsuba_runner.py).
@@ -40,6 +41,28 @@ def set_variant() -> str:
     raise RuntimeError("no usable Mitsuba variant (need llvm_ad_rgb or scalar_rgb)")
 
 
+def make_bump_assets() -> None:
+    """bumpmap.xml's textures, written with Mitsuba's Bitmap (8-bit PNG) where missing.
+
+    bump_height.png: 16x16 RGB heights whose channels differ (the bump gradient is that of the
+    luminance, not of the channel mean). bump_normals.png: 16x16 tangent-space normals (OpenGL
+    convention, encoded n/2 + 1/2) of sloped stripes, tilting up to about 35 degrees."""
+    import numpy as np
+    import mitsuba as mi
+
+    y, x = np.mgrid[0:16, 0:16] + 0.5
+    r = 0.5 + 0.35 * np.sin(2 * np.pi * x / 8) * np.cos(2 * np.pi * y / 16)
+    g = 0.5 + 0.3 * np.cos(2 * np.pi * (x + y) / 16)
+    b = 0.5 + 0.45 * np.sin(2 * np.pi * y / 4)
+    height = np.clip(np.round(np.stack([r, g, b], -1) * 255), 0, 255).astype(np.uint8)
+    n = np.stack([-0.7 * np.cos(2 * np.pi * x / 8), -0.35 * np.sin(2 * np.pi * y / 8), np.ones_like(x)], -1)
+    n /= np.linalg.norm(n, axis=-1, keepdims=True)
+    normals = np.clip(np.round((n * 0.5 + 0.5) * 255), 0, 255).astype(np.uint8)
+    for name, data in (("bump_height.png", height), ("bump_normals.png", normals)):
+        if not (HERE / name).exists():
+            mi.Bitmap(data, mi.Bitmap.PixelFormat.RGB).write(str(HERE / name))
+
+
 def render_reference(name: str, passes: int = PASSES, spp: int = SPP):
     """(mean, variance of the mean) as float32 (H, W, 3) arrays, from `passes` Mitsuba passes."""
     import numpy as np
@@ -47,6 +70,7 @@ def render_reference(name: str, passes: int = PASSES, spp: int = SPP):
 
     if mi.variant() is None:
         set_variant()
+    make_bump_assets()
     scene = mi.load_file(str(HERE / f"{name}.xml"), spp=spp)
     imgs = np.stack([np.array(mi.render(scene, seed=s, spp=spp))[..., :3] for s in range(passes)])
     return imgs.mean(axis=0).astype(np.float32), (imgs.var(axis=0, ddof=1) / passes).astype(np.float32)
