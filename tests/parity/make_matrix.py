@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 import pathlib
 import struct
 import sys
@@ -804,22 +803,10 @@ def check_scenes() -> List[str]:
 
 # --------------------------------------------------------------------------------------------
 # References (Mitsuba)
-for _p in ("/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1", "/usr/lib/x86_64-linux-gnu/libLLVM-19.so.1",
-           "/usr/lib/llvm-19/lib/libLLVM.so.1"):
-    if "DRJIT_LIBLLVM_PATH" not in os.environ and os.path.exists(_p):
-        os.environ["DRJIT_LIBLLVM_PATH"] = _p
-
-
-def set_variant() -> str:
-    import mitsuba as mi
-
-    for v in ("llvm_ad_rgb", "scalar_rgb"):
-        try:
-            mi.set_variant(v)
-            return v
-        except Exception:  # noqa: BLE001 - variant not built or LLVM missing
-            continue
-    raise RuntimeError("no usable Mitsuba variant (need llvm_ad_rgb or scalar_rgb)")
+# The Mitsuba variant set-up (Dr.Jit's LLVM path, llvm_ad_rgb or scalar_rgb) is make_refs.py's.
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "data" / "mitsuba"))
+from make_refs import set_variant  # noqa: E402
+sys.path.pop(0)
 
 
 def render_reference(name: str, passes: int = REF_PASSES, spp: int = REF_SPP):

@@ -2,19 +2,16 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/bxdf/principled.h"
 
+#include "pellucid/bxdf/disney_common.h"
 #include "pellucid/bxdf/fresnel.h"
 #include "pellucid/math/spherical.h"
 #include "pellucid/sampling/warp.h"
 
 namespace pellucid {
 namespace {
-float schlick_weight(float c) {
-    float m = clamp(1.f - c, 0.f, 1.f), m2 = m * m;
-    return m2 * m2 * m;
-}
-float lerp(float a, float b, float t) { return a + (b - a) * t; }
-Spectrum lerp(const Spectrum& a, const Spectrum& b, float t) { return a + (b - a) * t; }
-float sat(float x) { return std::isfinite(x) ? clamp(x, 0.f, 1.f) : 0.f; }
+using disney::lerp;
+using disney::schlick_weight;
+using disney::unit;
 
 GGX make_spec(float roughness, float anisotropic) {
     float a = sqr(roughness), aspect = std::sqrt(1.f - 0.9f * anisotropic);
@@ -26,7 +23,7 @@ Principled::Principled(const PrincipledParams& p) : m_p(p), m_spec(1.f) {
     m_p.base_color = clamp_zero(p.base_color);
     for (float* v : {&m_p.metallic, &m_p.roughness, &m_p.specular, &m_p.specular_tint, &m_p.sheen,
                      &m_p.sheen_tint, &m_p.clearcoat, &m_p.clearcoat_gloss, &m_p.anisotropic})
-        *v = sat(*v);
+        *v = unit(*v);
     float lum = m_p.base_color.luminance();
     Spectrum tint = lum > 0.f ? m_p.base_color / lum : Spectrum(1.f);
     m_cspec0 = lerp(m_p.specular * 0.08f * lerp(Spectrum(1.f), tint, m_p.specular_tint), m_p.base_color, m_p.metallic);

@@ -4,19 +4,16 @@
 
 #include <cmath>
 
+#include "pellucid/bxdf/disney_common.h"
 #include "pellucid/bxdf/fresnel.h"
 #include "pellucid/math/spherical.h"
 #include "pellucid/sampling/warp.h"
 
 namespace pellucid {
 namespace {
-float schlick_weight(float c) {
-    float m = clamp(1.f - c, 0.f, 1.f), m2 = m * m;
-    return m2 * m2 * m;
-}
-float lerp(float a, float b, float t) { return a + (b - a) * t; }
-Spectrum lerp(const Spectrum& a, const Spectrum& b, float t) { return a + (b - a) * t; }
-float unit(float x) { return std::isfinite(x) ? clamp(x, 0.f, 1.f) : 0.f; }
+using disney::lerp;
+using disney::schlick_weight;
+using disney::unit;
 float r0_of_eta(float eta) { return sqr((eta - 1.f) / (eta + 1.f)); }
 
 /// Smith G1 of `d` for direction v and microfacet normal h, zero where v sees the back of the
