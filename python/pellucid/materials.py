@@ -42,9 +42,9 @@ def _make(type_name: str, params: Dict[str, Any]) -> Material:
     return d
 
 
-# Keys every material takes (bump and normal maps; docs/scene-format.md, "Bump and normal maps").
+# Keys every material takes (bump and normal maps, sidedness; docs/scene-format.md, "Bump and normal maps").
 _SURFACE_KEYS = ("bump_map", "bump_scale", "bump_step_scale", "bump_model", "normal_map", "normal_map_convention",
-                 "invalid_normals", "terminator_softening", "terminator_model")
+                 "invalid_normals", "terminator_softening", "terminator_model", "two_sided")
 
 
 def _with_surface_keys(fn):
@@ -65,8 +65,8 @@ def _with_surface_keys(fn):
     wrapper.__signature__ = sig.replace(parameters=list(sig.parameters.values()) + extra)
     wrapper.__doc__ = (fn.__doc__ or "") + (
         "\n    Every material also takes ``bump_map``, ``bump_scale``, ``bump_step_scale``, ``bump_model``,"
-        "\n    ``normal_map``, ``normal_map_convention``, ``invalid_normals``, ``terminator_softening`` and"
-        "\n    ``terminator_model`` (docs/scene-format.md).\n")
+        "\n    ``normal_map``, ``normal_map_convention``, ``invalid_normals``, ``terminator_softening``,"
+        "\n    ``terminator_model`` and ``two_sided`` (docs/scene-format.md).\n")
     return wrapper
 
 

@@ -70,6 +70,7 @@ std::shared_ptr<const LaneScene> make_lane_scene(const Scene& scene, const Integ
     };
     if (settings.type != "path") return no("integrator type " + settings.type);
     if (scene.has_textures) return no("textures");
+    if (scene.has_one_sided) return no("a one-sided material");
     for (size_t m = 0; m < scene.material_bxdfs.size(); ++m)
         if (!std::holds_alternative<Lambertian>(scene.material_bxdfs[m]))
             return no("material '" + scene.material_names[m] + "' is not lambertian");

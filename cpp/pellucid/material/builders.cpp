@@ -436,6 +436,11 @@ Material build_material(const Node& node, const BuildContext& ctx, const std::st
     }
     Material m = it->second(p, ctx);
     read_normal_perturbation(p, ctx);
+    if (p.has("two_sided")) {
+        if (!ctx.material_textures)
+            p.fail("two_sided", "is a scene-level key (this interface evaluates the BSDF on both sides)");
+        ctx.material_textures->two_sided = p.get_bool("two_sided", true);
+    }
     p.check_unqueried();
     return m;
 }

@@ -65,6 +65,9 @@ struct MaterialTextures {
     /// term unless terminator_model says Estevez (bxdf/bsdf.h).
     bool terminator_softening = true;
     TerminatorModel terminator_model = TerminatorModel::Chiang;
+    /// Key `two_sided`: false makes a hit seen from the back of its shading normal
+    /// (dot(wo, shading n) ≤ 0) scatter nothing (Scene::bsdf), as Mitsuba 3's one-sided BSDFs.
+    bool two_sided = true;
 
     bool has_bindings() const { return count > 0; }
     bool perturbs_normal() const { return bump >= 0 || normal_map >= 0; }

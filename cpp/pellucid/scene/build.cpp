@@ -43,6 +43,7 @@ public:
         for (const Material& m : m_scene.materials) m_scene.material_bxdfs.push_back(get_bxdf(m, SurfaceInteraction{}));
         for (const auto& mt : m_scene.material_textures)
             m_scene.has_textures = m_scene.has_textures || mt.has_bindings() || mt.perturbs_normal();
+        for (const auto& mt : m_scene.material_textures) m_scene.has_one_sided = m_scene.has_one_sided || !mt.two_sided;
         if (m_scene.shapes.empty() && m_scene.lights.empty())
             log_warning(m_desc.source + ": the scene has no shapes and no lights; it renders black");
         m_scene.accel.commit();

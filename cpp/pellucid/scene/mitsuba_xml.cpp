@@ -505,7 +505,8 @@ private:
             return std::nullopt;
         }
         if (type == "twosided") {
-            // Our materials reflect on both sides already; twosided only unwraps.
+            // twosided(bsdf): the nested material with two_sided true (our default; the one-sided
+            // plugins below set it false).
             Collected c = collect(n);
             Node none = Node::object();
             map_params(none, c, what, *plugin);
@@ -520,7 +521,12 @@ private:
                 return std::nullopt;
             }
             if (inner.size() != 1) fail(n, "twosided needs exactly one nested bsdf");
-            return bsdf_value(inner[0]);
+            std::optional<Node> v = bsdf_value(inner[0]);
+            if (!v) return std::nullopt;
+            Node mat = v->is_string() ? *m_materials.find(v->as_string()) : *v;
+            if (!mat.find("two_sided")) return v;  // two-sided already (a named one stays shared)
+            mat.set("two_sided", Node::boolean(true));
+            return mat;
         }
         if (type == "bumpmap" || type == "normalmap") {
             const bool bump = type == "bumpmap";
@@ -666,6 +672,14 @@ private:
             fail(n, "internal: no conversion for " + what);
         }
         no_objects(c, what);
+        // Mitsuba's opaque plugins reflect only toward the front of the shading normal (black from
+        // behind); twosided (above) lifts it. dielectric, roughdielectric, thindielectric and
+        // principledthin are two-sided there; principled keeps its specular lobes from behind, so
+        // it stays two-sided here (docs/mitsuba-import.md, "Sidedness").
+        static const char* one_sided[] = {"diffuse", "roughdiffuse", "conductor", "roughconductor", "plastic",
+                                          "roughplastic"};
+        for (const char* t : one_sided)
+            if (type == t) out.set("two_sided", Node::boolean(false));
         return out;
     }
 

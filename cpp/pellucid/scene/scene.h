@@ -65,7 +65,10 @@ public:
         accel.occluded_packet(n, rays, occluded);
     }
     /// The BSDF at a hit: textures evaluated over the hit's footprint, bump/normal maps applied.
+    /// A material with two_sided false seen from the back of the shading normal scatters nothing.
     BSDF bsdf(const SurfaceInteraction& si) const {
+        if (has_one_sided && !material_textures[si.material_id].two_sided && !(dot(si.wo, si.shading.n) > 0.f))
+            return BSDF::borrowing(&no_scatter_bxdf, si.shading, si.ng);
         if (!has_textures || !needs_textures(si))
             return BSDF::borrowing(&material_bxdfs[si.material_id], si.shading, si.ng);
         return textured_bsdf(si);
@@ -101,6 +104,10 @@ public:
     std::vector<MaterialTextures> material_textures;  ///< parallel to materials
     TextureList textures;
     bool has_textures = false;  ///< any material reads textures or perturbs normals
+    bool has_one_sided = false;  ///< any material has two_sided false
+    /// The BxDF of a one-sided material seen from behind: flags None (the path ends), eval 0,
+    /// pdf 0, and sample() gives nothing (its weight is 0).
+    const BxDF no_scatter_bxdf = SmoothConductor<ConductorFresnel>(ConductorFresnel{}, Spectrum(0.f));
     std::vector<Light> lights;
     std::vector<uint32_t> infinite_lights;  ///< indices into lights
     Distribution1D light_distribution;      ///< light selection (uniform or by power)

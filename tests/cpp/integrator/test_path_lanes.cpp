@@ -179,6 +179,8 @@ TEST(PathLanes, LeavesScenesThatNeedMoreToTheGeneralLoop) {
         {R"("materials": {"m": {"type": "lambertian"}}, "shapes": [{"type": "rectangle", "material": "m"}],
             "lights": [{"type": "point", "position": [0, 0, 1], "intensity": 1}])", "other than an area light"},
         {R"("materials": {"m": {"type": "lambertian"}}, "shapes": [{"type": "rectangle", "material": "m"}])", "no lights"},
+        {R"("materials": {"m": {"type": "lambertian", "two_sided": false}}, "shapes": [{"type": "rectangle",
+            "material": "m", "emitter": {"type": "area", "radiance": 1}}])", "one-sided material"},
     };
     for (const Case& c : cases) {
         auto s = scene_from("{" + base + c.scene + "}");

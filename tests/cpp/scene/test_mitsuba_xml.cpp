@@ -142,13 +142,13 @@ TEST(MitsubaXml, ShapesMaterialsAndAreaEmitters) {
   <shape type="cube"/>
   <shape type="disk"/>)"),
                             R"({
-  "materials": {"white": {"type": "lambertian", "reflectance": [0.8, 0.7, 0.6]}},
+  "materials": {"white": {"type": "lambertian", "reflectance": [0.8, 0.7, 0.6], "two_sided": false}},
   "shapes": [
     {"type": "obj", "filename": "meshes/bunny.obj", "face_normals": true, "smooth_normals": false,
      "flip_tex_coords": true, "usemtl": false, "material": "white"},
     {"type": "ply", "filename": "a.ply", "face_normals": false, "smooth_normals": true, "material": "white"},
     {"type": "sphere", "center": [1, 2, 3], "radius": 0.5,
-     "material": {"type": "lambertian", "reflectance": 0.25}},
+     "material": {"type": "lambertian", "reflectance": 0.25, "two_sided": false}},
     {"type": "rectangle", "flip_normals": true, "material": {"type": "lambertian", "reflectance": 0},
      "emitter": {"type": "area", "radiance": 10}},
     {"type": "cube"},
@@ -206,18 +206,21 @@ TEST(MitsubaXml, BsdfMappings) {
   <bsdf type="principledthin" id="p_thin"><float name="diff_trans" value="1.2"/><float name="spec_trans" value="0.3"/></bsdf>
   <bsdf type="twosided" id="two"><bsdf type="diffuse"><float name="reflectance" value="0.3"/></bsdf></bsdf>)"),
                             R"({"materials": {
-  "au": {"type": "conductor", "material": "Au"},
-  "custom": {"type": "conductor", "eta": [0.2, 0.4, 1.4], "k": [3.9, 2.4, 1.8], "specular_reflectance": 0.9},
+  "au": {"type": "conductor", "material": "Au", "two_sided": false},
+  "custom": {"type": "conductor", "eta": [0.2, 0.4, 1.4], "k": [3.9, 2.4, 1.8], "specular_reflectance": 0.9,
+             "two_sided": false},
   "rc": {"type": "rough_conductor", "distribution": "ggx", "alpha_u": 0.05, "alpha_v": 0.3, "material": "Cu",
-         "shadowing": "separable"},
-  "rc_default": {"type": "rough_conductor", "alpha": 0.2, "distribution": "beckmann", "shadowing": "separable"},
+         "shadowing": "separable", "two_sided": false},
+  "rc_default": {"type": "rough_conductor", "alpha": 0.2, "distribution": "beckmann", "shadowing": "separable",
+                 "two_sided": false},
   "glass": {"type": "dielectric", "int_ior": "bk7", "ext_ior": 1.0},
   "frosted": {"type": "rough_dielectric", "distribution": "ggx", "alpha": 0.3, "shadowing": "separable"},
   "pane": {"type": "thin_dielectric", "int_ior": 1.5},
-  "red": {"type": "plastic", "diffuse_reflectance": [0.5, 0.1, 0.1], "int_ior": 1.9, "variant": "linear"},
+  "red": {"type": "plastic", "diffuse_reflectance": [0.5, 0.1, 0.1], "int_ior": 1.9, "variant": "linear",
+          "two_sided": false},
   "rp": {"type": "rough_plastic", "alpha": 0.1, "distribution": "ggx", "variant": "linear",
-         "coat_transmittance": "rough", "shadowing": "separable"},
-  "nl": {"type": "plastic", "variant": "coupled"},
+         "coat_transmittance": "rough", "shadowing": "separable", "two_sided": false},
+  "nl": {"type": "plastic", "variant": "coupled", "two_sided": false},
   "p": {"type": "principled", "variant": "2015", "base_color": [0.1, 0.2, 0.3], "metallic": 0.7, "roughness": 0.3,
         "specular": 0.6, "specular_tint": 0.2, "sheen": 0.1, "sheen_tint": 0.4, "clearcoat": 0.5,
         "clearcoat_gloss": 0.8, "anisotropic": 0.25},
@@ -226,7 +229,7 @@ TEST(MitsubaXml, BsdfMappings) {
               "base_color": 0.5, "sheen_tint": 0, "clearcoat_gloss": 0},
   "p_thin": {"type": "principled", "variant": "2015", "thin": true, "diffuse_transmission": 1.2,
              "specular_transmission": 0.3, "base_color": 0.5, "sheen_tint": 0, "eta": 1.5},
-  "two": {"type": "lambertian", "reflectance": 0.3}}})"));
+  "two": {"type": "lambertian", "reflectance": 0.3, "two_sided": true}}})"));
 }
 
 TEST(MitsubaXml, RoughDiffuseAlphaToSigmaDegrees) {
@@ -266,15 +269,18 @@ TEST(MitsubaXml, WrappersAndTextures) {
   </bsdf>)"),
                             R"({"materials": {
   "tiles": {"type": "lambertian", "reflectance": {"type": "checkerboard", "color0": 0.1, "color1": 0.9,
-                                                   "to_uv": [{"scale": [4, 4, 1]}], "filtered": false}},
+                                                   "to_uv": [{"scale": [4, 4, 1]}], "filtered": false},
+            "two_sided": false},
   "img": {"type": "rough_plastic", "diffuse_reflectance": {"type": "image", "filename": "textures/wood.png",
           "filter": "nearest", "wrap_mode": "clamp"}, "distribution": "beckmann", "variant": "linear",
-          "coat_transmittance": "rough", "shadowing": "separable"},
+          "coat_transmittance": "rough", "shadowing": "separable", "two_sided": false},
   "bumpy": {"type": "lambertian", "reflectance": {"type": "checkerboard", "color0": 0.1, "color1": 0.9,
                                                    "to_uv": [{"scale": [4, 4, 1]}], "filtered": false},
+            "two_sided": false,
             "bump_map": {"type": "image", "color_space": "linear", "filename": "bump.png"}, "bump_scale": 0.5,
             "bump_model": "mitsuba", "terminator_model": "estevez", "invalid_normals": "mirror"},
-  "nm": {"type": "conductor", "normal_map": {"type": "image", "filename": "n.png", "color_space": "auto"},
+  "nm": {"type": "conductor", "two_sided": true,
+         "normal_map": {"type": "image", "filename": "n.png", "color_space": "auto"},
          "bump_model": "mitsuba", "terminator_model": "estevez", "invalid_normals": "mirror"}}})"));
 }
 
@@ -346,7 +352,7 @@ TEST(MitsubaXml, UnsupportedPluginsAndLenientMode) {
     ASSERT_EQ(log.warnings.size(), 2u);
     EXPECT_EQ(log.warnings[0], "scene.xml:3: unsupported bsdf plugin 'hair' (skipped)");
     EXPECT_EQ(log.warnings[1], "scene.xml:6: unsupported parameter 'wobble' of shape plugin 'sphere' (skipped)");
-    EXPECT_TRUE(same(d.root, parse_json(R"({"materials": {"ok": {"type": "lambertian"}},
+    EXPECT_TRUE(same(d.root, parse_json(R"({"materials": {"ok": {"type": "lambertian", "two_sided": false}},
                                              "shapes": [{"type": "sphere", "radius": 2}]})", "e")));
     // A ref to a skipped bsdf stays an error: its id was never defined.
     EXPECT_EQ(error_of(scene("<bsdf type=\"hair\" id=\"h\"/>\n<shape type=\"cube\"><ref id=\"h\"/></shape>"), true),
@@ -393,7 +399,7 @@ TEST(MitsubaXml, IncludesResolveRelativeToTheirFile) {
 <shape type="obj"><string name="filename" value="meshes/a.obj"/><ref id="grey"/></shape>)"));
     SceneDesc d = read_mitsuba_xml_file((dir / "main.xml").string(), false);
     EXPECT_EQ(d.source, (dir / "main.xml").string());
-    EXPECT_TRUE(same(d.root, parse_json(R"({"materials": {"grey": {"type": "lambertian"}}, "shapes": [
+    EXPECT_TRUE(same(d.root, parse_json(R"({"materials": {"grey": {"type": "lambertian", "two_sided": false}}, "shapes": [
         {"type": "obj", "filename": "parts/meshes/a.obj", "face_normals": false, "smooth_normals": true, "flip_tex_coords": true, "usemtl": false,
          "material": "grey"},
         {"type": "sphere", "radius": 3, "material": "grey"}]})", "e")));
