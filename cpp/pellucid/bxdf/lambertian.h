@@ -33,7 +33,7 @@ struct LambertianT {
     BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& /*u_lobe*/, const V2<F>& u) const {
         BxDFSampleT<F> s;
         s.wi = square_to_cosine_hemisphere<F>(u);
-        s.wi.z = lane::select(wo.z < F(0.f), -s.wi.z, s.wi.z);
+        s.wi.z = lane::select(wo.z < F(0.f), lane::neg(s.wi.z), s.wi.z);
         s.pdf = square_to_cosine_hemisphere_pdf<F>(V3<F>(s.wi.x, s.wi.y, lane::abs(s.wi.z)));
         s.valid = wo.z != F(0.f) && s.pdf > F(0.f);
         if (!has_flag(ctx.allowed, BxDFFlags::Reflection)) s.valid = MaskT<F>(false);

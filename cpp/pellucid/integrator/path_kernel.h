@@ -31,8 +31,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     constexpr int W = kLaneWidth<F>;
     using M = MaskT<F>;
     static_assert(W <= 16, "one Embree packet per vertex");
-    PathSetup ps = ps_in;  // NOLINT: a copy per tile (tables are small); splat follows the film
-    ps.splat = film.splats();
+    const PathSetup& ps = ps_in;
+    const bool splat = film.splats();
     const Scene& scene = *ps.scene;
     const int tile_w = job.x1 - job.x0, n_samples = job.s1 - job.s0;
     const int64_t n_pixels = int64_t(tile_w) * (job.y1 - job.y0);
@@ -66,6 +66,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         bool specular[W];
         // This vertex.
         float Ler[W], Leg[W], Leb[W], le_pdf[W];
+        float pex[W], pey[W], pez[W];  // error bound of the hit point
         float px[W], py[W], pz[W], ngx[W], ngy[W], ngz[W], wox[W], woy[W], woz[W];
         float sx[W], sy[W], sz[W], tx[W], ty[W], tz[W], nx[W], ny[W], nz[W];
         float ar[W], ag[W], ab[W];  // packet Lambertian reflectance (0 elsewhere)
@@ -83,7 +84,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         bool has_shadow[W], alive[W], sampled[W];
         float Ldr[W], Ldg[W], Ldb[W];
         float nwx[W], nwy[W], nwz[W];
-    } a;
+    } a{};
     auto LD = [](const float* p) { return lane::load_as<F>(p); };
     auto LM = [](const bool* p) { return lane::load_mask_as<M>(p); };
     auto ST = [](float* p, const F& v) { lane::store(p, v); };
@@ -109,7 +110,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             int x, y;
             pixel_xy(k, &x, &y);
             path_of[i] = k;
-            path_services::start(ps, x, y, job.s0 + int(k % n_samples), job.seed, &sampler[i], &ray[i], &done[k].fx,
+            path_services::start(ps, splat, x, y, job.s0 + int(k % n_samples), job.seed, &sampler[i], &ray[i], &done[k].fx,
                                  &done[k].fy);
             a.Lr[i] = a.Lg[i] = a.Lb[i] = 0.f;
             a.br[i] = a.bg[i] = a.bb[i] = 1.f;
@@ -132,7 +133,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
 
             // One lane at a time: what has no packet form yet.
             for (int i = 0; i < W; ++i) {
-                a.fast[i] = a.goes_on[i] = a.nee[i] = a.nee_ok[i] = a.s_ok[i] = false;
+                a.fast[i] = a.goes_on[i] = a.nee[i] = a.nee_ok[i] = a.s_ok[i] = a.delta[i] = false;
                 a.Ler[i] = a.Leg[i] = a.Leb[i] = a.le_pdf[i] = 0.f;
                 a.ar[i] = a.ag[i] = a.ab[i] = 0.f;
                 if (!active[i]) continue;
@@ -155,6 +156,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const int depth = int(a.depth[i]);
                 if (ps.max_depth >= 0 && depth >= ps.max_depth) continue;
                 a.px[i] = h.p.x, a.py[i] = h.p.y, a.pz[i] = h.p.z;
+                a.pex[i] = h.p_error.x, a.pey[i] = h.p_error.y, a.pez[i] = h.p_error.z;
                 a.ngx[i] = h.ng.x, a.ngy[i] = h.ng.y, a.ngz[i] = h.ng.z;
                 a.wox[i] = h.wo.x, a.woy[i] = h.wo.y, a.woz[i] = h.wo.z;
                 a.sx[i] = h.shading.s.x, a.sy[i] = h.shading.s.y, a.sz[i] = h.shading.s.z;
@@ -175,34 +177,60 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 VertexRandoms r;
                 path_services::randoms(sampler[i], depth, a.nee[i], depth >= ps.rr_depth, &r);
                 for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
-                if (a.nee[i]) {
+            }
+
+            // Next-event estimation on the emitter table, for all lanes at once: a point on an
+            // emitting triangle and the shadow ray toward it (SurfaceInteraction::spawn_ray_to:
+            // both ends offset off their surfaces).
+            if (!ps.emitters.empty()) {
+                const M nee = LM(a.nee);
+                const V3<F> p(LD(a.px), LD(a.py), LD(a.pz)), ng(LD(a.ngx), LD(a.ngy), LD(a.ngz));
+                const EmitterSample<F> es = sample_emitter<F>(ps.emitters, LD(a.u[0]), V2<F>{LD(a.u[1]), LD(a.u[2])}, p);
+                SM(a.nee_ok, nee && es.valid);
+                ST(a.lwx, es.wi.x), ST(a.lwy, es.wi.y), ST(a.lwz, es.wi.z);
+                ST(a.lLr, es.L.r), ST(a.lLg, es.L.g), ST(a.lLb, es.L.b);
+                ST(a.lpdf, es.pdf);
+                const V3<F> o = offset_ray_origin<F>(p, V3<F>(LD(a.pex), LD(a.pey), LD(a.pez)), ng, es.p - p);
+                const V3<F> e = offset_ray_origin<F>(es.p, es.err, es.n, o - es.p);
+                const V3<F> d = e - o;
+                alignas(64) float b[6][W];
+                ST(b[0], o.x), ST(b[1], o.y), ST(b[2], o.z), ST(b[3], d.x), ST(b[4], d.y), ST(b[5], d.z);
+                for (int i = 0; i < W; ++i)
+                    if (a.nee_ok[i]) shadow[i] = Ray{Vec3f(b[0][i], b[1][i], b[2][i]), Vec3f(b[3][i], b[4][i], b[5][i]), 1.f - 1e-4f};
+            }
+
+            // One lane at a time again: lights without a table, and the BSDF lanes.
+            for (int i = 0; i < W; ++i) {
+                if (!a.goes_on[i]) continue;
+                const SurfaceInteraction& h = si[i];
+                if (a.nee[i] && ps.emitters.empty()) {
                     LightLiSample ls;
-                    a.nee_ok[i] = path_services::sample_light(ps, h, r.u[0], Vec2f(r.u[1], r.u[2]), &ls, &a.lpdf[i], &shadow[i]);
+                    a.nee_ok[i] = path_services::sample_light(ps, h, a.u[0][i], Vec2f(a.u[1][i], a.u[2][i]), &ls,
+                                                              &a.lpdf[i], &shadow[i]);
                     if (a.nee_ok[i]) {
                         a.lwx[i] = ls.wi.x, a.lwy[i] = ls.wi.y, a.lwz[i] = ls.wi.z;
                         a.lLr[i] = ls.L.r, a.lLg[i] = ls.L.g, a.lLb[i] = ls.L.b;
                         a.delta[i] = ls.delta;
-                        if (!a.fast[i]) {
-                            const Spectrum f = path_services::bsdf_eval(bsdf(i), h.wo, ls.wi, &a.gpdf[i]);
-                            a.gfr[i] = f.r, a.gfg[i] = f.g, a.gfb[i] = f.b;
-                        }
                     }
                 }
-                if (!a.fast[i]) {
-                    BxDFSample s;
-                    a.s_ok[i] = path_services::bsdf_sample(bsdf(i), h.wo, r.u[3], Vec2f(r.u[4], r.u[5]), &s);
-                    if (a.s_ok[i]) {
-                        a.swx[i] = s.wi.x, a.swy[i] = s.wi.y, a.swz[i] = s.wi.z;
-                        a.swr[i] = s.weight.r, a.swg[i] = s.weight.g, a.swb[i] = s.weight.b;
-                        a.spdf[i] = s.pdf;
-                        a.seta[i] = s.eta;
-                        a.slobe[i] = int32_t(s.lobe);
-                    }
+                if (a.fast[i]) continue;
+                if (a.nee_ok[i]) {
+                    const Spectrum f = path_services::bsdf_eval(bsdf(i), h.wo, Vec3f(a.lwx[i], a.lwy[i], a.lwz[i]), &a.gpdf[i]);
+                    a.gfr[i] = f.r, a.gfg[i] = f.g, a.gfb[i] = f.b;
+                }
+                BxDFSample s;
+                a.s_ok[i] = path_services::bsdf_sample(bsdf(i), h.wo, a.u[3][i], Vec2f(a.u[4][i], a.u[5][i]), &s);
+                if (a.s_ok[i]) {
+                    a.swx[i] = s.wi.x, a.swy[i] = s.wi.y, a.swz[i] = s.wi.z;
+                    a.swr[i] = s.weight.r, a.swg[i] = s.weight.g, a.swb[i] = s.weight.b;
+                    a.spdf[i] = s.pdf;
+                    a.seta[i] = s.eta;
+                    a.slobe[i] = int32_t(s.lobe);
                 }
             }
 
             // The packet pass over every lane.
-            for (int o = 0; o < W; o += W) {
+            {
                 const M on = LM(active), is_hit = LM(hit);
                 const RGB<F> beta0(LD(a.br), LD(a.bg), LD(a.bb));
                 RGB<F> L(LD(a.Lr), LD(a.Lg), LD(a.Lb));
@@ -281,14 +309,23 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 ST(a.ppx, p.x), ST(a.ppy, p.y), ST(a.ppz, p.z);
                 ST(a.pnx, ng.x), ST(a.pny, ng.y), ST(a.pnz, ng.z);
                 ST(a.depth, lane::select(sampled, depth + F(1.f), depth));
-                // The next rays leave from the hit (one lane at a time: differentials, offsets).
+                // The next rays leave from the hit, offset off its surface (SurfaceInteraction::
+                // spawn_ray); a delta bounce that carries ray differentials for textures goes through
+                // the scene one lane at a time.
+                const V3<F> nw(LD(a.nwx), LD(a.nwy), LD(a.nwz));
+                const V3<F> o = offset_ray_origin<F>(p, V3<F>(LD(a.pex), LD(a.pey), LD(a.pez)), ng, nw);
                 alignas(64) bool spec_b[W], trans_b[W];
-                alignas(64) float eta_b[W];
+                alignas(64) float eta_b[W], ob[3][W];
                 SM(spec_b, specular), SM(trans_b, transmission), ST(eta_b, eta);
-                for (int i = 0; i < W; ++i)
-                    if (a.alive[i])
-                        ray[i] = path_services::next_ray(ps, si[i], ray[i], Vec3f(a.nwx[i], a.nwy[i], a.nwz[i]), spec_b[i],
-                                                         trans_b[i], eta_b[i]);
+                ST(ob[0], o.x), ST(ob[1], o.y), ST(ob[2], o.z);
+                for (int i = 0; i < W; ++i) {
+                    if (!a.alive[i]) continue;
+                    const Vec3f wi(a.nwx[i], a.nwy[i], a.nwz[i]);
+                    if (scene.has_textures && spec_b[i] && ray[i].has_differentials)
+                        ray[i] = path_services::next_ray(ps, si[i], ray[i], wi, true, trans_b[i], eta_b[i]);
+                    else
+                        ray[i] = RayDifferential(Ray{Vec3f(ob[0][i], ob[1][i], ob[2][i]), wi, kInfinity});
+                }
             }
 
             // The shadow rays NEE left, as one packet.

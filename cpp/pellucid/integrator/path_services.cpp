@@ -27,16 +27,19 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
         ps.packet_lambertian[m] = 1;
         for (int c = 0; c < 3; ++c) ps.albedo[3 * m + size_t(c)] = l->albedo()[c];
     }
+    std::vector<float> pmf(scene.lights.size());
+    for (size_t i = 0; i < pmf.size(); ++i) pmf[i] = scene.light_pmf(i);
+    ps.emitters = make_emitter_table(scene.lights, pmf);
     return ps;
 }
 
 namespace path_services {
 
-void start(const PathSetup& ps, int x, int y, int sample, uint64_t seed, Sampler* sampler, RayDifferential* ray,
+void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, RayDifferential* ray,
            float* fx, float* fy) {
     const Scene& scene = *ps.scene;
     *sampler = Sampler(ps.sampler, uint64_t(y) * uint64_t(scene.width) + uint64_t(x), uint64_t(sample), seed);
-    *ray = camera_sample(scene, ps.splat, x, y, *sampler, fx, fy);
+    *ray = camera_sample(scene, splat, x, y, *sampler, fx, fy);
 }
 
 void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) {

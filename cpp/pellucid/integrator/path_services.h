@@ -12,6 +12,7 @@
 #include "pellucid/geometry/interaction.h"
 #include "pellucid/image/film.h"
 #include "pellucid/integrator/render_loop.h"
+#include "pellucid/light/area.h"
 #include "pellucid/light/light_types.h"
 #include "pellucid/sampling/sampler.h"
 
@@ -24,12 +25,14 @@ struct PathSetup {
     int max_depth = -1;  ///< -1 = unbounded ("direct" = 2)
     int rr_depth = 5;
     bool use_nee = true, use_mis = true;
-    bool splat = false;  ///< the film splats (set per tile from the film)
     SamplerType sampler = SamplerType::Independent;
     /// Per material: 1 where its BSDF at every hit is the packet Lambertian (an untextured,
     /// two-sided lambertian with no bump or normal map), else 0 (the lane goes through BSDF).
     std::vector<int32_t> packet_lambertian;
     std::vector<float> albedo;  ///< per material, 3 floats: the Lambertian's reflectance
+    /// NEE's triangles when every light is an area light on a mesh (light/area.h), else empty:
+    /// then lights are sampled one lane at a time (path_services::sample_light).
+    EmitterTable emitters;
 };
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type);
 
@@ -41,7 +44,7 @@ struct VertexRandoms {
 
 namespace path_services {
 /// Start sample `sample` of pixel (x, y): its sampler, its camera ray and its film position.
-void start(const PathSetup& ps, int x, int y, int sample, uint64_t seed, Sampler* sampler, RayDifferential* ray,
+void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, RayDifferential* ray,
            float* fx, float* fy);
 /// Trace n ≤ 16 rays (one Embree packet when n > 1).
 void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit);

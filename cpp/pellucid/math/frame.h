@@ -15,8 +15,8 @@ inline void coordinate_system(const V3<F>& n, V3<F>& t, V3<F>& b) {
     const F sign = lane::copysign(F(1.f), n.z);
     const F a = F(-1.f) / (sign + n.z);
     const F bb = n.x * n.y * a;
-    t = V3<F>(F(1.f) + sign * n.x * n.x * a, sign * bb, -sign * n.x);
-    b = V3<F>(bb, sign + n.y * n.y * a, -n.y);
+    t = V3<F>(F(1.f) + sign * n.x * n.x * a, sign * bb, lane::neg(sign) * n.x);
+    b = V3<F>(bb, sign + n.y * n.y * a, lane::neg(n.y));
 }
 
 /// An orthonormal basis (s, t, n). to_local maps world vectors into the frame, to_world back.

@@ -22,7 +22,7 @@ struct Vec3P {
     Vec3P operator-(const Vec3P& o) const { return {x - o.x, y - o.y, z - o.z}; }
     Vec3P operator*(const F& s) const { return {x * s, y * s, z * s}; }
     Vec3P operator/(const F& s) const { return {x / s, y / s, z / s}; }
-    Vec3P operator-() const { return {-x, -y, -z}; }
+    Vec3P operator-() const { return {lane::neg(x), lane::neg(y), lane::neg(z)}; }
     Vec3P& operator+=(const Vec3P& o) { return *this = *this + o; }
 };
 template <class F>
@@ -38,7 +38,7 @@ inline F length2(const Vec3P<F>& a) { return dot(a, a); }
 template <class F>
 inline F length(const Vec3P<F>& a) { return lane::sqrt(dot(a, a)); }
 template <class F>
-inline Vec3P<F> normalize(const Vec3P<F>& a) { return a / length(a); }
+inline Vec3P<F> normalize(const Vec3P<F>& a) { return a * (F(1.f) / length(a)); }  // as glm::normalize
 template <class F>
 inline Vec3P<F> abs(const Vec3P<F>& a) { return {lane::abs(a.x), lane::abs(a.y), lane::abs(a.z)}; }
 

@@ -39,6 +39,8 @@ inline bool select(bool m, bool a, bool b) { return m ? a : b; }
 inline bool any(bool m) { return m; }
 inline bool all(bool m) { return m; }
 inline bool none(bool m) { return !m; }
+/// -x with the sign bit flipped, zeros included (-(+0) = -0), as the float negation does.
+inline float neg(float x) { return -x; }
 inline float sqrt(float x) { return std::sqrt(x); }
 inline float abs(float x) { return std::fabs(x); }
 inline float min(float a, float b) { return std::min(a, b); }

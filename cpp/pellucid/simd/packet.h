@@ -8,6 +8,8 @@
 // namespaces); it converts from float implicitly, so `2.f * x` reads as for floats; and it has every
 // function the models need, including atan2 and pow (Highway 1.0.3 has neither).
 #pragma once
+#include <type_traits>
+
 #include <xsimd/xsimd.hpp>
 
 #include "pellucid/simd/lane.h"
@@ -45,6 +47,9 @@ template <class A>
 inline bool none(const MP<A>& m) { return !xsimd::any(m); }
 template <class A>
 inline bool any(const MIP<A>& m) { return xsimd::any(m); }
+/// The sign bit flipped (xsimd's unary minus subtracts from +0 on some targets, which loses -0).
+template <class A>
+inline FP<A> neg(const FP<A>& x) { return x ^ FP<A>(-0.f); }
 template <class A>
 inline FP<A> sqrt(const FP<A>& x) { return xsimd::sqrt(x); }
 template <class A>
@@ -80,10 +85,27 @@ inline IP<A> as_int(const FP<A>& x) { return xsimd::bitwise_cast<IP<A>>(x); }
 template <class A>
 inline FP<A> as_float(const IP<A>& i) { return xsimd::bitwise_cast<FP<A>>(i); }
 /// base[idx[k]] in every lane k.
+/// (xsimd 8.1 gathers element by element; the AVX-512 and AVX2 gather instructions are used here.)
 template <class A>
-inline FP<A> gather(const float* base, const IP<A>& idx) { return FP<A>::gather(base, idx); }
+inline FP<A> gather(const float* base, const IP<A>& idx) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) return FP<A>(_mm512_i32gather_ps(idx, base, 4));
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_same_v<A, xsimd::avx2>) return FP<A>(_mm256_i32gather_ps(base, idx, 4));
+#endif
+    return FP<A>::gather(base, idx);
+}
 template <class A>
-inline IP<A> gather(const int32_t* base, const IP<A>& idx) { return IP<A>::gather(base, idx); }
+inline IP<A> gather(const int32_t* base, const IP<A>& idx) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) return IP<A>(_mm512_i32gather_epi32(idx, base, 4));
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_same_v<A, xsimd::avx2>) return IP<A>(_mm256_i32gather_epi32(base, idx, 4));
+#endif
+    return IP<A>::gather(base, idx);
+}
 /// A float-lane mask as an integer-lane mask, and back.
 template <class A>
 inline MIP<A> int_mask(const MP<A>& m) { return as_int(select(m, FP<A>(1.f), FP<A>(0.f))) != IP<A>(0); }

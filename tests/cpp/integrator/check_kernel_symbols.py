@@ -5,7 +5,8 @@ An inline function or template instantiation emitted in two objects is merged by
 keeps one copy; if it kept the AVX-512 copy of a function the scalar library also calls, a CPU
 without AVX-512 would fault. So every global or weak symbol of a kernel object must either be its
 entry point or name the target's xsimd architecture among its template arguments (then no other
-object can define it). Usage: check_kernel_symbols.py TARGET OBJECT...
+object can define it). Usage: check_kernel_symbols.py TARGET ENTRY OBJECT..., ENTRY the entry point's
+qualified name (pellucid::render_tile_avx512).
 SPDX-License-Identifier: Apache-2.0
 """
 import subprocess
@@ -16,8 +17,7 @@ ALLOWED = {"DW.ref.__gxx_personality_v0"}
 
 
 def main(argv):
-    target, objects = argv[1], argv[2:]
-    entry = f"pellucid::render_tile_{target}("
+    target, entry, objects = argv[1], argv[2] + "(", argv[3:]
     bad, entries = [], 0
     for obj in objects:
         out = subprocess.run(["nm", "-C", "--defined-only", obj], capture_output=True, text=True, check=True).stdout
