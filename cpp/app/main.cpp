@@ -10,6 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -73,7 +75,7 @@ public:
         std::vector<std::string> parts = {"[-h]"};
         std::vector<std::string> positionals;
         for (const CLI::Option* o : app->get_options()) {
-            if (o->get_name() == "--help") continue;
+            if (o->get_name() == "--help" || o->get_name() == "--version") continue;
             if (o->get_positional()) {
                 positionals.push_back(o->get_name());
                 continue;
@@ -138,6 +140,23 @@ CLI::Validator number_above(double lo, bool inclusive) {
         "");
 }
 
+/// A validator for integers in [lo, hi], with argparse-like wording.
+CLI::Validator integer_in(int64_t lo, int64_t hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& v) -> std::string {
+            char* end = nullptr;
+            errno = 0;
+            const long long x = std::strtoll(v.c_str(), &end, 10);
+            if (v.empty() || *end) return "invalid int value '" + v + "'";
+            if (errno == ERANGE || x < lo || x > hi) {
+                if (hi == INT64_MAX) return "value " + v + " must be >= " + std::to_string(lo);
+                return "value " + v + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+            }
+            return "";
+        },
+        "");
+}
+
 struct Args {
     std::string scene;
     std::vector<std::string> outputs, defines;
@@ -168,9 +187,9 @@ int parse(int argc, char** argv, Args& a) {
         ->take_all();
     app.add_option("--spp", a.spp, "samples per pixel (default: the scene's)")
         ->type_name("SPP")
-        ->check(CLI::Range(1, 1 << 24).description(""));
-    app.add_option("--seed", a.seed, "random seed (default: the scene's)")->type_name("SEED")->check(number_above(0.0, true));
-    app.add_option("--threads", a.threads, "worker threads (0 = all cores)")->type_name("THREADS")->check(CLI::Range(0, 4096).description(""));
+        ->check(integer_in(1, 1 << 24));
+    app.add_option("--seed", a.seed, "random seed (default: the scene's)")->type_name("SEED")->check(integer_in(0, INT64_MAX));
+    app.add_option("--threads", a.threads, "worker threads (0 = all cores)")->type_name("THREADS")->check(integer_in(0, 4096));
     app.add_option("--sampler", a.sampler,
                    "override the scene's sampler type (sobol: Owen-scrambled Sobol, lower error at equal spp)")
         ->type_name("{independent,sobol}")
@@ -195,7 +214,21 @@ int parse(int argc, char** argv, Args& a) {
     app.add_flag("--lenient", a.lenient, "Mitsuba XML: unsupported elements are warnings (skipped), not errors");
     app.add_flag("-q,--quiet", a.quiet, "no progress bar or summary");
     app.failure_message([](const CLI::App* app, const CLI::Error& e) {
-        return ArgparseFormatter::usage(app) + kProg + ": error: " + e.what() + "\n";
+        std::string msg = e.what();
+        // CLI11 says "--output is required"; argparse names every spelling of the missing argument.
+        const std::string req = " is required";
+        if (msg.size() > req.size() && msg.compare(msg.size() - req.size(), req.size(), req) == 0) {
+            std::string names = msg.substr(0, msg.size() - req.size());
+            for (const CLI::Option* o : app->get_options()) {
+                if (o->get_name() != names) continue;
+                std::string all;
+                for (const std::string& s : o->get_snames()) all += (all.empty() ? "-" : "/-") + s;
+                for (const std::string& l : o->get_lnames()) all += (all.empty() ? "--" : "/--") + l;
+                if (!all.empty()) names = all;
+            }
+            msg = "the following arguments are required: " + names;
+        }
+        return ArgparseFormatter::usage(app) + kProg + ": error: " + msg + "\n";
     });
     try {
         app.parse(args);
