@@ -174,10 +174,10 @@ void bind_render(py::module_& m) {
         RenderResult r = run_interruptible(o, [&](const RenderOptions& opts) { return render_aov(scene, aov, opts); },
                                            pending);
         py::dict stats = stats_dict(r);
-        py::tuple out = py::make_tuple(image_to_array(std::move(r.image)), image_to_array(std::move(r.variance)));
+        std::pair<py::array, py::array> out{image_to_array(std::move(r.image)), image_to_array(std::move(r.variance))};
         if (pending) {
             stats["state"] = std::move(r.state);
-            raise_with_partial(pending, py::make_tuple(out[0], out[1], stats));
+            raise_with_partial(pending, py::make_tuple(out.first, out.second, stats));
         }
         return out;
     }, py::arg("scene"), py::arg("aov"), py::arg("spp") = -1, py::arg("seed") = -1, py::arg("threads") = 0,

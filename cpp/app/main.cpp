@@ -157,6 +157,20 @@ CLI::Validator integer_in(int64_t lo, int64_t hi) {
         "");
 }
 
+/// A validator for a name from `known` (pellucid-render's wording before CLI11).
+CLI::Validator one_of(const std::string& what, std::vector<std::string> known) {
+    return CLI::Validator(
+        [what, known](std::string& v) -> std::string {
+            std::string list;
+            for (const std::string& k : known) {
+                if (k == v) return "";
+                list += (list.empty() ? "" : ", ") + k;
+            }
+            return "unknown " + what + " '" + v + "' (known: " + list + ")";
+        },
+        "");
+}
+
 struct Args {
     std::string scene;
     std::vector<std::string> outputs, defines;
@@ -193,18 +207,19 @@ int parse(int argc, char** argv, Args& a) {
     app.add_option("--sampler", a.sampler,
                    "override the scene's sampler type (sobol: Owen-scrambled Sobol, lower error at equal spp)")
         ->type_name("{independent,sobol}")
-        ->check(CLI::IsMember({"independent", "sobol"}).description(""));
+        ->check(one_of("sampler", {"independent", "sobol"}));
     app.add_option("--aov", a.aov,
                    "render this AOV of the first hit instead of the scene's integrator (as python -m pellucid render --aov)")
         ->type_name("{albedo,normal,depth}")
-        ->check(CLI::IsMember({"albedo", "normal", "depth"}).description(""));
+        ->check(one_of("aov", {"albedo", "depth", "normal"}));
     app.add_option("--time-budget", a.time_budget, "stop after about this many seconds")
         ->type_name("TIME_BUDGET")
         ->check(number_above(0.0, false));
     app.add_option("-D,--define", a.defines,
                    "set the Mitsuba XML parameter $NAME, overriding its <default> (repeatable)")
         ->type_name("NAME=VALUE")
-        ->expected(1);
+        ->expected(1)
+        ->take_all();
     app.add_option("--resume", a.resume,
                    "continue the render saved in this film state file up to --spp (same scene, seed and sampler)")
         ->type_name("STATE");
