@@ -117,8 +117,6 @@ private:
         s.light_selection = p.get_string("light_selection", "power");
         if (s.light_selection != "power" && s.light_selection != "uniform")
             p.fail("light_selection", "unknown light selection '" + s.light_selection + "' (known: power, uniform)");
-        s.packets = p.get_bool("packets", true);
-        s.lanes = p.get_bool("lanes", true);
         p.check_unqueried();
     }
 
