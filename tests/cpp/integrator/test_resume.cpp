@@ -153,7 +153,7 @@ TEST_P(ResumeBitIdentical, CancelledThenContinued) {
 INSTANTIATE_TEST_SUITE_P(Films, ResumeBitIdentical,
                          ::testing::Combine(::testing::Values(kTent, kSplat), ::testing::Values("independent", "sobol")));
 
-TEST(Resume, CornellBoxLaneKernel) {
+TEST(Resume, CornellBox) {
     auto scene = load_file(std::string(PELLUCID_SOURCE_DIR) + "/scenes/cornell_box.json");
     const RenderResult full = render_spp(*scene, 5);
     const RenderResult part = render_spp(*scene, 2);
