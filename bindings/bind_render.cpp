@@ -95,7 +95,7 @@ std::shared_ptr<const FilmState> as_state(const py::object& resume) {
     if (py::isinstance<py::str>(resume) || py::hasattr(resume, "__fspath__"))
         return load_film_state(py::str(py::module_::import("os").attr("fspath")(resume)).cast<std::string>());
     throw Error("resume: expected a FilmState or the path of a film state file, got " +
-                std::string(py::str(resume.get_type().attr("__name__"))));
+                std::string(py::str(py::type::of(resume).attr("__name__"))));
 }
 
 ImageAttribute to_attribute(const std::string& name, const py::handle& v) {
