@@ -49,10 +49,14 @@ TYPE_MAP: List[Tuple[str, str]] = [
 OVERRIDES = {
     "set_log_sink": "(fn: Optional[Callable[[int, str], None]]) -> None",
     "render_full": ("(scene: Scene, spp: int = ..., seed: int = ..., threads: int = ..., time_budget: float = ..., "
-                    "target_rel_error: float = ..., progress: bool = ..., monitor: Optional[RenderProgress] = ..., sampler: str = ...)"
+                    "target_rel_error: float = ..., progress: bool = ..., monitor: Optional[RenderProgress] = ..., sampler: str = ..., "
+                    "resume: Any = ..., keep_state: bool = ..., aov: str = ...)"
                     " -> Tuple[NDArray[np.float32], NDArray[np.float32], Dict[str, Any]]"),
     "record_parameters": "(d: Dict[str, Any], base_dir: str = ...) -> List[Tuple[str, str, List[str]]]",
     "load_dict": "(d: Dict[str, Any], base_dir: str = ...) -> Scene",
+    "load_file": "(path: str, lenient: bool = ..., params: Dict[str, str] = ...) -> Scene",
+    "read_image_attributes": "(path: str) -> Dict[str, Any]",
+    "write_image_with_attributes": "(path: str, array: ArrayLike, attributes: Dict[str, Any]) -> None",
     "BSDFProbe.__init__": "(self, desc: Dict[str, Any], mode: str = ...) -> None",
     "BSDFProbe.sample": ("(self, wo: ArrayLike, u: ArrayLike) -> Tuple[NDArray[np.float32], NDArray[np.float32], "
                          "NDArray[np.float32], NDArray[np.uint32]]"),

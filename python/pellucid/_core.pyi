@@ -9,15 +9,21 @@ __version__: str
 
 BXDF_FLAGS: Dict[str, int]
 
-def cancel() -> None: """Ask the running render to stop after its current tiles."""
+def cancel() -> None: """Ask the running render to stop (it returns its complete passes)."""
+
+def check_image_output(path: str) -> None: """Check an output image path before rendering: a writable format, missing folders created."""
 
 def load_dict(d: Dict[str, Any], base_dir: str = ...) -> Scene: """Build a scene from a dict with the JSON format's structure."""
 
-def load_file(path: str, lenient: bool = ...) -> Scene: """Load and build a scene file (.json or Mitsuba 3 .xml; lenient: unsupported XML elements warn)."""
+def load_file(path: str, lenient: bool = ..., params: Dict[str, str] = ...) -> Scene: """Load and build a scene file (.json or Mitsuba 3 .xml; lenient: unsupported XML elements warn; params: Mitsuba $name values)."""
+
+def load_film_state(path: str) -> FilmState: """Read a film state file written by FilmState.save or pellucid-render --state."""
 
 def mitsuba_import_table() -> List[Dict[str, object]]: """The Mitsuba XML importer's mappings: [{kind, plugin, type, params: [(mitsuba, ours or 'ignored')]}]."""
 
 def read_image(path: str) -> NDArray[np.float32]: """Read an image as a linear float32 (H, W, 3) array."""
+
+def read_image_attributes(path: str) -> Dict[str, Any]: """The header attributes of an image file as a dict."""
 
 def record_parameters(d: Dict[str, Any], base_dir: str = ...) -> List[Tuple[str, str, List[str]]]: """Build d; return (path, type, keys looked up) per object."""
 
@@ -25,11 +31,13 @@ def registry_types() -> Dict[str, List[str]]: """Registered type names per famil
 
 def render_aov(scene: Scene, aov: str, spp: int = ..., seed: int = ..., threads: int = ..., sampler: str = ...) -> Tuple[NDArray[np.float32], NDArray[np.float32]]: """Render one AOV; returns (image, variance). Use pellucid.aov.render_aov for the documented API."""
 
-def render_full(scene: Scene, spp: int = ..., seed: int = ..., threads: int = ..., time_budget: float = ..., target_rel_error: float = ..., progress: bool = ..., monitor: Optional[RenderProgress] = ..., sampler: str = ...) -> Tuple[NDArray[np.float32], NDArray[np.float32], Dict[str, Any]]: """Render; returns (image, variance, stats). Use pellucid.render for the documented API."""
+def render_full(scene: Scene, spp: int = ..., seed: int = ..., threads: int = ..., time_budget: float = ..., target_rel_error: float = ..., progress: bool = ..., monitor: Optional[RenderProgress] = ..., sampler: str = ..., resume: Any = ..., keep_state: bool = ..., aov: str = ...) -> Tuple[NDArray[np.float32], NDArray[np.float32], Dict[str, Any]]: """Render; returns (image, variance, stats), stats['state'] the FilmState if keep_state. A Python signal handler that raises (Ctrl-C) stops it: the exception is raised with .partial = that tuple. Use pellucid.render for the documented API."""
 
 def set_log_sink(fn: Optional[Callable[[int, str], None]]) -> None: """Route log messages to fn(level: int, message: str); None restores stderr."""
 
 def write_image(path: str, array: ArrayLike) -> None: """Write an (H, W, 3) float array (.exr linear, .png sRGB)."""
+
+def write_image_with_attributes(path: str, array: ArrayLike, attributes: Dict[str, Any]) -> None: """write_image with header attributes (EXR attributes; formats without a header drop them)."""
 
 
 class BSDFProbe:
@@ -47,6 +55,29 @@ class BSDFProbe:
 
 
 class Error(RuntimeError): ...
+
+
+class FilmState:
+    """The film of a render after `spp` complete passes, with its seed and sampler: pass it as render(..., resume=state) to continue to more samples, or save() it for --resume."""
+
+    @property
+    def spp(self) -> int: ...
+    @property
+    def width(self) -> int: ...
+    @property
+    def height(self) -> int: ...
+    @property
+    def seed(self) -> int: ...
+    @property
+    def sampler(self) -> str: ...
+    @property
+    def integrator(self) -> str: ...
+    @property
+    def invalid_samples(self) -> int: ...
+    @property
+    def seconds(self) -> float: ...
+    def save(self, path: str) -> None: """Write the film state file (docs/rendering.md)."""
+    def __repr__(self) -> str: ...
 
 
 class RenderProgress:
