@@ -38,9 +38,11 @@ $(VENV)/.py-stamp: $(VENV)/.deb-stamp
 	$(VPY) -m pip install -q $(PY_DEPS)
 	@touch $@
 
-# Editable, incremental install: the CMake build in build/py also builds pellucid-render and the tests.
+# Editable, incremental install: the CMake build in build/py also builds pellucid-render and the
+# tests (which a plain `pip install .` leaves out).
 $(VENV)/.install-stamp: $(VENV)/.py-stamp $(SOURCES)
-	$(VPY) -m pip install -q --no-build-isolation -e . -Cbuild-dir=$(BUILD)
+	$(VPY) -m pip install -q --no-build-isolation -e . -Cbuild-dir=$(BUILD) \
+	  -Ccmake.define.PELLUCID_BUILD_TESTS=ON
 	@touch $@
 
 deps: $(VENV)/.install-stamp
