@@ -122,8 +122,7 @@ std::string Properties::get_choice(const std::string& key, const std::string& de
         if (v == k) return v;
         list += (list.empty() ? "" : ", ") + std::string(k);
     }
-    std::string hint = did_you_mean(v, std::vector<std::string>(known.begin(), known.end()));
-    fail(key, "unknown " + what + " '" + v + "' (" + (hint.empty() ? "" : hint + " ") + "known: " + list + ")");
+    fail(key, "unknown " + what + " '" + v + "' (known: " + list + ")");
 }
 
 bool Properties::get_bool(const std::string& key, bool def) {
