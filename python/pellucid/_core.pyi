@@ -2,10 +2,11 @@
 pellucid's compiled core (use the `pellucid` package, not this module)
 """
 from __future__ import annotations
+import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BSDFProbe', 'BXDF_FLAGS', 'Error', 'RenderProgress', 'Scene', 'cancel', 'load_dict', 'load_file', 'mitsuba_import_table', 'read_image', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'set_log_sink', 'write_image']
+__all__: list[str] = ['BSDFProbe', 'BXDF_FLAGS', 'Error', 'FilmState', 'RenderProgress', 'Scene', 'cancel', 'check_image_output', 'load_dict', 'load_file', 'load_film_state', 'mitsuba_import_table', 'read_image', 'read_image_attributes', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'set_log_sink', 'write_image', 'write_image_with_attributes']
 class Error(RuntimeError):
     pass
 class BSDFProbe:
@@ -71,17 +72,59 @@ class RenderProgress:
     @property
     def samples(self) -> int:
         ...
+class FilmState:
+    """
+    The film of a render after `spp` complete passes, with its seed and sampler: pass it as render(..., resume=state) to continue to more samples, or save() it for --resume.
+    """
+    def __repr__(self) -> str:
+        ...
+    def save(self, path: str) -> None:
+        """
+        Write the film state file (docs/rendering.md).
+        """
+    @property
+    def height(self) -> int:
+        ...
+    @property
+    def integrator(self) -> str:
+        ...
+    @property
+    def invalid_samples(self) -> int:
+        ...
+    @property
+    def sampler(self) -> str:
+        ...
+    @property
+    def seconds(self) -> float:
+        ...
+    @property
+    def seed(self) -> int:
+        ...
+    @property
+    def spp(self) -> int:
+        ...
+    @property
+    def width(self) -> int:
+        ...
 def cancel() -> None:
     """
-    Ask the running render to stop after its current tiles.
+    Ask the running render to stop (it returns its complete passes).
+    """
+def check_image_output(path: str) -> None:
+    """
+    Check an output image path before rendering: a writable format, missing folders created.
     """
 def load_dict(d: dict, base_dir: str = '.') -> Scene:
     """
     Build a scene from a dict with the JSON format's structure.
     """
-def load_file(path: str, lenient: bool = False) -> Scene:
+def load_file(path: str, lenient: bool = False, params: collections.abc.Mapping[str, str] = {}) -> Scene:
     """
-    Load and build a scene file (.json or Mitsuba 3 .xml; lenient: unsupported XML elements warn).
+    Load and build a scene file (.json or Mitsuba 3 .xml; lenient: unsupported XML elements warn; params: Mitsuba $name values).
+    """
+def load_film_state(path: str) -> FilmState:
+    """
+    Read a film state file written by FilmState.save or pellucid-render --state.
     """
 def mitsuba_import_table() -> list[dict[str, typing.Any]]:
     """
@@ -90,6 +133,10 @@ def mitsuba_import_table() -> list[dict[str, typing.Any]]:
 def read_image(path: str) -> numpy.ndarray:
     """
     Read an image as a linear float32 (H, W, 3) array.
+    """
+def read_image_attributes(path: str) -> dict:
+    """
+    The header attributes of an image file as a dict.
     """
 def record_parameters(d: dict, base_dir: str = '.') -> list[tuple]:
     """
@@ -103,9 +150,9 @@ def render_aov(scene: Scene, aov: str, spp: typing.SupportsInt | typing.Supports
     """
     Render one AOV; returns (image, variance). Use pellucid.aov.render_aov for the documented API.
     """
-def render_full(scene: Scene, spp: typing.SupportsInt | typing.SupportsIndex = -1, seed: typing.SupportsInt | typing.SupportsIndex = -1, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_budget: typing.SupportsFloat | typing.SupportsIndex = 0.0, target_rel_error: typing.SupportsFloat | typing.SupportsIndex = 0.0, progress: bool = False, monitor: RenderProgress = None, sampler: str = '') -> tuple[numpy.ndarray, numpy.ndarray, dict]:
+def render_full(scene: Scene, spp: typing.SupportsInt | typing.SupportsIndex = -1, seed: typing.SupportsInt | typing.SupportsIndex = -1, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_budget: typing.SupportsFloat | typing.SupportsIndex = 0.0, target_rel_error: typing.SupportsFloat | typing.SupportsIndex = 0.0, progress: bool = False, monitor: RenderProgress = None, sampler: str = '', resume: typing.Any = None, keep_state: bool = False, aov: str = '') -> tuple:
     """
-    Render; returns (image, variance, stats). Use pellucid.render for the documented API.
+    Render; returns (image, variance, stats), stats['state'] the FilmState if keep_state. A Python signal handler that raises (Ctrl-C) stops it: the exception is raised with .partial = that tuple. Use pellucid.render for the documented API.
     """
 def set_log_sink(fn: typing.Any) -> None:
     """
@@ -114,6 +161,10 @@ def set_log_sink(fn: typing.Any) -> None:
 def write_image(path: str, array: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> None:
     """
     Write an (H, W, 3) float array (.exr linear, .png sRGB).
+    """
+def write_image_with_attributes(path: str, array: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], attributes: dict) -> None:
+    """
+    write_image with header attributes (EXR attributes; formats without a header drop them).
     """
 BXDF_FLAGS: dict = {'reflection': 1, 'transmission': 2, 'diffuse': 4, 'glossy': 8, 'specular': 16}
 __version__: str = '0.1.0'
