@@ -33,6 +33,7 @@ import dataclasses
 import importlib.util
 import json
 import math
+import os
 import pathlib
 import shlex
 import subprocess
@@ -228,9 +229,6 @@ class Result:
             return None
         return self.ours.samples_per_second / self.mitsuba.samples_per_second
 
-    def relmse(self, run: Run, ref: np.ndarray) -> float:
-        return _bench.rel_mse(run.image, ref)
-
 
 def _median_run(runs: List[Run]) -> Run:
     """The run of median speed (its image gives the error)."""
@@ -332,24 +330,44 @@ def _mb(v: Optional[float]) -> str:
     return "?" if v is None else f"{v:.0f}"
 
 
+def load_1min() -> Optional[float]:
+    try:
+        return os.getloadavg()[0]
+    except OSError:
+        return None
+
+
+def busy_note(loads: Sequence[Optional[float]], cpus: int, threads: int) -> str:
+    """A line for the summary: whether other work shared the cores during the run. The run's own
+    renders add about `threads` to the load average."""
+    known = [x for x in loads if x is not None]
+    if not known:
+        return "- load of the machine unknown"
+    if max(known) > min(threads, cpus) + 1.0:
+        return (f"- **the machine was busy**: the 1-minute load average reached {max(known):.1f} on {cpus} CPUs, "
+                f"of which about {min(threads, cpus)} is this run's own rendering. Other jobs shared the cores, so "
+                "samples/s are lower and noisier than on an idle machine, for both renderers (they alternate "
+                "within each scene)")
+    return f"- the machine was otherwise idle (1-minute load average at most {max(known):.1f} on {cpus} CPUs)"
+
+
 def summary(rows: Sequence[Dict[str, Any]], argv: Sequence[str], machine: Tuple[str, str], wall: float,
-            peer: Optional[str]) -> str:
+            peer: Optional[str], loads: Sequence[Optional[float]] = ()) -> str:
     has_peer = any("ratio" in r for r in rows)
     g = geomean([r.get("ratio") for r in rows])
     g_rel = geomean([r.get("relmse_ratio") for r in rows])
     lines = ["# Benchmark suite", "", "Regenerate with:", "",
              "    python -m pellucid bench --suite " + " ".join(shlex.quote(a) for a in argv), "",
-             f"- machine at start: {machine[0]}; at end: {machine[1]}",
-             "- timings come from one run on a machine whose cores other jobs may share: compare them within "
-             "this table, not with other runs",
+             f"- machine at start: {machine[0]}; at end: {machine[1]}", busy_note(loads, os.cpu_count() or 1, rows[0]["threads"] if rows else 1),
+             "- timings are comparable within this table; between runs only on the same, idle machine",
              f"- peer: {peer or 'none (Mitsuba 3 not set up: bench/peers/setup_mitsuba.sh); pellucid only'}",
              f"- threads: {rows[0]['threads'] if rows else '?'} for both renderers; both warm; only the render is "
              "timed", f"- reference: {rows[0]['reference'].split(' (')[0] if rows else '?'}, per scene, cached",
              f"- wall time of the whole run: {wall:.0f} s", ""]
     if has_peer:
         lines += [f"**Geometric mean of samples/s pellucid / Mitsuba llvm_ad_rgb: {g:.2f}x** over "
-                  f"{sum(1 for r in rows if 'ratio' in r)} scenes; {sum(1 for r in rows if r.get('ratio', 0) >= 1.0)} "
-                  f"scenes at >= 1.0x. Equal-time relMSE pellucid / Mitsuba, geometric mean: "
+                  f"{sum(1 for r in rows if 'ratio' in r)} scenes; scenes at >= 1.0x: "
+                  f"{sum(1 for r in rows if r.get('ratio', 0) >= 1.0)}. Equal-time relMSE pellucid / Mitsuba, geometric mean: "
                   + (f"{g_rel:.2f}" if g_rel else "n/a") + " (< 1: pellucid has less error).", "",
                   "Targets of the suite: geometric mean >= 1.5x and >= 1.0x on every scene; equal-time relMSE no "
                   "higher than Mitsuba's on every scene.", ""]
@@ -415,7 +433,7 @@ def plot(rows: Sequence[Dict[str, Any]], path: pathlib.Path, title: str) -> None
                color=["tab:blue" if v <= 1 else "tab:orange" for v in vals])
         ax.set_yscale("log")
         ax.axhline(1.0, color="k", lw=1)
-        ax.set_ylabel("equal-time relMSE  pellucid / Mitsuba  (< 1: pellucid better)")
+        ax.set_ylabel("equal-time relMSE  pellucid / Mitsuba\n(< 1: pellucid better)")
     else:
         ax.bar(x, [max(r["ours_eqtime_relmse"], 1e-12) for r in rows])
         ax.set_yscale("log")
@@ -458,7 +476,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     import pellucid
 
     t_start = time.perf_counter()
-    machine_start = _bench.machine_note()
+    machine_start, loads = _bench.machine_note(), [load_1min()]
     root = _bench.repo_root()
     folder = pathlib.Path(args.suite_dir) if args.suite_dir else suite_dir()
     out_dir = pathlib.Path(args.out_dir) if args.out_dir else root / "bench" / "results" / "suite"
@@ -494,6 +512,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                 return 1
             r = row(res, extra["ref"])
             rows.append(r)
+            loads.append(load_1min())
             msg = f"{r['scene']:16s} pellucid {r['ours_samples_per_second'] / 1e6:6.3f} M/s"
             if "ratio" in r:
                 msg += (f"  Mitsuba {r['mitsuba_samples_per_second'] / 1e6:6.3f} M/s  ratio {r['ratio']:.2f}x  "
@@ -501,7 +520,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
             print(msg, flush=True)
     csv_p, md_p, png_p = out_dir / "suite.csv", out_dir / "summary.md", out_dir / "suite.png"
     write_csv(rows, csv_p)
-    text = summary(rows, argv, (machine_start, _bench.machine_note()), time.perf_counter() - t_start, peer)
+    text = summary(rows, argv, (machine_start, _bench.machine_note()), time.perf_counter() - t_start, peer, loads)
     md_p.write_text(text)
     g = geomean([r.get("ratio") for r in rows])
     plot(rows, png_p, "pellucid bench --suite" + (f": geometric mean {g:.2f}x Mitsuba llvm_ad_rgb" if g else ""))

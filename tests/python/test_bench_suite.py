@@ -205,6 +205,8 @@ def test_equal_time_relmse_and_geomean():
     assert bench_suite.row(res, ref)["ours_eqtime_relmse"] == pytest.approx(0.01 / 1.01 - 0.005)
     assert bench_suite.geomean([2.0, 0.5, 4.0]) == pytest.approx(4.0 ** (1 / 3))
     assert bench_suite.geomean([None]) is None
+    assert "busy" in bench_suite.busy_note([1.0, 10.0], cpus=2, threads=2)
+    assert "idle" in bench_suite.busy_note([2.5, None], cpus=2, threads=2)
 
 
 def test_runner_quick_without_peer(tmp_path):
