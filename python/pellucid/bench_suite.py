@@ -9,7 +9,8 @@ For each scene of the manifest (bench/suite/suite.json, written with the scenes 
 bench/suite/make_suite.py) both renderers render the same spp with the same number of threads (2 by
 default), each in its own process and each warm: pellucid renders 1 spp untimed first, Mitsuba renders
 the timed configuration once untimed (its JIT compiles per spp and film). Only the render is timed,
-never loading. Mitsuba 3 is optional (bench/peers/setup_mitsuba.sh); without it the suite reports
+never loading. ``--repeats R`` alternates R timed runs of each renderer, each with its own seed: samples/s
+is the median run's, relMSE the mean over the R images. Mitsuba 3 is optional (bench/peers/setup_mitsuba.sh); without it the suite reports
 pellucid alone. Per scene it reports:
 
 * samples/s of each renderer and their ratio (pellucid / Mitsuba), and the geometric mean of the ratio;
@@ -222,6 +223,8 @@ class Result:
     reference: str
     ref_floor: float
     ztest: Optional[Tuple[float, float]] = None
+    ours_all: List[Run] = dataclasses.field(default_factory=list)  # every repeat (ours / mitsuba: the median)
+    mitsuba_all: List[Run] = dataclasses.field(default_factory=list)
 
     @property
     def ratio(self) -> Optional[float]:
@@ -231,7 +234,7 @@ class Result:
 
 
 def _median_run(runs: List[Run]) -> Run:
-    """The run of median speed (its image gives the error)."""
+    """The run of median speed."""
     order = sorted(runs, key=lambda r: r.samples_per_second)
     return order[len(order) // 2]
 
@@ -266,7 +269,7 @@ def measure_scene(entry: Dict[str, Any], folder: pathlib.Path, args, mi_py: Opti
     ref_desc = (f"{ref_spp_real} spp by " + ("pellucid mis" if args.reference_renderer == "ours"
                                                else "Mitsuba llvm_ad_rgb") + f" ({pathlib.Path(ref_path).name})")
     res = Result(entry["name"], entry["peer"], W, H, spp, args.threads, ours, mi, ref_desc,
-                 _bench.ref_relmse_floor(ref, ref_var))
+                 _bench.ref_relmse_floor(ref, ref_var), ours_all=ours_runs, mitsuba_all=mi_runs)
     if mi_py is not None and entry["peer"] == "same" and not args.no_agreement:
         agree = json.loads(json.dumps(scene))
         agree["sampler"]["sample_count"] = -(-spp // AGREEMENT_PASSES) * AGREEMENT_PASSES
@@ -278,11 +281,18 @@ def measure_scene(entry: Dict[str, Any], folder: pathlib.Path, args, mi_py: Opti
     return res, {"ref": ref}
 
 
+def _mean_relmse(runs: Sequence[Run], ref: np.ndarray) -> Tuple[float, float]:
+    """Mean relMSE and mean render seconds over the repeats (each repeat renders its own seed, so the
+    mean is a steadier estimate where a few rare bright paths dominate one image's error)."""
+    return (float(np.mean([_bench.rel_mse(r.image, ref) for r in runs])), float(np.mean([r.seconds for r in runs])))
+
+
 def row(res: Result, ref: np.ndarray) -> Dict[str, Any]:
-    """One CSV row. relMSE above the reference's noise floor scales as 1/time, so Mitsuba's is scaled to
-    pellucid's render time: ``mitsuba_eqtime_relmse = (relMSE - floor) * t_mitsuba / t_ours``."""
+    """One CSV row. Samples/s: the median repeat. relMSE: the mean over the repeats. relMSE above the
+    reference's noise floor scales as 1/time, so Mitsuba's is scaled to pellucid's render time:
+    ``mitsuba_eqtime_relmse = (relMSE - floor) * t_mitsuba / t_ours`` (t: mean seconds of the repeats)."""
     o, m = res.ours, res.mitsuba
-    ours_rel = _bench.rel_mse(o.image, ref)
+    ours_rel, ours_t = _mean_relmse(res.ours_all or [o], ref)
     d: Dict[str, Any] = {
         "scene": res.scene, "peer": res.peer, "width": res.width, "height": res.height, "spp": res.spp,
         "threads": res.threads, "ours_seconds": o.seconds, "ours_samples_per_second": o.samples_per_second,
@@ -290,8 +300,8 @@ def row(res: Result, ref: np.ndarray) -> Dict[str, Any]:
         "ref_relmse_floor": res.ref_floor, "ours_eqtime_relmse": max(ours_rel - res.ref_floor, 0.0),
         "reference": res.reference}
     if m is not None:
-        mi_rel = _bench.rel_mse(m.image, ref)
-        eq = max(mi_rel - res.ref_floor, 0.0) * m.seconds / o.seconds
+        mi_rel, mi_t = _mean_relmse(res.mitsuba_all or [m], ref)
+        eq = max(mi_rel - res.ref_floor, 0.0) * mi_t / ours_t
         d.update({"mitsuba_seconds": m.seconds, "mitsuba_samples_per_second": m.samples_per_second,
                   "mitsuba_load_seconds": m.load_seconds, "mitsuba_peak_rss_mb": m.peak_rss_mb, "ratio": res.ratio,
                   "mitsuba_relmse": mi_rel, "mitsuba_eqtime_relmse": eq,
@@ -358,7 +368,8 @@ def summary(rows: Sequence[Dict[str, Any]], argv: Sequence[str], machine: Tuple[
     g_rel = geomean([r.get("relmse_ratio") for r in rows])
     lines = ["# Benchmark suite", "", "Regenerate with:", "",
              "    python -m pellucid bench --suite " + " ".join(shlex.quote(a) for a in argv), "",
-             f"- machine at start: {machine[0]}; at end: {machine[1]}", busy_note(loads, os.cpu_count() or 1, rows[0]["threads"] if rows else 1),
+             f"- machine at start: {machine[0]}; at end: {machine[1]}",
+             busy_note(loads, os.cpu_count() or 1, rows[0]["threads"] if rows else 1),
              "- timings are comparable within this table; between runs only on the same, idle machine",
              f"- peer: {peer or 'none (Mitsuba 3 not set up: bench/peers/setup_mitsuba.sh); pellucid only'}",
              f"- threads: {rows[0]['threads'] if rows else '?'} for both renderers; both warm; only the render is "
@@ -392,9 +403,9 @@ def summary(rows: Sequence[Dict[str, Any]], argv: Sequence[str], machine: Tuple[
             lines.append(f"| {r['scene']} | {r['spp']} | {r['ours_samples_per_second'] / 1e6:.3f} | "
                          f"{r['ours_eqtime_relmse']:.3e} | {r['ours_load_seconds']:.2f} | {_mb(r['ours_peak_rss_mb'])} |")
     lines += ["", "Columns: samples/s = width x height x spp / render seconds (loading and the warm-up render "
-              "excluded). relMSE = mean (x - r)^2 / (r^2 + 0.01) against the reference, minus the reference's own "
-              "noise floor; Mitsuba's is scaled by its render time over pellucid's, so both are at pellucid's "
-              "time. Agreement: share of pixel channels whose |z| between pellucid and a 16-pass Mitsuba render "
+              "excluded; the median of the repeats). relMSE = mean (x - r)^2 / (r^2 + 0.01) against the reference, "
+              "averaged over the repeats, minus the reference's own noise floor; Mitsuba's is scaled by its render "
+              "time over pellucid's, so both are at pellucid's time. Agreement: share of pixel channels whose |z| between pellucid and a 16-pass Mitsuba render "
               "is within the Sidak-corrected critical value (alpha = 0.01), PASS at >= 99 %; 'models differ' "
               "scenes are timed against Mitsuba's nearest models. Mean ratio: image mean pellucid / Mitsuba. "
               "Peak MB: maximum resident memory of each renderer's process (Mitsuba's includes its LLVM JIT).", ""]

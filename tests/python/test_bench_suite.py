@@ -203,6 +203,12 @@ def test_equal_time_relmse_and_geomean():
     assert r["relmse_ratio"] == pytest.approx(0.125)
     res.ref_floor = 0.005
     assert bench_suite.row(res, ref)["ours_eqtime_relmse"] == pytest.approx(0.01 / 1.01 - 0.005)
+    # repeats: relMSE is the mean over the repeats' images, the time their mean
+    res.ref_floor = 0.0
+    res.ours_all = [mk(1.1, 1.0), mk(1.3, 3.0)]
+    r = bench_suite.row(res, ref)
+    assert r["ours_eqtime_relmse"] == pytest.approx((0.01 + 0.09) / 2 / 1.01)
+    assert r["mitsuba_eqtime_relmse"] == pytest.approx(0.04 / 1.01 * 2.0 / 2.0)
     assert bench_suite.geomean([2.0, 0.5, 4.0]) == pytest.approx(4.0 ** (1 / 3))
     assert bench_suite.geomean([None]) is None
     assert "busy" in bench_suite.busy_note([1.0, 10.0], cpus=2, threads=2)
