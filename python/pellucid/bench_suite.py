@@ -10,8 +10,8 @@ bench/suite/make_suite.py) both renderers render the same spp with the same numb
 default), each in its own process and each warm: pellucid renders 1 spp untimed first, Mitsuba renders
 the timed configuration once untimed (its JIT compiles per spp and film). Only the render is timed,
 never loading. ``--repeats R`` alternates R timed runs of each renderer, each with its own seed: samples/s
-is the median run's, relMSE the mean over the R images. Mitsuba 3 is optional (bench/peers/setup_mitsuba.sh); without it the suite reports
-pellucid alone. Per scene it reports:
+is the median run's, relMSE the mean over the R images. Mitsuba 3 is optional
+(bench/peers/setup_mitsuba.sh); without it the suite reports pellucid alone. Per scene it reports:
 
 * samples/s of each renderer and their ratio (pellucid / Mitsuba), and the geometric mean of the ratio;
 * equal-time relMSE against a reference: a high-spp render (by pellucid ``mis`` or, with
