@@ -455,6 +455,8 @@ def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="pellucid bench", description=__doc__.split("\n")[0],
                                 epilog="See bench/README.md.")
     p.add_argument("scene", help="scene file (.json)")
+    p.add_argument("--suite", action="store_true",
+                   help="run the benchmark suite of bench/suite/ instead (no SCENE; `bench --suite --help`)")
     p.add_argument("--methods", default="bsdf,nee,mis,scalar_rgb,llvm_ad_rgb",
                    help="comma list of bsdf, nee, mis, direct, scalar_rgb, llvm_ad_rgb (or 'ours', 'mitsuba'); "
                         "pellucid methods may name a sampler: mis+sobol, mis+independent")
@@ -491,6 +493,9 @@ def _parser() -> argparse.ArgumentParser:
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    if "--suite" in argv:  # the benchmark suite has its own runner and options
+        from . import bench_suite
+        return bench_suite.main([a for a in argv if a != "--suite"])
     args = _parser().parse_args(argv)
     import pellucid
 
