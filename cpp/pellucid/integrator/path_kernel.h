@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "pellucid/bxdf/dielectric.h"
 #include "pellucid/bxdf/lambertian.h"
 #include "pellucid/integrator/path_services.h"
 #include "pellucid/math/frame.h"
@@ -69,7 +70,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         float pex[W], pey[W], pez[W];  // error bound of the hit point
         float px[W], py[W], pz[W], ngx[W], ngy[W], ngz[W], wox[W], woy[W], woz[W];
         float sx[W], sy[W], sz[W], tx[W], ty[W], tz[W], nx[W], ny[W], nz[W];
-        float ar[W], ag[W], ab[W];  // packet Lambertian reflectance (0 elsewhere)
+        float q[kPacketParams][W];  // the packet form's parameters (PathSetup::packet_params)
+        float kind[W];              // PacketKind of the lane's material
         bool fast[W], goes_on[W], nee[W];
         float u[7][W];
         // NEE.
@@ -135,7 +137,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             for (int i = 0; i < W; ++i) {
                 a.fast[i] = a.goes_on[i] = a.nee[i] = a.nee_ok[i] = a.s_ok[i] = a.delta[i] = false;
                 a.Ler[i] = a.Leg[i] = a.Leb[i] = a.le_pdf[i] = 0.f;
-                a.ar[i] = a.ag[i] = a.ab[i] = 0.f;
+                a.kind[i] = 0.f;
                 if (!active[i]) continue;
                 const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]), Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
                 if (!hit[i]) {  // escaped: the lights at infinity
@@ -163,11 +165,14 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
                 a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
                 BxDFFlags flags;
-                if (ps.packet_lambertian[h.material_id]) {
+                if (const int32_t kind = ps.packet_kind[h.material_id]; kind != kBSDFLane) {
                     a.fast[i] = true;
-                    const float* al = &ps.albedo[3 * size_t(h.material_id)];
-                    a.ar[i] = al[0], a.ag[i] = al[1], a.ab[i] = al[2];
-                    flags = (al[0] == 0.f && al[1] == 0.f && al[2] == 0.f) ? BxDFFlags::None : BxDFFlags::DiffuseReflection;
+                    a.kind[i] = float(kind);
+                    const float* q = &ps.packet_params[kPacketParams * size_t(h.material_id)];
+                    for (int k = 0; k < kPacketParams; ++k) a.q[k][i] = q[k];
+                    flags = BxDFFlags(ps.packet_flags[h.material_id]);
+                    // Delta bounces carry ray differentials on from the hit's footprint.
+                    if (scene.has_textures) path_services::footprint(ps, si[i], ray[i]);
                 } else {
                     flags = path_services::bsdf_begin(ps, si[i], ray[i], &bsdf(i));
                 }
@@ -248,7 +253,12 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const V3<F> wo_w(LD(a.wox), LD(a.woy), LD(a.woz));
                 const FrameT<F> frame(V3<F>(LD(a.sx), LD(a.sy), LD(a.sz)), V3<F>(LD(a.tx), LD(a.ty), LD(a.tz)),
                                       V3<F>(LD(a.nx), LD(a.ny), LD(a.nz)));
-                const LambertianT<F> lambert{RGB<F>(LD(a.ar), LD(a.ag), LD(a.ab))};
+                // The packet forms present, each run once on all lanes; lanes of other kinds ignore
+                // its results (masked calls, merged by select).
+                const F kind = LD(a.kind);
+                const M is_lambert = fast && kind == F(float(kPacketLambertian));
+                const M is_dielectric = fast && kind == F(float(kPacketSmoothDielectric));
+                const LambertianT<F> lambert{RGB<F>(LD(a.q[0]), LD(a.q[1]), LD(a.q[2]))};
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
 
@@ -259,8 +269,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const V3<F> wi_w(LD(a.lwx), LD(a.lwy), LD(a.lwz));
                     const V3<F> wi = frame.to_local(wi_w);
                     const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
-                    const RGB<F> f_fast = lane::select(leak, RGB<F>(F(0.f)), lambert.eval(ctx, wo, wi));
-                    const F pdf_fast = lane::select(leak, F(0.f), lambert.pdf(ctx, wo, wi));
+                    // (Of the packet forms only the Lambertian has a lobe NEE can reach.)
+                    const M off = leak || !is_lambert;
+                    const RGB<F> f_fast = lane::select(off, RGB<F>(F(0.f)), lambert.eval(ctx, wo, wi));
+                    const F pdf_fast = lane::select(off, F(0.f), lambert.pdf(ctx, wo, wi));
                     const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
                     const F bsdf_pdf = lane::select(fast, pdf_fast, LD(a.gpdf));
                     const F light_pdf = lane::select(nee, LD(a.lpdf), F(1.f));
@@ -276,7 +288,21 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 F pdf, eta;
                 M specular, transmission;
                 {
-                    const BxDFSampleT<F> s = lambert.sample(ctx, wo, LD(a.u[3]), V2<F>{LD(a.u[4]), LD(a.u[5])});
+                    const F u_lobe = LD(a.u[3]);
+                    const V2<F> u2{LD(a.u[4]), LD(a.u[5])};
+                    BxDFSampleT<F> s = lambert.sample(ctx, wo, u_lobe, u2);
+                    if (lane::any(is_dielectric)) {
+                        const SmoothDielectricT<F> diel{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
+                                                        RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};
+                        const BxDFSampleT<F> d = diel.sample(ctx, wo, u_lobe, u2);
+                        const auto di = lane::int_mask(is_dielectric);
+                        s.valid = lane::select(is_dielectric, d.valid, s.valid);
+                        s.wi = lane::select(is_dielectric, d.wi, s.wi);
+                        s.weight = lane::select(is_dielectric, d.weight, s.weight);
+                        s.pdf = lane::select(is_dielectric, d.pdf, s.pdf);
+                        s.eta = lane::select(is_dielectric, d.eta, s.eta);
+                        s.lobe = lane::select(di, d.lobe, s.lobe);
+                    }
                     const V3<F> wi_w = frame.to_world(s.wi);
                     const M ok_fast = s.valid && s.pdf > F(0.f) && !is_black(s.weight) && s.wi.z != F(0.f) &&
                                       !shading_leaks<F>(ng, wo_w, wi_w, wo, s.wi) && wo.z != F(0.f);
@@ -284,7 +310,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     sampled = goes_on && lane::select(fast, ok_fast, ok_gen);
                     weight = lane::select(fast, s.weight, RGB<F>(LD(a.swr), LD(a.swg), LD(a.swb)));
                     pdf = lane::select(fast, s.pdf, LD(a.spdf));
-                    eta = lane::select(fast, F(1.f), LD(a.seta));
+                    eta = lane::select(fast, s.eta, LD(a.seta));
                     const IntT<F> lobe = lane::select(lane::int_mask(fast), s.lobe, lane::load_int_as<IntT<F>>(a.slobe));
                     specular = lane::float_mask((lobe & IntT<F>(int32_t(BxDFFlags::Specular))) != IntT<F>(0));
                     transmission = lane::float_mask((lobe & IntT<F>(int32_t(BxDFFlags::Transmission))) != IntT<F>(0));

@@ -18,14 +18,26 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.use_mis = use_mis;
     ps.sampler = type;
     const size_t n = scene.material_bxdfs.size();
-    ps.packet_lambertian.assign(n, 0);
-    ps.albedo.assign(3 * n, 0.f);
+    ps.packet_kind.assign(n, kBSDFLane);
+    ps.packet_params.assign(kPacketParams * n, 0.f);
+    ps.packet_flags.assign(n, 0u);
     for (size_t m = 0; m < n; ++m) {
-        const Lambertian* l = std::get_if<Lambertian>(&scene.material_bxdfs[m]);
         const MaterialTextures& mt = scene.material_textures[m];
-        if (!l || mt.has_bindings() || mt.perturbs_normal() || !mt.two_sided) continue;
-        ps.packet_lambertian[m] = 1;
-        for (int c = 0; c < 3; ++c) ps.albedo[3 * m + size_t(c)] = l->albedo()[c];
+        if (mt.has_bindings() || mt.perturbs_normal() || !mt.two_sided) continue;
+        const BxDF& b = scene.material_bxdfs[m];
+        float* q = &ps.packet_params[kPacketParams * m];
+        if (const Lambertian* l = std::get_if<Lambertian>(&b)) {
+            ps.packet_kind[m] = kPacketLambertian;
+            for (int c = 0; c < 3; ++c) q[c] = l->albedo()[c];
+        } else if (const SmoothDielectric* d = std::get_if<SmoothDielectric>(&b)) {
+            ps.packet_kind[m] = kPacketSmoothDielectric;
+            const SmoothDielectricT<float> p = d->lanes();
+            q[0] = p.eta;
+            for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
+        } else {
+            continue;
+        }
+        ps.packet_flags[m] = uint32_t(flags(b));
     }
     std::vector<float> pmf(scene.lights.size());
     for (size_t i = 0; i < pmf.size(); ++i) pmf[i] = scene.light_pmf(i);
@@ -72,6 +84,10 @@ Spectrum emitted(const PathSetup& ps, const SurfaceInteraction& si, const LightS
     const auto& al = std::get<AreaLight>(scene.lights[size_t(si.light_id)]);
     *light_pdf = scene.light_pmf(size_t(si.light_id)) * al.pdf_li(prev, d, si.p, si.ng);
     return Le;
+}
+
+void footprint(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray) {
+    ps.scene->compute_footprint(si, ray);
 }
 
 BxDFFlags bsdf_begin(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray, BSDF* out) {

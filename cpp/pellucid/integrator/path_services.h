@@ -20,16 +20,24 @@ namespace pellucid {
 class Scene;
 
 /// What the path tracer reads of a scene and its settings, prepared once per render.
+/// The models the path tracer shades as packets (their templates XT<F>), and kBSDFLane.
+enum PacketKind : int32_t { kBSDFLane = 0, kPacketLambertian = 1, kPacketSmoothDielectric = 2 };
+constexpr int kPacketParams = 8;
+
 struct PathSetup {
     const Scene* scene = nullptr;
     int max_depth = -1;  ///< -1 = unbounded ("direct" = 2)
     int rr_depth = 5;
     bool use_nee = true, use_mis = true;
     SamplerType sampler = SamplerType::Independent;
-    /// Per material: 1 where its BSDF at every hit is the packet Lambertian (an untextured,
-    /// two-sided lambertian with no bump or normal map), else 0 (the lane goes through BSDF).
-    std::vector<int32_t> packet_lambertian;
-    std::vector<float> albedo;  ///< per material, 3 floats: the Lambertian's reflectance
+    /// Per material: which packet form shades its lanes (PacketKind), where its BSDF is the same at
+    /// every hit (untextured, two-sided, no bump or normal map) and its model has one; else
+    /// kBSDFLane (the lane goes through BSDF, one at a time).
+    std::vector<int32_t> packet_kind;
+    /// Per material, kPacketParams floats: the packet form's parameters (Lambertian: reflectance;
+    /// smooth dielectric: η, reflectance, transmittance), and its BxDFFlags.
+    std::vector<float> packet_params;
+    std::vector<uint32_t> packet_flags;
     /// NEE's triangles when every light is an area light on a mesh (light/area.h), else empty:
     /// then lights are sampled one lane at a time (path_services::sample_light).
     EmitterTable emitters;
@@ -55,6 +63,8 @@ Spectrum escaped(const PathSetup& ps, const LightSampleContext& prev, const Vec3
 /// delta bounce).
 Spectrum emitted(const PathSetup& ps, const SurfaceInteraction& si, const LightSampleContext& prev, const Vec3f& d,
                  bool specular, float* light_pdf);
+/// Set si's pixel footprint from the ray (Scene::compute_footprint).
+void footprint(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray);
 /// The BSDF at si (footprint set first when the scene has textures), built into *out; its flags.
 BxDFFlags bsdf_begin(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray, BSDF* out);
 Spectrum bsdf_eval(const BSDF& bsdf, const Vec3f& wo, const Vec3f& wi, float* pdf);
