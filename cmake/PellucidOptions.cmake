@@ -10,3 +10,11 @@ option(PELLUCID_BUILD_TESTS "Build the GTest suite (ctest)" ON)
 option(PELLUCID_BUILD_APP "Build the pellucid-render executable" ON)
 # Builds run on the machine that renders (make, CI), so tuning for it is safe; turn off to package.
 option(PELLUCID_NATIVE "Compile for the build machine's CPU (-march=native)" ON)
+# Sanitizers for every target of the build, as a comma-separated -fsanitize= list, e.g.
+# "address,undefined" (what `make sanitize` uses). Empty: none. Any finding aborts the process
+# (no recovery), so a test that triggers one fails.
+set(PELLUCID_SANITIZE "" CACHE STRING "Sanitizers to build with, e.g. address,undefined (empty: none)")
+if(PELLUCID_SANITIZE)
+  add_compile_options(-fsanitize=${PELLUCID_SANITIZE} -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=${PELLUCID_SANITIZE})
+endif()
