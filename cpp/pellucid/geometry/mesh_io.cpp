@@ -116,14 +116,16 @@ struct ObjState {
                 !resolve(idx[k].texcoord_index, vt.size(), "texture coordinate", c.t) ||
                 !resolve(idx[k].normal_index, vn.size(), "normal", c.n))
                 return;
-            if (!within_limit(corners.size(), "vertices") || !within_limit(out.face_material.size(), "triangles"))
-                return;
             auto [it, inserted] = shared.emplace(c, uint32_t(corners.size()));
-            if (inserted) corners.push_back(c);
+            if (inserted) {
+                if (!within_limit(corners.size(), "vertices")) return;
+                corners.push_back(c);
+            }
             uint32_t id = it->second;
             // Fan triangulation: (0, k-1, k).
             if (k == 0) first = id;
             else if (k >= 2) {
+                if (!within_limit(out.face_material.size(), "triangles")) return;
                 ids[0] = first;
                 ids[1] = prev;
                 ids[2] = id;

@@ -17,8 +17,8 @@ int max_scene_depth();
 
 /// Largest image a scene reads (image textures, environment maps), in pixels (width x height),
 /// checked from the file's header before any pixel is decoded: a small compressed file can claim a huge image (a "decompression bomb"). The
-/// default, 2^26 pixels (8192 x 8192), needs up to about 3 GB while an 8-bit RGB(A) file is
-/// converted to its linear MIP-mapped form (docs/scene-format.md, "Limits and numbers"). Raised
+/// default, 2^26 pixels (8192 x 8192), needs about 4.5 GB while an 8-bit RGBA file is converted
+/// to its linear MIP-mapped form (67 bytes per pixel, measured) (docs/scene-format.md, "Limits and numbers"). Raised
 /// with the environment variable PELLUCID_MAX_TEXTURE_PIXELS.
 constexpr int64_t kDefaultMaxTexturePixels = int64_t(1) << 26;
 int64_t max_texture_pixels();
