@@ -122,7 +122,7 @@ def main() -> int:
         try:
             for _ in range(rng.randint(1, 3)):
                 mutate(d, rng)
-        except RecursionError:  # copying a deep list; not pellucid's business
+        except (RecursionError, OverflowError):  # copying a deep list, scaling a huge int: not pellucid's
             continue
         text = short_repr(d)
         last.write_text(text, errors="backslashreplace")

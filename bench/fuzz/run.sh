@@ -31,7 +31,10 @@ native=()
 for h in "${HARNESSES[@]}"; do [ "$h" = load_dict ] || native+=("fuzz_$h"); done
 [ ${#native[@]} -eq 0 ] || "$CMAKE" --build "$BUILD" -j"$(nproc)" --target "${native[@]}"
 
-export TMPDIR=$BUILD/tmp PELLUCID_TEXTURE_CACHE=$BUILD/tmp/texture-cache
+# Inputs are written to files for the readers: on a RAM file system where there is one.
+TMP_ROOT=$BUILD/tmp
+if [ -d /dev/shm ] && [ -w /dev/shm ]; then TMP_ROOT=$(mktemp -d /dev/shm/pellucid-fuzz-XXXXXX); fi
+export TMPDIR=$TMP_ROOT PELLUCID_TEXTURE_CACHE=$TMP_ROOT/texture-cache
 export ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 mkdir -p "$TMPDIR"
 : > "$BUILD/summary.txt"
