@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -512,9 +513,12 @@ TriangleMesh load_ply(const std::string& path, const MeshLoadOptions& options) {
                 // Checked in double precision, before the conversion to the floats they are stored in.
                 auto value = [&](int prop, const char* what) {
                     double v = vals[size_t(prop)];
-                    if (!fits_float(v))
-                        data.fail(std::string(what) + " " + e.props[size_t(prop)].name + " = " + std::to_string(v) +
+                    if (!fits_float(v)) {
+                        char text[32];
+                        std::snprintf(text, sizeof text, "%g", v);
+                        data.fail(std::string(what) + " " + e.props[size_t(prop)].name + " = " + text +
                                   " is not a finite number that fits a 32-bit float");
+                    }
                     return float(v);
                 };
                 m.positions.emplace_back(value(px, "vertex position"), value(py, "vertex position"),

@@ -71,7 +71,7 @@ void scan_texels(const std::string& path, OIIO::ImageInput& in, bool srgb, Image
     for (int level = 0; in.seek_subimage(0, level); ++level) {
         const OIIO::ImageSpec spec = in.spec();  // a copy: seek_subimage replaces it
         const int w = spec.width, h = spec.height, nc = spec.nchannels;
-        if (w < 1 || h < 1 || nc < 1) break;
+        if (w < 1 || h < 1 || nc < 1 || spec.depth > 1 || spec.deep) break;
         if (std::string e = texture_size_error(w, h); !e.empty())
             throw Error(path + ": MIP level " + std::to_string(level) + ": " + e);
         // Bands of about 1M values; whole rows of tiles for a tiled file.
@@ -193,6 +193,8 @@ ImageTextureHandle open_image_texture(const std::string& path, TextureColorSpace
             spec.format.basetype == OIIO::TypeDesc::UINT8 || spec.format.basetype == OIIO::TypeDesc::UINT16 ||
             spec.format.basetype == OIIO::TypeDesc::INT8 || spec.format.basetype == OIIO::TypeDesc::INT16;
         if (found.width < 1 || found.height < 1 || found.channels < 1) throw Error(path + ": texture has no pixels");
+        if (spec.depth > 1 || spec.deep)
+            throw Error(path + ": " + (spec.deep ? "deep" : "volume (3D)") + " images are not textures");
         // From the header, before a pixel is decoded: a small file can claim a huge image.
         if (std::string e = texture_size_error(spec.width, spec.height); !e.empty()) throw Error(path + ": " + e);
         found.srgb = cs == TextureColorSpace::SRGB || (cs == TextureColorSpace::Auto && integer_format);

@@ -4,6 +4,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 
 #include "pellucid/geometry/mesh_io.h"
 #include "pellucid/scene/mitsuba_xml.h"
+#include "pellucid/texture/texture.h"
 #include "pellucid/texture/texture_system.h"
 #include "pellucid/util/limits.h"
 #include "support/error_of.h"
@@ -126,6 +128,20 @@ TEST(FuzzRegressions, PlyValuesThatOverflowAFloatAreErrors) {
                                           "property double z\nelement face 1\nproperty list uchar int vertex_indices\n"
                                           "end_header\n0 0 0\n1 0 1e300\n0 1 0\n3 0 1 2\n";
     std::string e = error_of_call([&] { load_ply(dir.file("big.ply")); });
-    EXPECT_TRUE(contains(e, "element 'vertex' 1: vertex position z = ")) << e;
+    EXPECT_TRUE(contains(e, "element 'vertex' 1: vertex position z = 1e+300 is not a finite")) << e;
     EXPECT_TRUE(contains(e, "is not a finite number that fits a 32-bit float")) << e;
+}
+
+TEST(FuzzRegressions, NoiseFarFromTheOriginStaysDefined) {
+    // Lattice coordinates beyond the int range (noise scale 1e30) converted float -> int out of
+    // range: undefined behaviour. The lattice has period 256, so such points reduce modulo 256.
+    Vec3f g;
+    for (float x : {3e9f, -3e9f, 1e30f, -1e38f}) {
+        float n = perlin_noise(Vec3f(x, 0.25f, 0.5f), &g);
+        EXPECT_TRUE(std::isfinite(n) && std::fabs(n) <= 1.5f) << x;
+        EXPECT_TRUE(std::isfinite(g.x) && std::isfinite(g.y) && std::isfinite(g.z)) << x;
+    }
+    // Within the int range the reduction changes nothing: period 256 in every axis.
+    EXPECT_EQ(perlin_noise(Vec3f(1.25f, 2.75f, 0.5f)), perlin_noise(Vec3f(1.25f + 256.f * 4096.f, 2.75f, 0.5f)));
+    EXPECT_EQ(perlin_noise(Vec3f(INFINITY, 0.f, 0.f), &g), 0.f);
 }
