@@ -16,10 +16,11 @@ constexpr int kDefaultMaxSceneDepth = 256;
 int max_scene_depth();
 
 /// Largest image a scene reads (image textures, environment maps), in pixels (width x height),
-/// checked from the file's header before any pixel is decoded: a small compressed file can claim a huge image (a "decompression bomb"). The
-/// default, 2^26 pixels (8192 x 8192), needs about 4.5 GB while an 8-bit RGBA file is converted
-/// to its linear MIP-mapped form (67 bytes per pixel, measured) (docs/scene-format.md, "Limits and numbers"). Raised
-/// with the environment variable PELLUCID_MAX_TEXTURE_PIXELS.
+/// checked from the file's header before any pixel is decoded: a small compressed file can claim a
+/// huge image (a "decompression bomb"). The default, 2^26 pixels (8192 x 8192), needs about 4.5 GB
+/// while an 8-bit RGBA file is converted to its linear MIP-mapped form (67 bytes per pixel,
+/// measured; docs/scene-format.md, "Limits and numbers"). Raised with the environment variable
+/// PELLUCID_MAX_TEXTURE_PIXELS.
 constexpr int64_t kDefaultMaxTexturePixels = int64_t(1) << 26;
 int64_t max_texture_pixels();
 /// "" when a width x height image is within the texture limit, else the message (naming the limit
@@ -27,7 +28,7 @@ int64_t max_texture_pixels();
 std::string texture_size_error(int64_t width, int64_t height);
 
 /// Largest element count (vertices, faces) a mesh file may declare: PLY headers and OBJ files. The
-/// default, 2^28, keeps a mesh under about 10 GB (vertices with normals and uv: 32 bytes each;
+/// default, 2^28, keeps a mesh under about 11 GB (vertices with normals and uv: 32 bytes each;
 /// triangles: 12 bytes). Raised with PELLUCID_MAX_MESH_ELEMENTS (at most 2^32 - 1: indices are
 /// 32-bit).
 constexpr int64_t kDefaultMaxMeshElements = int64_t(1) << 28;
