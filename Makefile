@@ -15,8 +15,8 @@ BIN := $(BUILD)/cpp/pellucid-render
 # binaries, and --no-install-recommends would leave them out).
 DEB_PACKAGES := g++ python3-venv python3-dev ca-certificates \
                 libembree-dev libopenimageio-dev openimageio-tools libglm-dev libtbb-dev \
-                nlohmann-json3-dev libpugixml-dev libtinyobjloader-dev libgtest-dev
-PY_DEPS := "pybind11>=2.12" "scikit-build-core>=0.10" "numpy" "pytest" "cmake>=3.18" "ninja" "matplotlib" "tqdm"
+                nlohmann-json3-dev libpugixml-dev libtinyobjloader-dev libgtest-dev libxsimd-dev libcli11-dev
+PY_DEPS := "pybind11>=2.12" "pybind11-stubgen" "scikit-build-core>=0.10" "numpy" "pytest" "cmake>=3.18" "ninja" "matplotlib" "tqdm"
 SOURCES := $(shell find cpp bindings python tests/cpp cmake -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name '*.txt' -o -name '*.cmake' -o -name '*.pyi' \) 2>/dev/null) CMakeLists.txt pyproject.toml
 
 .PHONY: render test deps clean sanitize
@@ -38,9 +38,11 @@ $(VENV)/.py-stamp: $(VENV)/.deb-stamp
 	$(VPY) -m pip install -q $(PY_DEPS)
 	@touch $@
 
-# Editable, incremental install: the CMake build in build/py also builds pellucid-render and the tests.
+# Editable, incremental install: the CMake build in build/py also builds pellucid-render and the
+# tests (which a plain `pip install .` leaves out).
 $(VENV)/.install-stamp: $(VENV)/.py-stamp $(SOURCES)
-	$(VPY) -m pip install -q --no-build-isolation -e . -Cbuild-dir=$(BUILD)
+	$(VPY) -m pip install -q --no-build-isolation -e . -Cbuild-dir=$(BUILD) \
+	  -Ccmake.define.PELLUCID_BUILD_TESTS=ON
 	@touch $@
 
 deps: $(VENV)/.install-stamp

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import pathlib
 import subprocess
@@ -67,17 +66,6 @@ def scene_json(spp: int) -> dict:
     }
 
 
-def z_for(alpha: float) -> float:
-    lo, hi = 0.0, 40.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        if math.erfc(mid / math.sqrt(2.0)) > alpha:
-            lo = mid
-        else:
-            hi = mid
-    return 0.5 * (lo + hi)
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--spp", type=int, default=256)
@@ -91,6 +79,7 @@ def main(argv=None) -> int:
         return SKIP
 
     import pellucid
+    from pellucid.bench import critical_z
 
     with tempfile.TemporaryDirectory() as tmp_s:
         tmp = pathlib.Path(a.keep or tmp_s)
@@ -114,7 +103,7 @@ def main(argv=None) -> int:
         theirs_var = pellucid.read_image(str(out)[:-4] + ".var.exr")
 
     n = ours.size
-    z_max = z_for(1.0 - (1.0 - 0.01) ** (1.0 / n))
+    z_max = critical_z(n, 0.01)
     z = np.abs(ours - theirs) / np.sqrt(ours_var + theirs_var + 1e-12)
     fails = int((z > z_max).sum())
     rel_mean = float(abs(ours.mean() - theirs.mean()) / theirs.mean())

@@ -18,6 +18,8 @@ void bind_render(py::module_& m);
 
 /// Move an image into a numpy array of shape (H, W, C) that views its memory (no copy).
 py::array image_to_array(Image&& img);
+/// A numpy array's shape as Python prints it: "(4, 3)", "(5,)", "()".
+std::string shape_text(const py::array& a);
 /// Copy a (H, W, 3) / (H, W) float array into an Image.
 Image array_to_image(const py::array_t<float, py::array::c_style | py::array::forcecast>& a);
 /// Python object (dict, list, number, str, bool, None) -> SceneDesc node. Errors carry the key path.

@@ -12,12 +12,14 @@ using FArr = py::array_t<float, py::array::c_style | py::array::forcecast>;
 
 size_t rows3(const FArr& a, const char* name) {
     if (a.ndim() != 2 || a.shape(1) != 3)
-        throw Error(std::string(name) + ": expected an array of shape (N, 3), got " + std::to_string(a.ndim()) + " dims");
+        throw Error(std::string(name) + ": expected an array of shape (N, 3), got shape " + shape_text(a));
     return size_t(a.shape(0));
 }
 size_t rows_pair(const FArr& a, const char* an, const FArr& b, const char* bn) {
     size_t n = rows3(a, an);
-    if (rows3(b, bn) != n) throw Error(std::string(an) + " and " + bn + " must have the same number of rows");
+    if (rows3(b, bn) != n)
+        throw Error(std::string(an) + " and " + bn + ": expected the same number of rows, got shapes " + shape_text(a) +
+                    " and " + shape_text(b));
     return n;
 }
 py::array_t<float> empty(size_t n, bool vec3) {

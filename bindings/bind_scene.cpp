@@ -75,10 +75,12 @@ void bind_scene(py::module_& m) {
         .def_property_readonly("spp", [](const Scene& s) { return s.spp; })
         .def_property_readonly("source", [](const Scene& s) { return s.source; })
         .def("__repr__", &Scene::to_string);
-    m.def("load_file", [](const std::string& path, bool lenient) {
-        return std::const_pointer_cast<Scene>(load_file(path, lenient));
-    }, py::arg("path"), py::arg("lenient") = false, py::call_guard<py::gil_scoped_release>(),
-       "Load and build a scene file (.json or Mitsuba 3 .xml; lenient: unsupported XML elements warn).");
+    m.def("load_file", [](const std::string& path, bool lenient, const std::map<std::string, std::string>& params) {
+        return std::const_pointer_cast<Scene>(load_file(path, lenient, params));
+    }, py::arg("path"), py::arg("lenient") = false, py::arg("params") = std::map<std::string, std::string>{},
+       py::call_guard<py::gil_scoped_release>(),
+       "Load and build a scene file (.json or Mitsuba 3 .xml; lenient: unsupported XML elements warn; params: "
+       "Mitsuba $name values).");
     m.def("mitsuba_import_table", [] {
         std::vector<std::map<std::string, py::object>> out;
         for (const MitsubaPlugin& p : mitsuba_import_table()) {

@@ -8,8 +8,10 @@ endif()
 option(PELLUCID_BUILD_PYTHON "Build the pellucid._core Python extension" ${_py_default})
 option(PELLUCID_BUILD_TESTS "Build the GTest suite (ctest)" ON)
 option(PELLUCID_BUILD_APP "Build the pellucid-render executable" ON)
-# Builds run on the machine that renders (make, CI), so tuning for it is safe; turn off to package.
-option(PELLUCID_NATIVE "Compile for the build machine's CPU (-march=native)" ON)
+# The path tracer picks its SIMD instruction set at run time (cpp/pellucid/integrator/simd_target.h),
+# so the default build runs on any x86-64 or arm64 CPU; ON tunes the rest of the library to the
+# build machine as well.
+option(PELLUCID_NATIVE "Compile the library for the build machine's CPU (-march=native)" OFF)
 # Sanitizers for every target of the build, as a comma-separated -fsanitize= list, e.g.
 # "address,undefined" (what `make sanitize` uses). Empty: none. Any finding aborts the process
 # (no recovery), so a test that triggers one fails.

@@ -10,6 +10,15 @@ Run with the dedicated venv (see setup_mitsuba.sh); this script never imports pe
 `to_mitsuba_dict(scene_json)` converts a parsed pellucid scene into a Mitsuba scene
 dict; a Mitsuba variant must be set before calling it (it builds ScalarTransform4f
 objects and, for meshes, mi.Mesh objects).
+
+Materials, textures and bump maps map to the Mitsuba plugin of the same model (docs/mitsuba-import.md
+lists the correspondence in the other direction): pellucid's options that choose Mitsuba's definition
+(`shadowing: "separable"`, `coat_transmittance: "rough"`, `bump_model: "mitsuba"`,
+`terminator_model: "estevez"`, image `filter: "bilinear"`, checkerboard `filtered: false`) make the two
+renderers compute the same image; other values still convert, to the nearest Mitsuba model. Two models
+have no Mitsuba 3 plugin: `oren_nayar` and `principled` `variant: "2012"`. They are an error unless
+`substitute=True` (`--substitute`), which renders them as Mitsuba's `diffuse` and `principled` (for
+timing; the images then differ).
 """
 from __future__ import annotations
 
@@ -147,19 +156,134 @@ def _alpha(mat, d, what):
     d["distribution"] = dist  # Mitsuba's default is beckmann, pellucid's ggx: always explicit
 
 
-def _bsdf(mat, what):
-    """pellucid material -> Mitsuba BSDF. pellucid's opaque materials reflect on both sides of a surface,
-    Mitsuba's on the front only, so they are wrapped in `twosided` (dielectrics are two-sided already)."""
-    d = _bsdf_one_sided(mat, what)
-    if d["type"] in ("dielectric", "roughdielectric", "thindielectric"):
+class _Ctx:
+    """What a material needs besides itself: the scene's named textures, the folder that relative file
+    names are resolved against, and whether models without a Mitsuba plugin are substituted."""
+
+    def __init__(self, textures=None, base_dir=".", substitute=False):
+        self.textures, self.base_dir, self.substitute = textures or {}, base_dir, substitute
+
+
+def _texture(v, what, ctx, raw=False):
+    """A pellucid texture (inline object or the name of a top-level texture) -> Mitsuba texture dict."""
+    if isinstance(v, str):
+        if v not in ctx.textures:
+            raise KeyError(f"{what}: no texture {v!r}")
+        what, v = f"textures.{v}", ctx.textures[v]
+    t = v.get("type")
+    if t == "image":
+        fn = v["filename"]
+        path = fn if os.path.isabs(fn) else os.path.join(ctx.base_dir, fn)
+        if not os.path.exists(path):
+            raise FileNotFoundError(f"{what}.filename: no such file {path!r}")
+        d = {"type": "bitmap", "filename": path,
+             "filter_type": "nearest" if v.get("filter") == "nearest" else "bilinear"}
+        wrap = v.get("wrap_mode", "repeat")
+        if wrap not in ("repeat", "mirror", "clamp"):
+            raise NotImplementedError(f"{what}.wrap_mode: {wrap!r} is not mapped")
+        d["wrap_mode"] = wrap
+        cs = v.get("color_space", "auto")
+        if cs == "linear" or (raw and cs == "auto"):
+            d["raw"] = True
+        if "to_uv" in v:
+            d["to_uv"] = _transform(v["to_uv"], f"{what}.to_uv")
         return d
-    return {"type": "twosided", "bsdf": d}
+    if t == "checkerboard":
+        d = {"type": "checkerboard", "color0": _rgb(v.get("color0", 0.4), f"{what}.color0"),
+             "color1": _rgb(v.get("color1", 0.2), f"{what}.color1")}
+        if "to_uv" in v:
+            d["to_uv"] = _transform(v["to_uv"], f"{what}.to_uv")
+        return d
+    raise NotImplementedError(f"{what}: texture type {t!r} is not mapped")
 
 
-def _bsdf_one_sided(mat, what):
+def _color(mat, key, default, what, ctx):
+    v = mat.get(key, default)
+    if isinstance(v, (str, dict)):
+        return _texture(v, f"{what}.{key}", ctx or _Ctx())
+    return _rgb(v, f"{what}.{key}")
+
+
+def _float(mat, key, default, what):
+    v = mat.get(key, default)
+    if isinstance(v, (str, dict)):
+        raise NotImplementedError(f"{what}.{key}: textured float parameters are not mapped")
+    return float(v)
+
+
+def _bsdf(mat, what, ctx=None):
+    """pellucid material -> Mitsuba BSDF. pellucid's opaque materials reflect on both sides of a surface
+    unless `two_sided` is false, Mitsuba's on the front only, so two-sided ones are wrapped in `twosided`
+    (dielectrics and principled are two-sided already). A bump or normal map wraps the result."""
+    ctx = ctx or _Ctx()
+    d = _bsdf_one_sided(mat, what, ctx)
+    if d["type"] not in ("dielectric", "roughdielectric", "thindielectric", "principled", "principledthin") \
+            and mat.get("two_sided", True):
+        d = {"type": "twosided", "bsdf": d}
+    for key, plugin, slot in (("normal_map", "normalmap", "normalmap"), ("bump_map", "bumpmap", "arbitrary")):
+        if key in mat:  # pellucid applies the normal map first, then the bump map: bump is outermost
+            d = {"type": plugin, slot: _texture(mat[key], f"{what}.{key}", ctx, raw=True), "bsdf": d,
+                 "use_shadowing_function": bool(mat.get("terminator_softening", True)),
+                 "flip_invalid_normals": mat.get("invalid_normals", "bend") == "mirror"}
+            if plugin == "bumpmap":
+                d["scale"] = _float(mat, "bump_scale", 1.0, what)
+    return d
+
+
+def _principled(mat, what, ctx):
+    """principled -> Mitsuba principled / principledthin, every value written (the defaults differ)."""
+    thin = bool(mat.get("thin", False))
+    d = {"type": "principledthin" if thin else "principled",
+         "base_color": _color(mat, "base_color", 0.8, what, ctx)}
+    keys = [("roughness", "roughness", 0.5), ("anisotropic", "anisotropic", 0.0),
+            ("specular_tint", "spec_tint", 0.0), ("sheen", "sheen", 0.0), ("sheen_tint", "sheen_tint", 0.5)]
+    if mat.get("variant", "2012") == "2015":
+        keys += [("specular_transmission", "spec_trans", 0.0), ("flatness", "flatness", 0.0)]
+        keys += [("diffuse_transmission", "diff_trans", 0.0)] if thin else []
+    if not thin:
+        keys += [("metallic", "metallic", 0.0), ("clearcoat", "clearcoat", 0.0),
+                 ("clearcoat_gloss", "clearcoat_gloss", 1.0)]
+    for ours, theirs, default in keys:
+        d[theirs] = _float(mat, ours, default, what)
+    if "eta" in mat:
+        d["eta"] = _float(mat, "eta", 1.5, what)
+    elif thin:  # principledthin takes no `specular`: the same eta, ((eta - 1)/(eta + 1))^2 = 0.08 specular
+        f0 = (0.08 * _float(mat, "specular", 0.5, what)) ** 0.5
+        d["eta"] = (1.0 + f0) / (1.0 - f0)
+    else:
+        d["specular"] = _float(mat, "specular", 0.5, what)
+    return d
+
+
+def _bsdf_one_sided(mat, what, ctx=None):
+    ctx = ctx or _Ctx()
     t = mat.get("type")
     if t in ("lambertian", "diffuse"):
-        return {"type": "diffuse", "reflectance": _rgb(mat.get("reflectance", 0.5), f"{what}.reflectance")}
+        return {"type": "diffuse", "reflectance": _color(mat, "reflectance", 0.5, what, ctx)}
+    if t == "oren_nayar":
+        if not ctx.substitute:
+            raise NotImplementedError(f"{what}: oren_nayar has no Mitsuba 3 plugin (substitute: diffuse)")
+        return {"type": "diffuse", "reflectance": _color(mat, "reflectance", 0.5, what, ctx)}
+    if t == "principled":
+        if mat.get("variant", "2012") != "2015" and not ctx.substitute:
+            raise NotImplementedError(f"{what}: principled 2012 has no Mitsuba 3 plugin (substitute: principled)")
+        return _principled(mat, what, ctx)
+    if t in ("plastic", "rough_plastic"):
+        variant = mat.get("variant", "coupled")
+        if variant not in ("coupled", "linear"):
+            raise NotImplementedError(f"{what}.variant: {variant!r} has no Mitsuba equivalent")
+        d = {"type": "plastic" if t == "plastic" else "roughplastic",
+             "diffuse_reflectance": _color(mat, "diffuse_reflectance", 0.5, what, ctx),
+             "int_ior": _ior(mat.get("int_ior", "polypropylene"), f"{what}.int_ior"),
+             "ext_ior": _ior(mat.get("ext_ior", "air"), f"{what}.ext_ior"),
+             "nonlinear": variant == "coupled"}
+        if "specular_reflectance" in mat:
+            d["specular_reflectance"] = _color(mat, "specular_reflectance", 1.0, what, ctx)
+        if t == "rough_plastic":
+            _alpha(mat, d, what)
+            if "alpha_u" in d:
+                raise NotImplementedError(f"{what}: Mitsuba's roughplastic is isotropic")
+        return d
     if t in ("conductor", "rough_conductor"):
         if mat.get("fresnel", "exact") != "exact":
             raise NotImplementedError(f"{what}.fresnel: only 'exact' has a Mitsuba equivalent")
@@ -172,7 +296,7 @@ def _bsdf_one_sided(mat, what):
         else:
             d["eta"], d["k"] = eta, k
         if "specular_reflectance" in mat:
-            d["specular_reflectance"] = _rgb(mat["specular_reflectance"], f"{what}.specular_reflectance")
+            d["specular_reflectance"] = _color(mat, "specular_reflectance", 1.0, what, ctx)
         if t == "rough_conductor":
             _alpha(mat, d, what)
         return d
@@ -183,7 +307,7 @@ def _bsdf_one_sided(mat, what):
              "ext_ior": _ior(mat.get("ext_ior", "air"), f"{what}.ext_ior")}
         for key in ("specular_reflectance", "specular_transmittance"):
             if key in mat:
-                d[key] = _rgb(mat[key], f"{what}.{key}")
+                d[key] = _color(mat, key, 1.0, what, ctx)
         if t == "rough_dielectric":
             _alpha(mat, d, what)
         return d
@@ -252,6 +376,25 @@ def _mesh(shape, to_world, name, bsdf, emitter):
     return mesh
 
 
+def _ply(shape, to_world, bsdf, emitter, what, base_dir):
+    """A PLY file. pellucid shades a file without vertex normals flat unless `smooth_normals`; Mitsuba
+    computes smooth ones unless `face_normals`: the header says which the file is."""
+    fn = shape["filename"]
+    path = fn if os.path.isabs(fn) else os.path.join(base_dir, fn)
+    if not os.path.exists(path):
+        raise FileNotFoundError(f"{what}.filename: no such file {path!r}")
+    with open(path, "rb") as f:
+        header = f.read(4096).split(b"end_header")[0]
+    has_normals = b"property float nx" in header or b"property double nx" in header
+    flat = shape.get("face_normals", False) or (not has_normals and not shape.get("smooth_normals", False))
+    d = {"type": "ply", "filename": path, "to_world": to_world, "bsdf": bsdf, "face_normals": bool(flat)}
+    if shape.get("flip_normals", False):
+        d["flip_normals"] = True
+    if emitter is not None:
+        d["emitter"] = emitter
+    return d
+
+
 def _light(l, what, base_dir):
     t = l.get("type")
     if t == "constant":
@@ -290,11 +433,12 @@ def _light(l, what, base_dir):
 
 
 # --------------------------------------------------------------------------- conversion
-def to_mitsuba_dict(scene_json: dict, base_dir: str = ".") -> dict:
+def to_mitsuba_dict(scene_json: dict, base_dir: str = ".", substitute: bool = False) -> dict:
     """Convert a pellucid JSON scene (parsed) into a Mitsuba 3 scene dict.
 
-    Requires a Mitsuba variant to be set (mi.set_variant) beforehand. Relative file names (envmap)
-    are resolved against `base_dir` (the scene file's folder).
+    Requires a Mitsuba variant to be set (mi.set_variant) beforehand. Relative file names (envmap,
+    textures, ply) are resolved against `base_dir` (the scene file's folder). `substitute`: render
+    the models that Mitsuba 3 lacks as their nearest Mitsuba plugin (module docstring).
     """
     if mi.variant() is None:
         raise RuntimeError("call mi.set_variant(...) before to_mitsuba_dict()")
@@ -339,11 +483,12 @@ def to_mitsuba_dict(scene_json: dict, base_dir: str = ".") -> dict:
     if "hide_emitters" in integ:
         out["integrator"]["hide_emitters"] = bool(integ["hide_emitters"])
 
+    ctx = _Ctx(sj.get("textures", {}), base_dir, substitute)
     mats = sj.get("materials", {})
     mat_ids = {}
     for i, (name, m) in enumerate(mats.items()):
         key = f"mat_{i}_{name}"
-        out[key] = _bsdf(m, f"materials.{name}")
+        out[key] = _bsdf(m, f"materials.{name}", ctx)
         mat_ids[name] = key
 
     for i, s in enumerate(sj.get("shapes", [])):
@@ -355,7 +500,7 @@ def to_mitsuba_dict(scene_json: dict, base_dir: str = ".") -> dict:
             bsdf = {"type": "ref", "id": mat_ids[m]}
             bsdf_full = out[mat_ids[m]]
         elif isinstance(m, dict):
-            bsdf = bsdf_full = _bsdf(m, f"{what}.material")
+            bsdf = bsdf_full = _bsdf(m, f"{what}.material", ctx)
         elif m is None:
             bsdf = bsdf_full = {"type": "twosided", "bsdf": {"type": "diffuse"}}
         else:
@@ -378,6 +523,8 @@ def to_mitsuba_dict(scene_json: dict, base_dir: str = ".") -> dict:
             out[f"shape_{i}"] = d
         elif t == "mesh":
             out[f"shape_{i}"] = _mesh(s, tw, f"shape_{i}", bsdf_full, em)
+        elif t == "ply":
+            out[f"shape_{i}"] = _ply(s, tw, bsdf, em, what, base_dir)
         else:
             raise NotImplementedError(f"{what}: shape type {t!r} is not mapped")
 
@@ -387,6 +534,19 @@ def to_mitsuba_dict(scene_json: dict, base_dir: str = ".") -> dict:
 
 
 # --------------------------------------------------------------------------- rendering
+def _peak_rss_mb():
+    """This process's peak resident memory (VmHWM; Linux), None where /proc is missing. Unlike the
+    rusage of a child, it does not include the parent's memory at the fork."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024.0
+    except OSError:
+        pass
+    return None
+
+
 def _write_exr(path, arr):
     arr = np.ascontiguousarray(arr, dtype=np.float32)
     mi.Bitmap(arr, mi.Bitmap.PixelFormat.RGB).write(path)
@@ -414,6 +574,8 @@ def main(argv=None):
     ap.add_argument("--warmup", choices=["auto", "full", "tiny", "none"], default="auto",
                     help="auto: 'full' for llvm (same spp/pass + film, untimed), 'none' for scalar; "
                          "'tiny' = spp=1 (does not avoid recompiling the timed kernel)")
+    ap.add_argument("--substitute", action="store_true",
+                    help="render models without a Mitsuba plugin as the nearest one (for timing)")
     ap.add_argument("--quiet", action="store_true")
     a = ap.parse_args(argv)
 
@@ -432,7 +594,7 @@ def main(argv=None):
 
     t0 = time.perf_counter()
     base_dir = a.base_dir or os.path.dirname(os.path.abspath(a.scene))
-    scene = mi.load_dict(to_mitsuba_dict(sj, base_dir))
+    scene = mi.load_dict(to_mitsuba_dict(sj, base_dir, a.substitute))
     load_s = time.perf_counter() - t0
     # Set the render's thread count only after loading: Mitsuba 3.9's EXR reader and writer
     # (OpenEXR/IlmThread on Dr.Jit's pool) deadlock when the pool has a single thread, and an
@@ -506,6 +668,7 @@ def main(argv=None):
         "warmup_seconds": warm_s,
         "jit_compile_seconds_in_timed": jit_compile_s,
         "load_seconds": load_s,
+        "peak_rss_mb": _peak_rss_mb(),
         "max_depth": int(sj.get("integrator", {}).get("max_depth", -1)),
         "out": a.out,
         "var_out": var_path,

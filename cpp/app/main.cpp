@@ -1,13 +1,21 @@
 // pellucid-render: the standalone renderer (no Python needed).
 // Usage: pellucid-render [render] SCENE -o OUT [-o OUT2 ...] [--spp N] [--seed S] [--threads T]
-//                        [--sampler independent|sobol] [--time-budget SECONDS] [--aov albedo|normal|depth]
-//                        [--lenient] [--quiet]
-// The same flags as `python -m pellucid render`; the same scene and seed give the same image.
+//                        [--sampler independent|sobol] [--aov albedo|normal|depth] [--time-budget SECONDS]
+//                        [-D NAME=VALUE ...] [--resume STATE] [--state STATE] [--lenient] [--quiet]
+// The same flags, help and error format as `python -m pellucid render`; the same scene and seed
+// give the same image. Arguments are parsed with CLI11 (only here).
 // SPDX-License-Identifier: Apache-2.0
+#include <signal.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
-#include <csignal>
+#include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,120 +23,307 @@
 #include "pellucid/util/error.h"
 
 namespace {
+constexpr const char* kProg = "pellucid-render";
 std::atomic<bool> g_cancel{false};
-extern "C" void on_sigint(int) { g_cancel = true; }
+volatile sig_atomic_t g_signal = 0;
 
-const char* kUsage =
-    "usage: pellucid-render [render] SCENE -o OUT [-o OUT ...] [--spp N] [--seed S] [--threads T]\n"
-    "                       [--sampler independent|sobol] [--time-budget SECONDS] [--aov albedo|normal|depth]\n"
-    "                       [--lenient] [--quiet]\n"
-    "Renders SCENE (.json or Mitsuba 3 .xml) and writes each OUT (.exr keeps HDR values; .png/.jpg are\n"
-    "tone-mapped sRGB). --lenient: unsupported Mitsuba XML elements are warnings (skipped), not errors.\n"
-    "--aov renders that AOV of the first hit instead of the scene's integrator (signed normals and depth\n"
-    "need .exr to keep their values). --sampler overrides the scene's sampler type (sobol: Owen-scrambled\n"
-    "Sobol, lower error at equal spp).\n";
-
-[[noreturn]] void usage_error(const std::string& msg) {
-    std::fprintf(stderr, "pellucid-render: error: %s\n%s", msg.c_str(), kUsage);
-    std::exit(2);
+// SIGINT/SIGTERM: ask the render to stop (it returns the complete passes, which are written). The
+// handler is reset after the first signal, so a second one ends the process at once.
+extern "C" void on_signal(int sig) {
+    g_signal = sig;
+    g_cancel.store(true);
 }
 
-long long parse_int(const std::string& flag, const std::string& v) {
-    char* end = nullptr;
-    long long x = std::strtoll(v.c_str(), &end, 10);
-    if (v.empty() || *end) usage_error(flag + ": expected an integer, got '" + v + "'");
-    return x;
+void install_signal_handlers() {
+    struct sigaction sa {};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND;
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+}
+
+/// Word-wrap `text` to `width` columns, every line after the first indented by `indent`.
+std::string wrap(const std::string& text, size_t first_col, size_t indent, size_t width = 79) {
+    std::string out, word;
+    size_t col = first_col;
+    auto flush = [&] {
+        if (word.empty()) return;
+        if (col > indent && col + 1 + word.size() > width) {
+            out += "\n" + std::string(indent, ' ');
+            col = indent;
+        } else if (col > first_col || (col > indent && !out.empty())) {
+            out += ' ';
+            ++col;
+        }
+        out += word;
+        col += word.size();
+        word.clear();
+    };
+    for (char c : text) {
+        if (c == ' ') flush();
+        else word += c;
+    }
+    flush();
+    return out;
+}
+
+/// Help and errors in the layout of Python's argparse, so that both command lines read alike.
+class ArgparseFormatter : public CLI::Formatter {
+public:
+    static std::string usage(const CLI::App* app) {
+        std::vector<std::string> parts = {"[-h]"};
+        std::vector<std::string> positionals;
+        for (const CLI::Option* o : app->get_options()) {
+            if (o->get_name() == "--help" || o->get_name() == "--version") continue;
+            if (o->get_positional()) {
+                positionals.push_back(o->get_name());
+                continue;
+            }
+            std::string s = first_name(o);
+            if (!o->get_type_name().empty()) s += " " + o->get_type_name();
+            parts.push_back(o->get_required() ? s : "[" + s + "]");
+        }
+        parts.insert(parts.end(), positionals.begin(), positionals.end());
+        const std::string head = std::string("usage: ") + kProg + " ";
+        std::string line = head, out;
+        for (const std::string& p : parts) {
+            if (line.size() > head.size() && line.size() + p.size() + 1 > 79) {
+                out += line + "\n";
+                line = std::string(head.size(), ' ');
+            }
+            if (line.size() > head.size()) line += " ";
+            line += p;
+        }
+        return out + line + "\n";
+    }
+
+    std::string make_help(const CLI::App* app, std::string, CLI::AppFormatMode) const override {
+        std::string out = usage(app) + "\n" + app->get_description() + "\n\npositional arguments:\n";
+        for (const CLI::Option* o : app->get_options())
+            if (o->get_positional()) out += entry(o->get_name(), o->get_description());
+        out += "\noptions:\n";
+        for (const CLI::Option* o : app->get_options()) {
+            if (o->get_positional()) continue;
+            std::string names;
+            const std::string meta = o->get_type_name().empty() ? "" : " " + o->get_type_name();
+            for (const std::string& s : o->get_snames()) names += (names.empty() ? "-" : ", -") + s + meta;
+            for (const std::string& l : o->get_lnames()) names += (names.empty() ? "--" : ", --") + l + meta;
+            out += entry(names, o->get_description());
+        }
+        return out;
+    }
+
+private:
+    static std::string first_name(const CLI::Option* o) {
+        if (!o->get_snames().empty()) return "-" + o->get_snames().front();
+        return "--" + o->get_lnames().front();
+    }
+    static std::string entry(const std::string& names, const std::string& desc) {
+        std::string out = "  " + names;
+        if (out.size() + 2 > 24) out += "\n" + std::string(24, ' ');
+        else out += std::string(24 - out.size(), ' ');
+        return out + wrap(desc, 24, 24) + "\n";
+    }
+};
+
+/// A validator for numbers >= lo (or > lo), with argparse-like wording.
+CLI::Validator number_above(double lo, bool inclusive) {
+    return CLI::Validator(
+        [lo, inclusive](std::string& v) -> std::string {
+            char* end = nullptr;
+            const double x = std::strtod(v.c_str(), &end);
+            if (v.empty() || *end) return "invalid value '" + v + "'";
+            if (inclusive ? x >= lo : x > lo) return "";
+            return "value " + v + " must be " + (inclusive ? ">= " : "> ") + CLI::detail::to_string(lo);
+        },
+        "");
+}
+
+/// A validator for integers in [lo, hi], with argparse-like wording.
+CLI::Validator integer_in(int64_t lo, int64_t hi) {
+    return CLI::Validator(
+        [lo, hi](std::string& v) -> std::string {
+            char* end = nullptr;
+            errno = 0;
+            const long long x = std::strtoll(v.c_str(), &end, 10);
+            if (v.empty() || *end) return "invalid int value '" + v + "'";
+            if (errno == ERANGE || x < lo || x > hi) {
+                if (hi == INT64_MAX) return "value " + v + " must be >= " + std::to_string(lo);
+                return "value " + v + " must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+            }
+            return "";
+        },
+        "");
+}
+
+/// A validator for a name from `known` (pellucid-render's wording before CLI11).
+CLI::Validator one_of(const std::string& what, std::vector<std::string> known) {
+    return CLI::Validator(
+        [what, known](std::string& v) -> std::string {
+            std::string list;
+            for (const std::string& k : known) {
+                if (k == v) return "";
+                list += (list.empty() ? "" : ", ") + k;
+            }
+            return "unknown " + what + " '" + v + "' (known: " + list + ")";
+        },
+        "");
+}
+
+struct Args {
+    std::string scene;
+    std::vector<std::string> outputs, defines;
+    std::string sampler, aov, resume, state;
+    int spp = -1, threads = 0;
+    int64_t seed = -1;
+    double time_budget = 0.0;
+    bool lenient = false, quiet = false;
+};
+
+/// Parse argv; returns -1 to go on, else the exit code (help, version, usage errors).
+int parse(int argc, char** argv, Args& a) {
+    // `pellucid-render render SCENE ...` is `pellucid-render SCENE ...`, as `python -m pellucid render`.
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (!args.empty() && args.front() == "render") args.erase(args.begin());
+    std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+
+    CLI::App app("render a scene file", kProg);
+    app.formatter(std::make_shared<ArgparseFormatter>());
+    app.set_help_flag("-h,--help", "show this help message and exit");
+    app.set_version_flag("--version", std::string("pellucid ") + pellucid::version(), "show the version and exit");
+    app.add_option("scene", a.scene, "scene file (.json or Mitsuba 3 .xml)")->required();
+    app.add_option("-o,--output", a.outputs,
+                   "output image (.exr keeps HDR; .png/.jpg tone-mapped sRGB); repeatable; missing folders are created")
+        ->required()
+        ->type_name("OUTPUT")
+        ->expected(1)
+        ->take_all();
+    app.add_option("--spp", a.spp, "samples per pixel (default: the scene's)")
+        ->type_name("SPP")
+        ->check(integer_in(1, 1 << 24));
+    app.add_option("--seed", a.seed, "random seed (default: the scene's)")->type_name("SEED")->check(integer_in(0, INT64_MAX));
+    app.add_option("--threads", a.threads, "worker threads (0 = all cores)")->type_name("THREADS")->check(integer_in(0, 4096));
+    app.add_option("--sampler", a.sampler,
+                   "override the scene's sampler type (sobol: Owen-scrambled Sobol, lower error at equal spp)")
+        ->type_name("{independent,sobol}")
+        ->check(one_of("sampler", {"independent", "sobol"}));
+    app.add_option("--aov", a.aov,
+                   "render this AOV of the first hit instead of the scene's integrator (as python -m pellucid render --aov)")
+        ->type_name("{albedo,normal,depth}")
+        ->check(one_of("aov", {"albedo", "depth", "normal"}));
+    app.add_option("--time-budget", a.time_budget, "stop after about this many seconds")
+        ->type_name("TIME_BUDGET")
+        ->check(number_above(0.0, false));
+    app.add_option("-D,--define", a.defines,
+                   "set the Mitsuba XML parameter $NAME, overriding its <default> (repeatable)")
+        ->type_name("NAME=VALUE")
+        ->expected(1)
+        ->take_all();
+    app.add_option("--resume", a.resume,
+                   "continue the render saved in this film state file up to --spp (same scene, seed and sampler)")
+        ->type_name("STATE");
+    app.add_option("--state", a.state,
+                   "write the film state here when the render stops (default on interruption: first OUTPUT + .state)")
+        ->type_name("STATE");
+    app.add_flag("--lenient", a.lenient, "Mitsuba XML: unsupported elements are warnings (skipped), not errors");
+    app.add_flag("-q,--quiet", a.quiet, "no progress bar or summary");
+    app.failure_message([](const CLI::App* app, const CLI::Error& e) {
+        std::string msg = e.what();
+        // CLI11 says "--output is required"; argparse names every spelling of the missing argument.
+        const std::string req = " is required";
+        if (msg.size() > req.size() && msg.compare(msg.size() - req.size(), req.size(), req) == 0) {
+            std::string names = msg.substr(0, msg.size() - req.size());
+            for (const CLI::Option* o : app->get_options()) {
+                if (o->get_name() != names) continue;
+                std::string all;
+                for (const std::string& s : o->get_snames()) all += (all.empty() ? "-" : "/-") + s;
+                for (const std::string& l : o->get_lnames()) all += (all.empty() ? "--" : "/--") + l;
+                if (!all.empty()) names = all;
+            }
+            msg = "the following arguments are required: " + names;
+        }
+        return ArgparseFormatter::usage(app) + kProg + ": error: " + msg + "\n";
+    });
+    try {
+        app.parse(args);
+    } catch (const CLI::ParseError& e) {
+        const int rc = app.exit(e);
+        return rc == 0 ? 0 : 2;
+    }
+    return -1;
+}
+
+/// -D NAME=VALUE pairs as a map; an entry without '=' or with an empty name is a usage error.
+bool parse_defines(const std::vector<std::string>& defines, std::map<std::string, std::string>& out) {
+    for (const std::string& d : defines) {
+        const size_t eq = d.find('=');
+        if (eq == std::string::npos || eq == 0) {
+            std::fprintf(stderr, "%s: error: -D: expected NAME=VALUE, got '%s'\n", kProg, d.c_str());
+            return false;
+        }
+        out[d.substr(0, eq)] = d.substr(eq + 1);
+    }
+    return true;
 }
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::vector<std::string> args(argv + 1, argv + argc);
-    std::string scene_path;
-    std::vector<std::string> outputs;
+    Args a;
+    if (int rc = parse(argc, argv, a); rc >= 0) return rc;
+    std::map<std::string, std::string> params;
+    if (!parse_defines(a.defines, params)) return 2;
     pellucid::RenderOptions opts;
-    opts.progress = true;
-    bool quiet = false, lenient = false;
-    std::string aov;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&](const char* flag) -> std::string {
-            if (i + 1 >= args.size()) usage_error(std::string(flag) + " needs a value");
-            return args[++i];
-        };
-        if (a == "-h" || a == "--help") {
-            std::printf("%s", kUsage);
-            return 0;
-        } else if (a == "--version") {
-            std::printf("pellucid %s\n", pellucid::version());
-            return 0;
-        } else if (a == "-o" || a == "--output") {
-            outputs.push_back(value("-o"));
-        } else if (a == "--spp") {
-            long long v = parse_int("--spp", value("--spp"));
-            if (v < 1 || v > (1 << 24)) usage_error("--spp: value " + std::to_string(v) + " must be in [1, 16777216]");
-            opts.spp = int(v);
-        } else if (a == "--seed") {
-            long long v = parse_int("--seed", value("--seed"));
-            if (v < 0) usage_error("--seed: value must be >= 0");
-            opts.seed = v;
-        } else if (a == "--threads") {
-            long long v = parse_int("--threads", value("--threads"));
-            if (v < 0 || v > 4096) usage_error("--threads: value must be in [0, 4096]");
-            opts.threads = int(v);
-        } else if (a == "--sampler") {
-            opts.sampler = value("--sampler");
-            if (opts.sampler != "independent" && opts.sampler != "sobol")
-                usage_error("--sampler: unknown sampler '" + opts.sampler + "' (known: independent, sobol)");
-        } else if (a == "--time-budget") {
-            std::string v = value("--time-budget");
-            char* end = nullptr;
-            opts.time_budget = std::strtod(v.c_str(), &end);
-            if (v.empty() || *end || !(opts.time_budget > 0)) usage_error("--time-budget: expected seconds > 0");
-        } else if (a == "--aov") {
-            aov = value("--aov");
-            if (aov != "albedo" && aov != "normal" && aov != "depth")
-                usage_error("--aov: unknown aov '" + aov + "' (known: albedo, depth, normal)");
-        } else if (a == "--lenient") {
-            lenient = true;
-        } else if (a == "--quiet" || a == "-q") {
-            quiet = true;
-        } else if (a == "render" && scene_path.empty() && i == 0) {
-            continue;
-        } else if (!a.empty() && a[0] == '-') {
-            usage_error("unknown option '" + a + "'");
-        } else if (scene_path.empty()) {
-            scene_path = a;
-        } else {
-            usage_error("unexpected argument '" + a + "'");
-        }
-    }
-    if (scene_path.empty()) usage_error("no scene file given");
-    if (outputs.empty()) usage_error("no output given (-o OUT.exr)");
-    opts.progress = !quiet;
+    opts.spp = a.spp;
+    opts.seed = a.seed;
+    opts.threads = a.threads;
+    opts.sampler = a.sampler;
+    opts.time_budget = a.time_budget;
+    opts.progress = !a.quiet;
     opts.cancel = &g_cancel;
-    std::signal(SIGINT, on_sigint);
+    install_signal_handlers();
     try {
-        auto scene = pellucid::load_file(scene_path, lenient);
-        pellucid::RenderResult r = aov.empty() ? pellucid::render(*scene, opts) : pellucid::render_aov(*scene, aov, opts);
-        for (const auto& out : outputs) {
-            pellucid::write_image(out, r.image);
-            if (!quiet) std::fprintf(stderr, "wrote %s\n", out.c_str());
+        // Everything that can fail before rendering does: outputs, the state file, the scene.
+        for (const auto& out : a.outputs) pellucid::check_image_output(out);
+        if (!a.resume.empty()) opts.resume = pellucid::load_film_state(a.resume);
+        auto scene = pellucid::load_file(a.scene, a.lenient, params);
+        pellucid::RenderResult r = a.aov.empty() ? pellucid::render(*scene, opts)
+                                                 : pellucid::render_aov(*scene, a.aov, opts);
+        const int sig = int(g_signal);
+        const int interrupted_rc = 128 + (sig ? sig : SIGINT);
+        if (r.stats.spp == 0) {
+            std::fprintf(stderr, "%s: interrupted before the first pass finished; nothing written\n", kProg);
+            return interrupted_rc;
+        }
+        const auto attributes = pellucid::render_attributes(r);
+        for (const auto& out : a.outputs) {
+            pellucid::write_image(out, r.image, attributes);
+            if (!a.quiet) std::fprintf(stderr, "wrote %s\n", out.c_str());
+        }
+        std::string state_path = a.state;
+        if (state_path.empty() && r.stats.cancelled) state_path = a.outputs.front() + ".state";
+        if (!state_path.empty()) {
+            pellucid::save_film_state(state_path, *r.state);
+            if (!a.quiet || r.stats.cancelled) std::fprintf(stderr, "wrote film state %s\n", state_path.c_str());
         }
         if (r.stats.invalid_samples)
-            std::fprintf(stderr, "pellucid-render: warning: %llu NaN/Inf/negative samples were discarded\n",
+            std::fprintf(stderr, "%s: warning: %llu NaN/Inf/negative samples were discarded\n", kProg,
                          (unsigned long long)r.stats.invalid_samples);
-        if (!quiet)
-            std::fprintf(stderr, "%d spp, %.3f s, %.3f M samples/s\n", r.stats.spp, r.stats.seconds,
-                         double(r.stats.samples) / r.stats.seconds * 1e-6);
+        if (!a.quiet)
+            std::fprintf(stderr, "%d spp, %.3f s, %.3f M samples/s, %llu invalid samples dropped\n", r.stats.spp,
+                         r.stats.seconds, double(r.stats.samples) / std::max(r.stats.seconds, 1e-9) * 1e-6,
+                         (unsigned long long)r.stats.invalid_samples);
         if (r.stats.cancelled) {
-            std::fprintf(stderr, "pellucid-render: interrupted; the image holds the samples finished so far\n");
-            return 130;
+            std::fprintf(stderr,
+                         "%s: interrupted at %d spp; the image holds the complete passes (continue with --resume %s)\n",
+                         kProg, r.stats.spp, state_path.c_str());
+            return interrupted_rc;
         }
     } catch (const pellucid::Error& e) {
-        std::fprintf(stderr, "pellucid-render: error: %s\n", e.what());
+        std::fprintf(stderr, "%s: error: %s\n", kProg, e.what());
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "pellucid-render: internal error: %s\n", e.what());
+        std::fprintf(stderr, "%s: internal error: %s\n", kProg, e.what());
         return 3;
     }
     return 0;

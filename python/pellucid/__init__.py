@@ -10,6 +10,11 @@ Quick start::
     image.compare(reference)                               # Comparison(rmse=..., relmse=...)
 
 C++ log messages go to the ``logging`` logger ``"pellucid"`` (warnings show by default).
+
+Ctrl-C (or any Python signal handler that raises) stops a render within about a second: the
+exception is raised with the complete passes kept as ``e.partial`` (a :class:`RenderOutput`, also
+returned by :func:`last_interrupted`), whose ``state`` continues the render with
+``render(..., resume=state)`` (docs/rendering.md).
 """
 from __future__ import annotations
 
@@ -17,13 +22,13 @@ import logging as _logging
 import math as _math
 import os as _os
 import threading as _threading
-from typing import Any, Dict, Optional, Tuple, Union
+from typing import Any, Dict, NamedTuple, Optional, Tuple, Union
 
 import numpy as _np
 
 from . import _core
 from . import materials, scenes
-from ._core import Error, Scene, cancel
+from ._core import Error, FilmState, Scene, cancel
 from .aov import AOVS, render_aov
 from .bsdf import bsdf
 from .image import Comparison, Image
@@ -33,15 +38,20 @@ __all__ = [
     "AOVS",
     "Comparison",
     "Error",
+    "FilmState",
     "Image",
+    "RenderOutput",
     "SAMPLERS",
     "Scene",
     "bsdf",
     "cancel",
+    "last_interrupted",
     "load_dict",
     "load_file",
+    "load_film_state",
     "materials",
     "read_image",
+    "read_image_attributes",
     "render",
     "render_aov",
     "render_with_stats",
@@ -63,15 +73,29 @@ def _sink(level: int, message: str) -> None:
 _core.set_log_sink(_sink)
 
 
-def load_file(path: Union[str, "_os.PathLike[str]"], lenient: bool = False) -> Scene:
+def _param_str(value: Any) -> str:
+    """A Python value as the text of a Mitsuba XML parameter (booleans as true/false)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (list, tuple)):
+        return ", ".join(_param_str(v) for v in value)
+    return str(value)
+
+
+def load_file(path: Union[str, "_os.PathLike[str]"], lenient: bool = False, **params: Any) -> Scene:
     """Load and build a scene file: JSON (docs/scene-format.md) or Mitsuba 3 XML
     (docs/mitsuba-import.md). Raises pellucid.Error naming the file, and the line for XML.
 
     ``lenient=True`` turns unsupported Mitsuba XML elements (plugins, parameters, media) into
     warnings on the ``"pellucid"`` logger, naming the element and line, and skips them; malformed
     XML, unknown ids, missing files and bad values stay errors. JSON scenes ignore it.
+
+    Keyword ``params`` set Mitsuba XML ``$name`` parameters, overriding the file's ``<default>``
+    values as Mitsuba 3's ``load_file(path, spp=256)`` does: ``load_file("scene.xml", spp=16,
+    res=128)``. Values are passed as text (``True``/``False`` as ``true``/``false``, sequences
+    comma-separated). JSON scenes have no parameters, so params are an error there.
     """
-    return _core.load_file(_os.fspath(path), bool(lenient))
+    return _core.load_file(_os.fspath(path), bool(lenient), {str(k): _param_str(v) for k, v in params.items()})
 
 
 def load_dict(d: Dict[str, Any], base_dir: Union[str, "_os.PathLike[str]"] = ".") -> Scene:
@@ -82,16 +106,71 @@ def load_dict(d: Dict[str, Any], base_dir: Union[str, "_os.PathLike[str]"] = "."
     return _core.load_dict(d, _os.fspath(base_dir))
 
 
-def write_image(path: Union[str, "_os.PathLike[str]"], array: _np.ndarray) -> None:
+def write_image(path: Union[str, "_os.PathLike[str]"], array: _np.ndarray,
+                attributes: Optional[Dict[str, Any]] = None) -> None:
     """Write an (H, W, 3) or (H, W) float array: .exr/.hdr keep linear HDR values, .png/.jpg are
-    clamped and sRGB-encoded. Raises pellucid.Error naming the path."""
-    _core.write_image(_os.fspath(path), array)
+    clamped and sRGB-encoded. Missing folders are created. ``attributes`` (name -> int, float or
+    str) go into the file's header where the format has one (EXR attributes). Raises
+    pellucid.Error naming the path."""
+    if attributes:
+        _core.write_image_with_attributes(_os.fspath(path), array, dict(attributes))
+    else:
+        _core.write_image(_os.fspath(path), array)
 
 
 def read_image(path: Union[str, "_os.PathLike[str]"]) -> Image:
     """Read an image as a linear float32 (H, W, 3) :class:`Image` (8-bit files are decoded from
     sRGB)."""
     return _core.read_image(_os.fspath(path)).view(Image)
+
+
+def read_image_attributes(path: Union[str, "_os.PathLike[str]"]) -> Dict[str, Any]:
+    """The header attributes of an image file, e.g. the ``pellucid:spp`` and
+    ``pellucid:invalid_samples`` that every rendered image carries (docs/rendering.md)."""
+    return _core.read_image_attributes(_os.fspath(path))
+
+
+def load_film_state(path: Union[str, "_os.PathLike[str]"]) -> FilmState:
+    """Read a film state file (``FilmState.save`` or ``pellucid-render --state``) to continue the
+    render with ``render(..., resume=state)``."""
+    return _core.load_film_state(_os.fspath(path))
+
+
+class RenderOutput(NamedTuple):
+    """What a render produced: the image, the variance of each pixel's mean, the stats dict and
+    the :class:`FilmState` to continue from (None unless kept)."""
+
+    image: Image
+    variance: Image
+    stats: Dict[str, Any]
+    state: Optional[FilmState]
+
+
+_last_interrupted: Optional[RenderOutput] = None
+
+
+def last_interrupted() -> Optional[RenderOutput]:
+    """The complete passes of the most recent render that a signal stopped (Ctrl-C in a terminal
+    or Jupyter's interrupt), or None. The same object is the ``partial`` attribute of the
+    ``KeyboardInterrupt`` the render raised."""
+    return _last_interrupted
+
+
+def _render_attributes(stats: Dict[str, Any]) -> Dict[str, Any]:
+    """The header attributes that both command lines write with a rendered image (the same names
+    and values as pellucid-render's): samples per pixel, dropped samples, interruption, time, seed,
+    sampler and version."""
+    attrs: Dict[str, Any] = {
+        "pellucid:spp": int(stats["spp"]),
+        "pellucid:invalid_samples": int(stats["invalid_samples"]),
+        "pellucid:interrupted": 1 if stats["cancelled"] else 0,
+        "pellucid:seconds": float(stats["seconds"]),
+        "pellucid:version": __version__,
+    }
+    if "seed" in stats:
+        attrs["pellucid:seed"] = str(stats["seed"])
+        attrs["pellucid:sampler"] = str(stats["sampler"])
+    return attrs
 
 
 def _tqdm() -> Any:
@@ -153,6 +232,47 @@ def _check_seconds(name: str, value: Any) -> None:
         raise Error(f"{name}: value {value!r} must be a finite number >= 0 (0 or None: no limit)")
 
 
+def _render_full(kwargs: Dict[str, Any], progress: bool) -> Tuple[Any, Any, Dict[str, Any]]:
+    """_core.render_full with a progress bar if asked; a signal that stops it raises its exception
+    with ``partial`` set to a RenderOutput, which last_interrupted() also returns."""
+    global _last_interrupted
+    tqdm = _tqdm() if progress else None
+    try:
+        if tqdm is not None:
+            return _render_with_bar(tqdm, kwargs)
+        return _core.render_full(progress=bool(progress), **kwargs)
+    except BaseException as e:
+        partial = getattr(e, "partial", None)
+        if isinstance(partial, tuple) and len(partial) == 3:
+            image, variance, stats = partial
+            _last_interrupted = RenderOutput(image.view(Image), variance.view(Image), stats, stats.get("state"))
+            e.partial = _last_interrupted
+        raise
+
+
+def _render_kwargs(scene: Scene, spp: Optional[int], seed: Optional[int], threads: int, time_budget: Optional[float],
+                   target_rel_error: Optional[float], sampler: Optional[str], resume: Any) -> Dict[str, Any]:
+    _check_int("spp", spp, 1, _INT32_MAX)
+    _check_int("seed", seed, 0, _INT64_MAX)
+    _check_int("threads", threads, 0, _INT32_MAX)
+    _check_seconds("time_budget", time_budget)
+    _check_seconds("target_rel_error", target_rel_error)
+    if sampler is not None and sampler not in SAMPLERS:
+        raise Error(f"sampler: unknown sampler {sampler!r} (known: {', '.join(SAMPLERS)})")
+    if resume is not None and not isinstance(resume, (FilmState, str, _os.PathLike)):
+        raise Error(f"resume: expected a FilmState or the path of a film state file, got {type(resume).__name__}")
+    return dict(
+        scene=scene,
+        spp=-1 if spp is None else spp,
+        seed=-1 if seed is None else seed,
+        threads=threads,
+        time_budget=time_budget or 0.0,
+        target_rel_error=target_rel_error or 0.0,
+        sampler=sampler or "",
+        resume=resume,
+    )
+
+
 def render_with_stats(
     scene: Scene,
     spp: Optional[int] = None,
@@ -162,12 +282,16 @@ def render_with_stats(
     target_rel_error: Optional[float] = None,
     progress: bool = False,
     sampler: Optional[str] = None,
+    resume: Union[FilmState, str, "_os.PathLike[str]", None] = None,
+    keep_state: bool = False,
 ):
     """Render and return ``(image, variance, stats)``.
 
     ``image`` is the per-pixel mean radiance, ``variance`` the variance of that mean (both
-    :class:`Image`, float32 (H, W, 3), viewing C++ memory), ``stats`` a dict with the spp reached,
-    wall seconds, camera samples and the number of NaN/Inf samples kept out of the film.
+    :class:`Image`, float32 (H, W, 3), viewing C++ memory), ``stats`` a dict with the spp reached
+    (every pixel has that many samples), wall seconds, camera samples, ``invalid_samples`` (the
+    NaN/Inf/negative samples kept out of the film), ``cancelled``, and the ``seed`` and ``sampler``
+    used. With ``keep_state=True``, ``stats["state"]`` is the :class:`FilmState` to continue from.
 
     ``progress=True`` shows a tqdm bar (a widget in Jupyter) when tqdm is installed, else the
     renderer's own text bar on a terminal's stderr.
@@ -175,28 +299,17 @@ def render_with_stats(
     ``sampler`` (``"independent"`` or ``"sobol"``) overrides the scene's ``sampler.type``. With
     ``"sobol"`` the samples of a pixel are stratified, so ``variance`` (computed as if they were
     independent) overestimates the error of the mean.
+
+    ``resume`` (a :class:`FilmState` or the path of a state file) continues that render up to
+    ``spp``, with its seed; the result is bit-identical to an uninterrupted render.
+
+    Ctrl-C stops the render within about a second and raises ``KeyboardInterrupt`` whose
+    ``partial`` attribute (also :func:`last_interrupted`) is a :class:`RenderOutput` of the
+    complete passes, with their state.
     """
-    _check_int("spp", spp, 1, _INT32_MAX)
-    _check_int("seed", seed, 0, _INT64_MAX)
-    _check_int("threads", threads, 0, _INT32_MAX)
-    _check_seconds("time_budget", time_budget)
-    _check_seconds("target_rel_error", target_rel_error)
-    if sampler is not None and sampler not in SAMPLERS:
-        raise Error(f"sampler: unknown sampler {sampler!r} (known: {', '.join(SAMPLERS)})")
-    kwargs: Dict[str, Any] = dict(
-        scene=scene,
-        spp=-1 if spp is None else spp,
-        seed=-1 if seed is None else seed,
-        threads=threads,
-        time_budget=time_budget or 0.0,
-        target_rel_error=target_rel_error or 0.0,
-        sampler=sampler or "",
-    )
-    tqdm = _tqdm() if progress else None
-    if tqdm is not None:
-        image, variance, stats = _render_with_bar(tqdm, kwargs)
-    else:
-        image, variance, stats = _core.render_full(progress=bool(progress), **kwargs)
+    kwargs = _render_kwargs(scene, spp, seed, threads, time_budget, target_rel_error, sampler, resume)
+    kwargs["keep_state"] = bool(keep_state)
+    image, variance, stats = _render_full(kwargs, progress)
     return image.view(Image), variance.view(Image), stats
 
 
@@ -209,6 +322,7 @@ def render(
     target_rel_error: Optional[float] = None,
     progress: bool = False,
     sampler: Optional[str] = None,
+    resume: Union[FilmState, str, "_os.PathLike[str]", None] = None,
 ) -> Image:
     """Render ``scene`` and return the image: an :class:`Image` (a numpy.ndarray subclass), float32
     (H, W, 3) linear radiance that views the renderer's memory (no copy). The GIL is released
@@ -217,6 +331,12 @@ def render(
     ``spp`` and ``seed`` default to the scene's sampler; ``threads=0`` uses every core. The same
     scene and seed give the same image at any thread count. ``progress=True`` shows a tqdm bar.
     ``sampler`` (``"independent"`` or ``"sobol"``) overrides the scene's ``sampler.type``.
+    ``resume`` continues a :class:`FilmState` (or state file) up to ``spp``.
+
+    Ctrl-C (Jupyter's interrupt too) stops the render within about a second and raises
+    ``KeyboardInterrupt``; the complete passes are kept: ``e.partial`` or
+    :func:`last_interrupted` (a :class:`RenderOutput` with image, variance, stats and state).
     """
-    image, _, _ = render_with_stats(scene, spp, seed, threads, time_budget, target_rel_error, progress, sampler)
+    image, _, _ = render_with_stats(scene, spp, seed, threads, time_budget, target_rel_error, progress, sampler,
+                                    resume)
     return image

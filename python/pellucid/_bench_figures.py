@@ -8,6 +8,8 @@ from typing import Optional, Sequence, Tuple
 
 import numpy as np
 
+from .image import srgb_encode
+
 MITSUBA = ("scalar_rgb", "llvm_ad_rgb")
 
 
@@ -49,8 +51,7 @@ def plot_chart(rows: Sequence, path: pathlib.Path, title: str) -> None:
 
 def tonemap(img: np.ndarray, exposure: float = 1.0) -> np.ndarray:
     """Clamp and sRGB-encode linear radiance to [0, 1]."""
-    x = np.clip(np.nan_to_num(np.asarray(img, np.float64) * exposure), 0.0, 1.0)
-    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
+    return srgb_encode(np.clip(np.nan_to_num(np.asarray(img, np.float64) * exposure), 0.0, 1.0))
 
 
 def plot_crops(rows: Sequence, reference, path: pathlib.Path, rung: int,

@@ -47,6 +47,7 @@ import math
 import os
 import pathlib
 import shlex
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -56,8 +57,9 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from ._bench_figures import label as _label, plot_chart, plot_crops, tonemap  # noqa: F401 (re-exported)
+from .image import RELMSE_EPSILON, rel_mse as _image_rel_mse
 
-RELMSE_EPS = 1e-2
+RELMSE_EPS = RELMSE_EPSILON
 OURS = ("bsdf", "nee", "mis", "direct")
 SAMPLERS = ("independent", "sobol")
 MITSUBA = ("scalar_rgb", "llvm_ad_rgb")
@@ -77,9 +79,10 @@ def _pair(image: np.ndarray, reference: np.ndarray) -> Tuple[np.ndarray, np.ndar
 
 
 def rel_mse(image: np.ndarray, reference, eps: float = RELMSE_EPS) -> float:
-    """Mean over pixels and channels of (x - r)^2 / (r^2 + eps)."""
+    """Mean over pixels and channels of (x - r)^2 / (r^2 + eps) (pellucid.image.rel_mse, with the
+    shapes checked and a scalar reference broadcast)."""
     a, r = _pair(image, reference)
-    return float(np.mean((a - r) ** 2 / (r * r + eps)))
+    return _image_rel_mse(a, r, eps)
 
 
 def rmse(image: np.ndarray, reference) -> float:
@@ -116,19 +119,21 @@ def flip_error(image: np.ndarray, reference) -> Optional[float]:
     return float(mean)
 
 
+def critical_z(n: int, alpha: float = 0.01) -> float:
+    """The two-sided critical |z| at level alpha Sidak-corrected over n tests: P(|Z| > z) = alpha_1
+    with alpha_1 = 1 - (1 - alpha)^(1/n) (computed without cancellation for large n)."""
+    alpha_1 = -math.expm1(math.log1p(-alpha) / n)
+    return -statistics.NormalDist().inv_cdf(0.5 * alpha_1)
+
+
 def z_test(a: np.ndarray, va: np.ndarray, b: np.ndarray, vb: np.ndarray, alpha: float = 0.01) -> Tuple[float, float]:
     """Per-pixel two-sided z-test of two independent Monte Carlo images (means a, b; variances of the
     means va, vb), at level alpha Sidak-corrected over all pixel channels. Returns the fraction of pixel
     channels that pass and the critical |z|; Mitsuba's render tests ask for >= 99 % passing."""
     a, b = np.asarray(a, np.float64), np.asarray(b, np.float64)
-    n = a.size
-    alpha_1 = 1.0 - (1.0 - alpha) ** (1.0 / n)
-    lo, hi = 0.0, 40.0  # bisect z with erfc(z / sqrt 2) = alpha_1
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if math.erfc(mid / math.sqrt(2)) > alpha_1 else (lo, mid)
+    zc = critical_z(a.size, alpha)
     z = np.abs(a - b) / np.sqrt(np.asarray(va, np.float64) + np.asarray(vb, np.float64) + 1e-12)
-    return float(np.mean(z <= lo)), lo
+    return float(np.mean(z <= zc)), zc
 
 
 # --------------------------------------------------------------------------------------- peers
@@ -450,6 +455,8 @@ def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="pellucid bench", description=__doc__.split("\n")[0],
                                 epilog="See bench/README.md.")
     p.add_argument("scene", help="scene file (.json)")
+    p.add_argument("--suite", action="store_true",
+                   help="run the benchmark suite of bench/suite/ instead (no SCENE; `bench --suite --help`)")
     p.add_argument("--methods", default="bsdf,nee,mis,scalar_rgb,llvm_ad_rgb",
                    help="comma list of bsdf, nee, mis, direct, scalar_rgb, llvm_ad_rgb (or 'ours', 'mitsuba'); "
                         "pellucid methods may name a sampler: mis+sobol, mis+independent")
@@ -486,6 +493,9 @@ def _parser() -> argparse.ArgumentParser:
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    if "--suite" in argv:  # the benchmark suite has its own runner and options
+        from . import bench_suite
+        return bench_suite.main([a for a in argv if a != "--suite"])
     args = _parser().parse_args(argv)
     import pellucid
 

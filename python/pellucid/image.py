@@ -14,8 +14,7 @@ In Jupyter an ``Image`` shows itself inline (``_repr_png_``).
 from __future__ import annotations
 
 import os
-import struct
-import zlib
+import tempfile
 from typing import Any, NamedTuple, Union
 
 import numpy as np
@@ -36,23 +35,17 @@ class Comparison(NamedTuple):
         return f"Comparison(rmse={self.rmse:.6g}, relmse={self.relmse:.6g})"
 
 
-def _srgb_encode(linear: np.ndarray) -> np.ndarray:
+def srgb_encode(linear: np.ndarray) -> np.ndarray:
     """sRGB OETF (IEC 61966-2-1) of values already clamped to [0, 1]."""
     return np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * np.power(linear, 1.0 / 2.4) - 0.055)
 
 
-def _png_bytes(rgb8: np.ndarray) -> bytes:
-    """Encode a uint8 (H, W, 3) array as an 8-bit RGB PNG (no external libraries)."""
-    h, w, _ = rgb8.shape
-    raw = np.zeros((h, 1 + 3 * w), dtype=np.uint8)  # filter byte 0 (None) per row
-    raw[:, 1:] = rgb8.reshape(h, 3 * w)
-
-    def chunk(tag: bytes, data: bytes) -> bytes:
-        return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF)
-
-    header = struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)  # 8 bits, colour type 2 (RGB)
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw.tobytes(), 6))
-            + chunk(b"IEND", b""))
+def rel_mse(image: Any, reference: Any, eps: float = RELMSE_EPSILON) -> float:
+    """relMSE = mean((a − b)² / (b² + eps)) over every pixel and channel, in float64; b = the
+    reference (a scalar reference broadcasts). No shape or finiteness checks: see Image.compare."""
+    a = np.asarray(image, dtype=np.float64)
+    b = np.asarray(reference, dtype=np.float64)
+    return float(np.mean((a - b) ** 2 / (b * b + eps)))
 
 
 class Image(np.ndarray):
@@ -94,7 +87,7 @@ class Image(np.ndarray):
         """uint8 (H, W, 3): each channel clamped to [0, 1], sRGB-encoded, rounded to nearest. NaN
         becomes 0. Grey images are replicated to three channels; alpha is dropped."""
         a = np.nan_to_num(self._rgb(), nan=0.0, posinf=1.0, neginf=0.0)
-        return np.round(_srgb_encode(np.clip(a, 0.0, 1.0)) * 255.0).astype(np.uint8)
+        return np.round(srgb_encode(np.clip(a, 0.0, 1.0)) * 255.0).astype(np.uint8)
 
     def save(self, path: Union[str, "os.PathLike[str]"]) -> None:
         """Write the image: .exr/.hdr keep linear HDR values, .png/.jpg are clamped and sRGB-encoded
@@ -102,8 +95,13 @@ class Image(np.ndarray):
         _core.write_image(os.fspath(path), np.ascontiguousarray(self, dtype=np.float32))
 
     def _repr_png_(self) -> bytes:
-        """PNG bytes for Jupyter's inline display (clamped, sRGB; no tone mapping)."""
-        return _png_bytes(self.to_srgb8())
+        """PNG bytes for Jupyter's inline display: the pixels of ``to_srgb8`` (clamped, sRGB, no
+        tone mapping), encoded by OpenImageIO's PNG writer (``pellucid.write_image``)."""
+        with tempfile.TemporaryDirectory(prefix="pellucid-") as d:
+            path = os.path.join(d, "image.png")
+            _core.write_image(path, np.ascontiguousarray(self._rgb()))
+            with open(path, "rb") as f:
+                return f.read()
 
     # ---- comparison ---------------------------------------------------------------------------
     def compare(self, reference: Any) -> Comparison:
@@ -124,8 +122,7 @@ class Image(np.ndarray):
             raise _core.Error("compare: empty images")
         if not (np.isfinite(a).all() and np.isfinite(b).all()):
             raise _core.Error("compare: the images contain NaN or infinite values")
-        d2 = (a - b) ** 2
-        return Comparison(float(np.sqrt(d2.mean())), float((d2 / (b * b + RELMSE_EPSILON)).mean()))
+        return Comparison(float(np.sqrt(((a - b) ** 2).mean())), rel_mse(a, b))
 
     # ---- printing -----------------------------------------------------------------------------
     def __str__(self) -> str:

@@ -50,5 +50,8 @@ def test_clis_fail_cleanly(run, tmp_path, tiny_scene_path) -> None:
     bad.write_text('{"film": {"width": 0}}')
     r = run("render", str(bad), "-o", out)
     assert r.returncode != 0 and "film.width: resolution 0" in r.stderr
+    # Missing folders are created; a folder that cannot be (a file is in the way) is an error.
     r = run("render", str(tiny_scene_path), "-o", str(tmp_path / "no_dir" / "x.exr"), "--spp", "1")
-    assert r.returncode != 0 and "does not exist" in r.stderr
+    assert r.returncode == 0 and (tmp_path / "no_dir" / "x.exr").exists(), r.stderr
+    r = run("render", str(tiny_scene_path), "-o", str(bad / "x.exr"), "--spp", "1")
+    assert r.returncode != 0 and "is not a directory" in r.stderr

@@ -1,5 +1,6 @@
-"""python/pellucid/_core.pyi agrees with the compiled module: the same public names, the same
-classes, methods and properties, and the parameter names of the pybind11 signatures in __doc__."""
+"""python/pellucid/_core.pyi agrees with the compiled module: it is what pybind11-stubgen writes
+(tools/gen_stubs.py), and, checked independently of that tool, it has the same public names, the
+same classes, methods and properties, and the parameter names of the pybind11 signatures in __doc__."""
 from __future__ import annotations
 
 import ast
@@ -23,14 +24,34 @@ def _stub(text: str = "") -> ast.Module:
 
 
 def _gen():
-    """tools/gen_stubs.py as a module (its signature parser is shared with these checks)."""
+    """tools/gen_stubs.py as a module."""
     spec = importlib.util.spec_from_file_location("gen_stubs", ROOT / "tools" / "gen_stubs.py")
     gen = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(gen)
     return gen
 
 
-_split_top = _gen()._split_top
+def _split_top(s: str) -> List[str]:
+    """Split a parameter list at commas outside brackets (pybind11 reprs of defaults use <...>)
+    and quotes; the parts are stripped."""
+    out, depth, cur, quote = [], 0, "", ""
+    for ch in s:
+        if quote:
+            quote = "" if ch == quote else quote
+        elif ch in "'\"":
+            quote = ch
+        elif ch in "([{<":
+            depth += 1
+        elif ch in ")]}>":
+            depth -= 1
+        elif ch == "," and depth == 0:
+            out.append(cur.strip())
+            cur = ""
+            continue
+        cur += ch
+    if cur.strip():
+        out.append(cur.strip())
+    return out
 
 
 def _doc_params(obj, name: str) -> List[str]:
@@ -63,10 +84,13 @@ def test_stub_and_module_have_the_same_public_names() -> None:
             stub_names.add(node.target.id)
         elif isinstance(node, ast.Assign):
             stub_names |= {t.id for t in node.targets if isinstance(t, ast.Name)}
-    module_names = _public(dir(_core)) | {"__version__"}
-    assert stub_names - {"__version__"} == _public(stub_names), "stub defines private names"
+    module_names = _public(dir(_core)) | {"__version__", "__all__"}
+    assert stub_names - {"__version__", "__all__"} == _public(stub_names), "stub defines private names"
     assert module_names - stub_names == set(), "in _core, missing from the stub"
     assert stub_names - module_names == set(), "in the stub, not in _core"
+    declared_all = next(ast.literal_eval(n.value) for n in stub.body
+                        if isinstance(n, ast.AnnAssign) and getattr(n.target, "id", "") == "__all__")
+    assert sorted(declared_all) == sorted(_public(dir(_core)))
 
 
 def _functions(body) -> Dict[str, ast.FunctionDef]:
@@ -106,14 +130,15 @@ def test_classes_methods_and_properties_match() -> None:
 def test_the_check_is_not_vacuous() -> None:
     """A renamed parameter in the stub is caught."""
     text = STUB.read_text()
-    assert "def load_file(path: str, lenient: bool = ...)" in text
+    assert "def load_file(path: str, lenient: bool = False, params" in text
     with pytest.raises(AssertionError, match="load_file"):
         _check_function_parameters(text.replace("def load_file(path: str, lenient", "def load_file(p: str, lenient"))
 
 
 def test_committed_stub_is_what_the_generator_writes() -> None:
-    """tools/gen_stubs.py regenerates the stub from the module; a difference means a binding changed
-    without `python tools/gen_stubs.py`."""
+    """tools/gen_stubs.py regenerates the stub from the module with pybind11-stubgen; a difference
+    means a binding changed without `python tools/gen_stubs.py`."""
+    pytest.importorskip("pybind11_stubgen", reason="pybind11-stubgen is not installed (make installs it)")
     generated = _gen().generate()
     diff = "".join(difflib.unified_diff(STUB.read_text().splitlines(True), generated.splitlines(True),
                                         "committed", "generated"))

@@ -5,24 +5,15 @@ For each pixel channel, z = |a - b| / sqrt(var_a + var_b + floor), with var_a an
 variances of the two means. The floor, (1e-5 max(|a|, |b|))^2 + 1e-12, covers pixels that see only a
 constant emitter: both variances are zero there and the means differ only by float summation order.
 The critical |z| is the two-sided α Šidák-corrected over the n channels of the image:
-P(|Z| > z_c) = 1 - (1 - α)^(1/n).
+P(|Z| > z_c) = 1 - (1 - α)^(1/n) (pellucid.bench.critical_z).
 """
 from __future__ import annotations
 
-import math
 from typing import Tuple
 
 import numpy as np
 
-
-def critical_z(n: int, alpha: float = 0.01) -> float:
-    """|z| with two-sided tail probability 1 - (1 - alpha)^(1/n) (bisection on erfc)."""
-    a1 = 1.0 - (1.0 - alpha) ** (1.0 / n)
-    lo, hi = 0.0, 40.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if math.erfc(mid / math.sqrt(2.0)) > a1 else (lo, mid)
-    return lo
+from pellucid.bench import critical_z
 
 
 def z_scores(a: np.ndarray, va: np.ndarray, b: np.ndarray, vb: np.ndarray) -> np.ndarray:

@@ -19,6 +19,14 @@ namespace pellucid {
 ///    α² = min(0.125·tan²θ(ns about n0), 1). Mitsuba 3's bumpmap and normalmap use it.
 enum class TerminatorModel : uint8_t { Chiang, Estevez };
 
+/// A light leak through a shading normal: the shading and geometric normals disagree on which side
+/// wo or wi (world wo_w, wi_w; local wo, wi) lies. Such directions are never sampled, and evaluate
+/// to 0. Over a lane type F, for BSDF below and the packet kernel alike.
+template <class F>
+inline MaskT<F> shading_leaks(const V3<F>& ng, const V3<F>& wo_w, const V3<F>& wi_w, const V3<F>& wo, const V3<F>& wi) {
+    return dot(wo_w, ng) * wo.z <= F(0.f) || dot(wi_w, ng) * wi.z <= F(0.f);
+}
+
 class BSDF {
 public:
     /// Owns a copy of bxdf.
@@ -108,7 +116,7 @@ private:
     BSDF(const BxDF* bxdf, const Frame& shading, const Normal3f& ng) : m_bxdf(bxdf), m_frame(shading), m_ng(ng) {}
     // Shading and geometric normals must agree on which side each direction is on.
     bool leaks(const Vec3f& wo_w, const Vec3f& wi_w, const Vec3f& wo, const Vec3f& wi) const {
-        return dot(wo_w, m_ng) * wo.z <= 0.f || dot(wi_w, m_ng) * wi.z <= 0.f;
+        return shading_leaks<float>(m_ng, wo_w, wi_w, wo, wi);
     }
     // Veach 1997, eq. 5.17: adjoint BSDF correction for shading normals under importance transport.
     float shading_correction(const Vec3f& wo_w, const Vec3f& wi_w, const Vec3f& wo, const Vec3f& wi) const {

@@ -18,6 +18,9 @@
 #include <cstdint>
 #include <string>
 
+#include <optional>
+
+#include "pellucid/math/lane_types.h"
 #include "pellucid/math/spectrum.h"
 #include "pellucid/math/vec.h"
 
@@ -71,4 +74,28 @@ struct BxDFSample {
     BxDFFlags lobe = BxDFFlags::None;
     bool is_specular() const { return pellucid::is_specular(lobe); }
 };
+
+/// A sample of kLaneWidth<F> lanes, as the templated BxDFs return it: `valid` marks the lanes that
+/// hold one (a lane without a sample is what std::nullopt is to BxDFSample); `lobe` holds each
+/// lane's BxDFFlags bits.
+template <class F>
+struct BxDFSampleT {
+    MaskT<F> valid;
+    V3<F> wi;
+    RGB<F> weight;
+    F pdf;
+    F eta;
+    IntT<F> lobe;
+};
+/// The one-lane sample as the scalar BxDF API returns it.
+inline std::optional<BxDFSample> to_optional(const BxDFSampleT<float>& s) {
+    if (!s.valid) return std::nullopt;
+    BxDFSample r;
+    r.wi = s.wi;
+    r.weight = s.weight;
+    r.pdf = s.pdf;
+    r.eta = s.eta;
+    r.lobe = BxDFFlags(uint32_t(s.lobe));
+    return r;
+}
 }  // namespace pellucid

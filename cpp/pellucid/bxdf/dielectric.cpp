@@ -30,28 +30,8 @@ SmoothDielectric::SmoothDielectric(float eta, const Spectrum& r, const Spectrum&
     : m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_r(r), m_t(t) {}
 
 std::optional<BxDFSample> SmoothDielectric::sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
-                                                   const Vec2f&) const {
-    if (wo.z == 0.f) return std::nullopt;
-    float R = fresnel_dielectric(wo.z, m_eta), T = 1.f - R, pr, pt;
-    lobe_probabilities(ctx, R, T, pr, pt);
-    if (!(pr + pt > 0.f)) return std::nullopt;
-    BxDFSample s;
-    if (u_lobe < pr / (pr + pt)) {
-        // Mirror reflection (TIR lands here with R = 1).
-        s.wi = Vec3f(-wo.x, -wo.y, wo.z);
-        s.pdf = pr / (pr + pt);
-        s.weight = m_r * (R / s.pdf);
-        s.lobe = BxDFFlags::SpecularReflection;
-        return s;
-    }
-    float etap;
-    if (!refract(wo, Vec3f(0, 0, 1), m_eta, &etap, &s.wi) || s.wi.z * wo.z >= 0.f) return std::nullopt;
-    s.pdf = pt / (pr + pt);
-    s.weight = m_t * (T / s.pdf);
-    if (ctx.mode == TransportMode::Radiance) s.weight /= etap * etap;
-    s.eta = etap;
-    s.lobe = BxDFFlags::SpecularTransmission;
-    return s;
+                                                   const Vec2f& u) const {
+    return to_optional(lanes().sample(ctx, wo, u_lobe, u));
 }
 
 BxDFFlags SmoothDielectric::flags() const {

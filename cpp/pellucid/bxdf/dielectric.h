@@ -67,6 +67,46 @@
 
 namespace pellucid {
 
+/// The smooth dielectric over a lane type F (simd/lane.h): per-lane η, specular reflectance and
+/// transmittance. SmoothDielectric (the variant's alternative) is its float instantiation behind the
+/// scalar BxDF API; the path tracer's packets use it directly.
+template <class F>
+struct SmoothDielectricT {
+    F eta;
+    RGB<F> r, t;
+
+    /// Fresnel-weighted choice between mirror reflection and Snell refraction (TIR → reflection).
+    BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& u_lobe, const V2<F>& /*u*/) const {
+        const F R = fresnel_dielectric<F>(wo.z, eta), T = F(1.f) - R;
+        const F pr = has_flag(ctx.allowed, BxDFFlags::Reflection) ? R : F(0.f);
+        const F pt = has_flag(ctx.allowed, BxDFFlags::Transmission) ? T : F(0.f);
+        const F sum = pr + pt;
+        const auto ok = wo.z != F(0.f) && sum > F(0.f);
+        const F sum1 = lane::select(ok, sum, F(1.f));
+        const auto reflect = u_lobe < pr / sum1;
+        BxDFSampleT<F> s;
+        // Mirror reflection.
+        const V3<F> wr(lane::neg(wo.x), lane::neg(wo.y), wo.z);
+        const F pdf_r = pr / sum1;
+        const RGB<F> w_r = r * (R / lane::select(ok, pdf_r, F(1.f)));
+        // Refraction.
+        F etap;
+        V3<F> wt;
+        const auto refracts = refract<F>(wo, V3<F>(F(0.f), F(0.f), F(1.f)), eta, &etap, &wt) && wt.z * wo.z < F(0.f);
+        const F pdf_t = pt / sum1;
+        RGB<F> w_t = t * (T / lane::select(pdf_t > F(0.f), pdf_t, F(1.f)));
+        if (ctx.mode == TransportMode::Radiance) w_t = w_t / (etap * etap);
+        s.valid = ok && (reflect || refracts);
+        s.wi = lane::select(reflect, wr, wt);
+        s.pdf = lane::select(reflect, pdf_r, pdf_t);
+        s.weight = lane::select(reflect, w_r, w_t);
+        s.eta = lane::select(reflect, F(1.f), etap);
+        s.lobe = lane::select(lane::int_mask(reflect), IntT<F>(int32_t(BxDFFlags::SpecularReflection)),
+                              IntT<F>(int32_t(BxDFFlags::SpecularTransmission)));
+        return s;
+    }
+};
+
 class SmoothDielectric {
 public:
     explicit SmoothDielectric(float eta = 1.5046f, const Spectrum& specular_reflectance = Spectrum(1.f),
@@ -78,6 +118,8 @@ public:
     BxDFFlags flags() const;
     float eta() const { return m_eta; }
     std::string to_string() const;
+    /// The packet form's parameters (SmoothDielectricT<float>).
+    SmoothDielectricT<float> lanes() const { return {m_eta, m_r, m_t}; }
 
 private:
     float m_eta;

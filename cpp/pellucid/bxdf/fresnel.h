@@ -13,6 +13,7 @@
 
 #include "pellucid/math/constants.h"
 #include "pellucid/math/spectrum.h"
+#include "pellucid/simd/lane.h"
 
 namespace pellucid {
 
@@ -21,31 +22,33 @@ namespace pellucid {
 /// cos_i < 0 means the direction arrives from the −normal side: the interface is flipped
 /// (eta → 1/eta). Returns 1 on total internal reflection and exactly 0 for eta == 1.
 /// If cos_t / eta_t are given they receive |cos θt| and the η actually used (undefined on TIR).
-inline float fresnel_dielectric(float cos_i, float eta, float* cos_t_out = nullptr,
-                                float* eta_used = nullptr) {
-    cos_i = clamp(cos_i, -1.f, 1.f);
-    if (cos_i < 0.f) {
-        eta = 1.f / eta;
-        cos_i = -cos_i;
-    }
+template <class F>
+inline F fresnel_dielectric(F cos_i, F eta, F* cos_t_out = nullptr, F* eta_used = nullptr) {
+    // Over a lane type F (simd/lane.h); the float instantiation is the scalar function below.
+    // Every branch of the scalar form is a per-lane select here, with the same operations.
+    cos_i = lane::select(cos_i < F(-1.f), F(-1.f), lane::select(cos_i > F(1.f), F(1.f), cos_i));
+    const auto back = cos_i < F(0.f);
+    eta = lane::select(back, F(1.f) / eta, eta);
+    cos_i = lane::select(back, lane::neg(cos_i), cos_i);
     if (eta_used) *eta_used = eta;
-    if (eta == 1.f) {
-        if (cos_t_out) *cos_t_out = cos_i;
-        return 0.f;
-    }
     // Snell: sin θt = sin θi / η.
-    float sin2_i = std::max(0.f, 1.f - cos_i * cos_i);
-    float sin2_t = sin2_i / (eta * eta);
-    if (sin2_t >= 1.f) return 1.f;
-    float cos_t = safe_sqrt(1.f - sin2_t);
-    if (cos_t_out) *cos_t_out = cos_t;
-    float r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    float r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return clamp(0.5f * (r_parl * r_parl + r_perp * r_perp), 0.f, 1.f);
+    const F x = F(1.f) - cos_i * cos_i;
+    const F sin2_i = lane::select(F(0.f) < x, x, F(0.f));
+    const F sin2_t = sin2_i / (eta * eta);
+    const F y = F(1.f) - sin2_t;
+    const F cos_t = lane::sqrt(lane::select(F(0.f) < y, y, F(0.f)));
+    const F r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    const F r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    const F r = F(0.5f) * (r_parl * r_parl + r_perp * r_perp);
+    const auto matched = eta == F(1.f);
+    if (cos_t_out) *cos_t_out = lane::select(matched, cos_i, cos_t);
+    const F R = lane::select(r < F(0.f), F(0.f), lane::select(r > F(1.f), F(1.f), r));
+    return lane::select(matched, F(0.f), lane::select(sin2_t >= F(1.f), F(1.f), R));
+}
+inline float fresnel_dielectric(float cos_i, float eta, float* cos_t_out = nullptr, float* eta_used = nullptr) {
+    return fresnel_dielectric<float>(cos_i, eta, cos_t_out, eta_used);
 }
 
-/// fresnel_dielectric in double precision: used where 1 − F matters near total internal
-/// reflection (float F ≈ 1 leaves 1 − F with few correct digits).
 inline double fresnel_dielectric_d(double cos_i, double eta) {
     cos_i = std::min(1.0, std::max(-1.0, cos_i));
     if (cos_i < 0.0) {

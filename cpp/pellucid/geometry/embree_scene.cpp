@@ -173,19 +173,6 @@ auto lanes_of(int n, const Ray* const* rays) {
         return on;
     };
 }
-/// Lanes from a RaysSoA, valid where valid[i] != 0.
-auto lanes_of(const int32_t* valid, const EmbreeScene::RaysSoA& in) {
-    return [valid, &in](int i, float* o, float* d, float* tmax) {
-        o[0] = in.ox[i];
-        o[1] = in.oy[i];
-        o[2] = in.oz[i];
-        d[0] = in.dx[i];
-        d[1] = in.dy[i];
-        d[2] = in.dz[i];
-        *tmax = in.tmax[i];
-        return valid[i] != 0;
-    };
-}
 /// rtcIntersect16 / rtcOccluded16 on the lanes `lane` gives (fill_packet); valid receives the mask.
 template <class LaneFn>
 void intersect16(RTCScene scene, LaneFn&& lane, RTCRayHit16& rh, int* valid) {
@@ -236,24 +223,4 @@ void EmbreeScene::occluded_packet(int n, const Ray* const* rays, bool* occluded)
     for (int i = 0; i < n; ++i) occluded[i] = r.tfar[i] < 0.f;
 }
 
-void EmbreeScene::intersect_soa(const int32_t* valid, const RaysSoA& rays, float* t, float* u, float* v,
-                                uint32_t* geom, uint32_t* prim) const {
-    alignas(64) RTCRayHit16 rh;
-    alignas(64) int on[16];
-    intersect16(m_impl->scene, lanes_of(valid, rays), rh, on);
-    for (int i = 0; i < 16; ++i) {
-        t[i] = rh.ray.tfar[i];
-        u[i] = rh.hit.u[i];
-        v[i] = rh.hit.v[i];
-        geom[i] = on[i] ? rh.hit.geomID[i] : ~0u;
-        prim[i] = geom[i] != ~0u ? rh.hit.primID[i] : 0u;
-    }
-}
-
-void EmbreeScene::occluded_soa(const int32_t* valid, const RaysSoA& rays, int32_t* occluded) const {
-    alignas(64) RTCRay16 r;
-    alignas(64) int on[16];
-    occluded16(m_impl->scene, lanes_of(valid, rays), r, on);
-    for (int i = 0; i < 16; ++i) occluded[i] = (on[i] && r.tfar[i] < 0.f) ? -1 : 0;
-}
 }  // namespace pellucid

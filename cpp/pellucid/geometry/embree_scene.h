@@ -47,17 +47,6 @@ public:
     /// occluded() for n ≤ kPacketSize rays at once.
     void occluded_packet(int n, const Ray* const* rays, bool* occluded) const;
 
-    /// kPacketSize rays in structure-of-arrays form (lane i of each array), for callers that keep
-    /// their paths that way (integrator/path_lanes.cpp). A lane is traced where valid[i] != 0.
-    struct RaysSoA {
-        const float *ox, *oy, *oz, *dx, *dy, *dz, *tmax;
-    };
-    /// intersect_packet on RaysSoA: writes t, u, v, geom and prim of each valid lane; geom = ~0u
-    /// where it missed (or was not valid).
-    void intersect_soa(const int32_t* valid, const RaysSoA& rays, float* t, float* u, float* v, uint32_t* geom,
-                       uint32_t* prim) const;
-    /// occluded_packet on RaysSoA: occluded[i] = -1 where lane i is valid and blocked, else 0.
-    void occluded_soa(const int32_t* valid, const RaysSoA& rays, int32_t* occluded) const;
 
 private:
     struct Impl;

@@ -5,6 +5,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "pellucid/util/error.h"
 
 namespace pellucid {
 
@@ -173,5 +179,191 @@ double Film::mean_relative_variance() const {
         sum += lv / (lm * lm + 1e-4);
     }
     return sum / double(n);
+}
+
+// ---- film state files (docs/rendering.md, "Film state files") ----------------------------------
+namespace {
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "film state files are little-endian");
+constexpr char kStateMagic[8] = {'P', 'L', 'C', 'D', 'F', 'I', 'L', 'M'};
+constexpr uint32_t kStateVersion = 1;
+constexpr uint32_t kMaxStateSide = 1u << 16;
+constexpr uint32_t kMaxStateString = 1u << 16;
+
+uint64_t fnv1a(const char* p, size_t n) {
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < n; ++i) h = (h ^ uint64_t(uint8_t(p[i]))) * 1099511628211ull;
+    return h;
+}
+
+class Writer {
+public:
+    template <class T>
+    void put(T v) {
+        char b[sizeof(T)];
+        std::memcpy(b, &v, sizeof(T));
+        buf.append(b, sizeof(T));
+    }
+    template <class T, size_t N>
+    void put(const T (&a)[N]) {
+        for (const T& v : a) put(v);
+    }
+    void put_string(const std::string& s) {
+        put(uint32_t(s.size()));
+        buf += s;
+    }
+    std::string buf;
+};
+
+class Reader {
+public:
+    Reader(const std::string& path, const std::string& data) : m_path(path), m_data(data) {}
+    template <class T>
+    T get(const char* what) {
+        need(sizeof(T), what);
+        T v;
+        std::memcpy(&v, m_data.data() + m_pos, sizeof(T));
+        m_pos += sizeof(T);
+        return v;
+    }
+    template <class T, size_t N>
+    void get(T (&a)[N], const char* what) {
+        for (T& v : a) v = get<T>(what);
+    }
+    std::string get_string(const char* what) {
+        uint32_t n = get<uint32_t>(what);
+        if (n > kMaxStateString) fail(std::string(what) + ": string of " + std::to_string(n) + " bytes");
+        need(n, what);
+        std::string s = m_data.substr(m_pos, n);
+        m_pos += n;
+        return s;
+    }
+    void need(size_t n, const char* what) const {
+        if (m_data.size() - m_pos < n)
+            fail(std::string("truncated film state file (ends inside ") + what + ", at byte " + std::to_string(m_pos) +
+                 " of " + std::to_string(m_data.size()) + ")");
+    }
+    [[noreturn]] void fail(const std::string& msg) const { throw Error(m_path + ": " + msg); }
+    size_t pos() const { return m_pos; }
+
+private:
+    const std::string& m_path;
+    const std::string& m_data;
+    size_t m_pos = 0;
+};
+
+// Filter: type (0 box, 1 tent, 2 gaussian), its size parameter (radius or stddev), shift flag.
+void put_filter(Writer& w, const Filter& f) {
+    if (const auto* b = std::get_if<BoxFilter>(&f)) {
+        w.put(uint8_t(0)), w.put(uint8_t(0)), w.put(b->radius);
+    } else if (const auto* t = std::get_if<TentFilter>(&f)) {
+        w.put(uint8_t(1)), w.put(uint8_t(0)), w.put(t->radius);
+    } else {
+        const auto& g = std::get<GaussianFilter>(f);
+        w.put(uint8_t(2)), w.put(uint8_t(g.shift ? 1 : 0)), w.put(g.stddev);
+    }
+}
+Filter get_filter(Reader& r) {
+    const uint8_t type = r.get<uint8_t>("filter"), shift = r.get<uint8_t>("filter");
+    const float size = r.get<float>("filter");
+    if (!(size > 0.f && size <= 16.f)) r.fail("filter size " + std::to_string(size) + " is outside (0, 16]");
+    switch (type) {
+        case 0: return BoxFilter{size};
+        case 1: return TentFilter{size};
+        case 2: return GaussianFilter(size, shift != 0);
+        default: r.fail("unknown filter type " + std::to_string(type));
+    }
+}
+}  // namespace
+
+void save_film_state(const std::string& path, const FilmState& st) {
+    const Film& f = st.film;
+    Writer w;
+    w.buf.append(kStateMagic, sizeof(kStateMagic));
+    w.put(kStateVersion);
+    w.put(uint32_t(f.m_width)), w.put(uint32_t(f.m_height));
+    w.put(uint8_t(f.splats() ? 1 : 0));
+    put_filter(w, st.filter);
+    w.put(uint32_t(st.spp));
+    w.put(st.seed);
+    w.put(st.invalid_samples);
+    w.put(st.seconds);
+    w.put_string(st.sampler);
+    w.put_string(st.integrator);
+    if (f.splats()) {
+        for (const Film::SplatPixel& p : f.m_splats) {
+            w.put(p.wl), w.put(p.w), w.put(p.dl2), w.put(p.dldw), w.put(p.dw2), w.put(p.n);
+            w.put(p.last_fx), w.put(p.last_fy), w.put(p.last_l);
+        }
+    } else {
+        for (const Film::Pixel& p : f.m_pixels) w.put(p.mean), w.put(p.m2), w.put(p.n);
+    }
+    w.put(fnv1a(w.buf.data(), w.buf.size()));
+
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path parent = fs::path(path).parent_path();
+    if (!parent.empty()) fs::create_directories(parent, ec);
+    const std::string tmp = path + ".part";
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw Error(path + ": cannot open film state file for writing");
+        out.write(w.buf.data(), std::streamsize(w.buf.size()));
+        if (!out.flush()) throw Error(path + ": cannot write film state file");
+    }
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw Error(path + ": cannot write film state file (rename failed)");
+    }
+}
+
+std::shared_ptr<FilmState> load_film_state(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open film state file (does it exist?)");
+    const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    Reader r(path, data);
+    r.need(sizeof(kStateMagic), "the header");
+    if (std::memcmp(data.data(), kStateMagic, sizeof(kStateMagic)) != 0)
+        r.fail("not a pellucid film state file (it does not start with \"PLCDFILM\")");
+    for (size_t i = 0; i < sizeof(kStateMagic); ++i) r.get<char>("the header");
+    const uint32_t version = r.get<uint32_t>("the header");
+    if (version != kStateVersion)
+        r.fail("film state version " + std::to_string(version) + " is not supported (this build reads version " +
+               std::to_string(kStateVersion) + ")");
+    const uint32_t width = r.get<uint32_t>("the header"), height = r.get<uint32_t>("the header");
+    if (width < 1 || height < 1 || width > kMaxStateSide || height > kMaxStateSide)
+        r.fail("film size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range");
+    const uint8_t splat = r.get<uint8_t>("the header");
+    if (splat > 1) r.fail("unknown reconstruction " + std::to_string(splat));
+    Filter filter = get_filter(r);
+    const uint32_t spp = r.get<uint32_t>("the header");
+    if (spp > (1u << 24)) r.fail("spp " + std::to_string(spp) + " is out of range [0, 16777216]");
+    auto st = std::make_shared<FilmState>(FilmState{
+        Film(int(width), int(height), splat ? std::optional<Filter>(filter) : std::nullopt), filter, int(spp), 0, "", "", 0, 0.0});
+    if (st->film.splats() != (splat == 1)) r.fail("a splatting film with a one-pixel box filter");
+    st->seed = r.get<uint64_t>("the header");
+    st->invalid_samples = r.get<uint64_t>("the header");
+    st->seconds = r.get<double>("the header");
+    st->sampler = r.get_string("the sampler name");
+    st->integrator = r.get_string("the integrator");
+    const size_t record = splat ? 11 * 8 + 8 + 5 * 4 : 6 * 8 + 8;
+    r.need(size_t(width) * height * record + 8, "the pixels");
+    Film& f = st->film;
+    if (splat) {
+        for (Film::SplatPixel& p : f.m_splats) {
+            r.get(p.wl, "pixels"), p.w = r.get<double>("pixels"), r.get(p.dl2, "pixels"), r.get(p.dldw, "pixels");
+            p.dw2 = r.get<double>("pixels"), p.n = r.get<uint64_t>("pixels");
+            p.last_fx = r.get<float>("pixels"), p.last_fy = r.get<float>("pixels"), r.get(p.last_l, "pixels");
+        }
+    } else {
+        for (Film::Pixel& p : f.m_pixels) r.get(p.mean, "pixels"), r.get(p.m2, "pixels"), p.n = r.get<uint64_t>("pixels");
+    }
+    const size_t body = r.pos();
+    const uint64_t sum = r.get<uint64_t>("the checksum");
+    if (r.pos() != data.size())
+        r.fail(std::to_string(data.size() - r.pos()) + " unexpected bytes after the checksum");
+    if (sum != fnv1a(data.data(), body)) r.fail("checksum mismatch: the film state file is corrupt");
+    if (st->sampler != "independent" && st->sampler != "sobol") r.fail("unknown sampler '" + st->sampler + "'");
+    return st;
 }
 }  // namespace pellucid

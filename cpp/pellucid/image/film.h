@@ -31,7 +31,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "pellucid/image/filter.h"
@@ -39,6 +41,7 @@
 #include "pellucid/math/spectrum.h"
 
 namespace pellucid {
+struct FilmState;
 
 class Film {
 public:
@@ -83,7 +86,12 @@ public:
     /// statistic tests rely on.
     double mean_relative_variance() const;
 
+    /// The splat filter (nullopt for filter sampling).
+    const std::optional<Filter>& splat_filter() const { return m_splat; }
+
 private:
+    friend void save_film_state(const std::string& path, const FilmState& state);
+    friend std::shared_ptr<FilmState> load_film_state(const std::string& path);
     struct Pixel {
         double mean[3] = {0, 0, 0};
         double m2[3] = {0, 0, 0};
@@ -111,4 +119,26 @@ private:
     std::vector<Pixel> m_pixels;      // filter sampling
     std::vector<SplatPixel> m_splats; // splatting
 };
+
+/// A film and what a render needs to continue it (`--resume`, `render(..., resume=...)`): the
+/// accumulators after `spp` complete passes, so every pixel holds exactly `spp` samples, and the
+/// settings that must not change between the two parts of a render. Saved as the binary state file
+/// described in docs/rendering.md ("Film state files").
+struct FilmState {
+    Film film;
+    Filter filter;            ///< the scene's pixel filter (sampled or splatted)
+    int spp = 0;              ///< samples per pixel in every pixel
+    uint64_t seed = 0;        ///< the render's seed
+    std::string sampler;      ///< "independent" | "sobol"
+    std::string integrator;   ///< Integrator::to_string() of the render ("" = not recorded)
+    uint64_t invalid_samples = 0;  ///< NaN/Inf/negative samples dropped so far
+    double seconds = 0.0;     ///< render time so far
+};
+
+/// Write `state` to `path` (written to a temporary file next to it, then renamed, so an
+/// interrupted write never leaves a truncated state file). Throws pellucid::Error naming the path.
+void save_film_state(const std::string& path, const FilmState& state);
+/// Read a state file written by save_film_state. Throws pellucid::Error naming the path and what is
+/// wrong (not a state file, another version, truncated, corrupt).
+std::shared_ptr<FilmState> load_film_state(const std::string& path);
 }  // namespace pellucid

@@ -9,7 +9,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+
+#include <unistd.h>
 
 #include "pellucid/util/error.h"
 #include "pellucid/util/limits.h"
@@ -31,16 +34,42 @@ float linear_to_srgb(float v) {
 }
 }  // namespace
 
-void write_image_file(const std::string& path, const Image& img) {
+void check_image_output(const std::string& path) {
+    namespace fs = std::filesystem;
+    const std::string ext = extension(path);
+    if (ext.empty()) throw Error(path + ": output has no extension (use .exr, .png, .hdr, .jpg, ...)");
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) throw Error(path + ": unsupported image format '" + ext + "' (use .exr, .png, .hdr, .jpg, ...)");
+    fs::path parent = fs::path(path).parent_path();
+    if (parent.empty()) parent = ".";
+    std::error_code ec;
+    if (!fs::exists(parent, ec)) {
+        fs::create_directories(parent, ec);
+        if (ec) throw Error(path + ": cannot create directory '" + parent.string() + "': " + ec.message());
+    }
+    if (!fs::is_directory(parent, ec)) throw Error(path + ": '" + parent.string() + "' is not a directory");
+    if (::access(parent.c_str(), W_OK) != 0) throw Error(path + ": directory '" + parent.string() + "' is not writable");
+    if (fs::is_directory(path, ec)) throw Error(path + ": is a directory");
+}
+
+void write_image_file(const std::string& path, const Image& img, const std::vector<ImageAttribute>& attributes) {
     if (img.width <= 0 || img.height <= 0) throw Error(path + ": cannot write an empty image");
     std::string ext = extension(path);
-    auto parent = std::filesystem::path(path).parent_path();
-    if (!parent.empty() && !std::filesystem::exists(parent))
-        throw Error(path + ": directory '" + parent.string() + "' does not exist");
+    check_image_output(path);
     auto out = OIIO::ImageOutput::create(path);
     if (!out) throw Error(path + ": unsupported image format '" + ext + "': " + OIIO::geterror());
     bool is_float = is_float_format(ext);
     OIIO::ImageSpec spec(img.width, img.height, img.channels, is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    for (const ImageAttribute& a : attributes) {
+        if (const auto* i = std::get_if<int64_t>(&a.value)) {
+            if (*i >= INT32_MIN && *i <= INT32_MAX) spec.attribute(a.name, int(*i));
+            else spec.attribute(a.name, std::to_string(*i));
+        } else if (const auto* d = std::get_if<double>(&a.value)) {
+            spec.attribute(a.name, OIIO::TypeDesc::DOUBLE, d);
+        } else {
+            spec.attribute(a.name, std::get<std::string>(a.value));
+        }
+    }
     if (!out->open(path, spec)) throw Error(path + ": cannot open for writing: " + out->geterror());
     bool ok;
     if (is_float) {
@@ -79,5 +108,32 @@ Image read_image_file(const std::string& path) {
             img.data[p * 3 + k] = v;
         }
     return img;
+}
+
+std::vector<ImageAttribute> read_image_attributes(const std::string& path) {
+    if (!std::filesystem::exists(path)) throw Error(path + ": image file not found");
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw Error(path + ": cannot read image (unsupported or corrupt): " + OIIO::geterror());
+    std::vector<ImageAttribute> out;
+    for (const OIIO::ParamValue& p : in->spec().extra_attribs) {
+        const OIIO::TypeDesc t = p.type();
+        if (t.aggregate != OIIO::TypeDesc::SCALAR || t.arraylen != 0) {
+            out.push_back({p.name().string(), p.get_string()});
+        } else if (t.basetype == OIIO::TypeDesc::FLOAT || t.basetype == OIIO::TypeDesc::DOUBLE ||
+                   t.basetype == OIIO::TypeDesc::HALF) {
+            out.push_back({p.name().string(), double(p.get_float())});
+            if (t.basetype == OIIO::TypeDesc::DOUBLE) out.back().value = *static_cast<const double*>(p.data());
+        } else if (t.basetype == OIIO::TypeDesc::STRING) {
+            out.push_back({p.name().string(), p.get_string()});
+        } else if (t.basetype == OIIO::TypeDesc::UINT64) {
+            out.push_back({p.name().string(), int64_t(*static_cast<const uint64_t*>(p.data()))});
+        } else if (t.basetype == OIIO::TypeDesc::INT64) {
+            out.push_back({p.name().string(), *static_cast<const int64_t*>(p.data())});
+        } else {
+            out.push_back({p.name().string(), int64_t(p.get_int())});
+        }
+    }
+    in->close();
+    return out;
 }
 }  // namespace pellucid

@@ -46,43 +46,120 @@ private:
 };
 }  // namespace
 
+namespace {
+constexpr double kPassSeconds = 0.1;   ///< aimed-for duration of a filter-sampling pass
+constexpr double kUndoSeconds = 0.25;  ///< passes expected to be longer keep a copy to cancel into
+
+bool same_filter(const Filter& a, const Filter& b) {
+    if (a.index() != b.index()) return false;
+    if (const auto* g = std::get_if<GaussianFilter>(&a))
+        return g->stddev == std::get<GaussianFilter>(b).stddev && g->shift == std::get<GaussianFilter>(b).shift;
+    return filter_radius(a) == filter_radius(b);
+}
+
+/// The state's film, checked against the scene and options of the render that continues it.
+void check_resume(const FilmState& st, const Scene& scene, const RenderOptions& opts, const std::string& sampler) {
+    auto fail = [](const std::string& what) { throw Error("resume: " + what); };
+    if (st.film.width() != scene.width || st.film.height() != scene.height)
+        fail("the film state is " + std::to_string(st.film.width()) + "x" + std::to_string(st.film.height()) +
+             " pixels, the scene " + std::to_string(scene.width) + "x" + std::to_string(scene.height));
+    const bool splats = Film(1, 1, scene.film_splatting ? std::optional<Filter>(scene.filter) : std::nullopt).splats();
+    if (st.film.splats() != splats)
+        fail(std::string("the film state ") + (st.film.splats() ? "splats samples" : "samples the filter") +
+             ", the scene's film " + (splats ? "splats samples" : "samples the filter"));
+    if (!same_filter(st.filter, scene.filter))
+        fail("the film state's filter is " + to_string(st.filter) + ", the scene's " + to_string(scene.filter));
+    if (st.sampler != sampler)
+        fail("the film state used the " + st.sampler + " sampler, this render the " + sampler +
+             " sampler (set the sampler to '" + st.sampler + "')");
+    if (opts.seed >= 0 && uint64_t(opts.seed) != st.seed)
+        fail("the film state used seed " + std::to_string(st.seed) + ", this render asks for seed " +
+             std::to_string(opts.seed) + " (leave the seed unset to continue with the state's)");
+}
+
+/// The end of the target_rel_error test point after `done`: 2, 4, 8, ..., 64, then every 64.
+int next_error_test(int done) {
+    if (done < 2) return 2;
+    if (done < 64) {
+        int p = 2;
+        while (p <= done) p *= 2;
+        return p;
+    }
+    return (done / 64 + 1) * 64;
+}
+}  // namespace
+
 RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const TileFn& tile_fn) {
     const int W = scene.width, H = scene.height;
-    const int spp = opts.spp > 0 ? opts.spp : scene.spp;
     if (opts.spp == 0) throw Error("spp: value 0 must be >= 1");
-    const uint64_t seed = opts.seed >= 0 ? uint64_t(opts.seed) : scene.seed;
+    const int spp = opts.spp > 0 ? opts.spp : scene.spp;
+    const std::string sampler = to_string(sampler_type(scene, opts));
+    if (opts.resume) check_resume(*opts.resume, scene, opts, sampler);
+    const uint64_t seed = opts.resume ? opts.resume->seed : opts.seed >= 0 ? uint64_t(opts.seed) : scene.seed;
     const bool adaptive = opts.time_budget > 0.0 || opts.target_rel_error > 0.0;
     const int total_spp = adaptive && opts.spp <= 0 ? (1 << 24) : spp;
+    const int start_spp = opts.resume ? opts.resume->spp : 0;
+    if (total_spp < start_spp)
+        throw Error("spp: value " + std::to_string(total_spp) + " is below the " + std::to_string(start_spp) +
+                    " spp the resumed film state already has");
 
-    Film film(W, H, scene.film_splatting ? std::optional<Filter>(scene.filter) : std::nullopt);
+    const std::optional<Filter> splat_filter =
+        scene.film_splatting ? std::optional<Filter>(scene.filter) : std::nullopt;
+    auto state = std::make_shared<FilmState>(FilmState{
+        opts.resume ? opts.resume->film : Film(W, H, splat_filter), scene.filter, start_spp, seed, sampler, "", 0, 0.0});
+    Film& film = state->film;
     // Tiles of one colour (tx mod P, ty mod P) are (P − 1)·kTile pixels apart, at least twice the
     // splat margin, so their splats never overlap.
     const int P = 1 + (2 * film.splat_margin() + kTile - 1) / kTile;
     const int tiles_x = (W + kTile - 1) / kTile, tiles_y = (H + kTile - 1) / kTile;
-    std::atomic<uint64_t> invalid{0};
+    const int64_t n_tiles = int64_t(tiles_x) * tiles_y;
+    uint64_t invalid = opts.resume ? opts.resume->invalid_samples : 0;
+    const double seconds0 = opts.resume ? opts.resume->seconds : 0.0;
+    std::atomic<uint64_t> pass_invalid{0};
     std::atomic<int64_t> tiles_done{0};
+    std::atomic<bool> skipped{false};
+    std::optional<Film> backup;  // the film before the current pass, when it can be cancelled midway
     ProgressBar bar(opts.progress);
     auto t0 = std::chrono::steady_clock::now();
     auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     auto cancelled = [&] { return opts.cancel && opts.cancel->load(std::memory_order_relaxed); };
 
     RenderStats stats;
-    int done = 0;
-    // Passes double in size (1, 1, 2, 4, ... spp) so budgets are checked often early and rarely later.
-    int pass = std::max(1, std::min(total_spp, adaptive ? 1 : std::max(1, spp / 8)));
+    int done = start_spp;
+    double seconds_per_spp = -1.0;  // measured on the previous pass; < 0 until one has run
     while (done < total_spp && !stats.cancelled) {
-        int s0 = done, s1 = std::min(total_spp, done + pass);
-        int64_t n_tiles = int64_t(tiles_x) * tiles_y;
+        // This pass: samples [s0, s1).
+        const int s0 = done;
+        int s1;
+        if (film.splats()) {
+            s1 = s0 / 2 * 2 + 2;
+        } else if (seconds_per_spp < 0.0) {
+            s1 = s0 + 1;
+        } else {
+            double n = kPassSeconds / std::max(seconds_per_spp, 1e-9);
+            if (opts.time_budget > 0.0) n = std::min(n, (opts.time_budget - elapsed()) / std::max(seconds_per_spp, 1e-9));
+            s1 = s0 + int(std::clamp(n, 1.0, double(1 << 24)));
+        }
+        if (opts.target_rel_error > 0.0) s1 = std::min(s1, next_error_test(s0));
+        s1 = std::min(s1, total_spp);
+        // A pass that may run long keeps the film to return to if it is cancelled midway.
+        const bool undoable = seconds_per_spp < 0.0 || seconds_per_spp * (s1 - s0) > kUndoSeconds;
+        if (undoable && done > 0) backup = film;
+        skipped = false;
+        pass_invalid = 0;
+        const double pass_t0 = elapsed();
         for (int colour = 0; colour < P * P; ++colour) {
             const int cx = colour % P, cy = colour / P;
             const int64_t gx = (tiles_x - cx + P - 1) / P, gy = (tiles_y - cy + P - 1) / P;  // tiles of this colour
             if (gx <= 0 || gy <= 0) continue;
             parallel_for(gx * gy, opts.threads, [&](int64_t g) {
-                if (cancelled()) return;
+                if (undoable && cancelled()) {
+                    skipped.store(true, std::memory_order_relaxed);
+                    return;
+                }
                 const int tx = (cx + int(g % gx) * P) * kTile, ty = (cy + int(g / gx) * P) * kTile;
                 TileJob job{tx, ty, std::min(tx + kTile, W), std::min(ty + kTile, H), s0, s1, seed};
-                uint64_t bad = tile_fn(job, film);
-                invalid += bad;
+                pass_invalid += tile_fn(job, film);
                 int64_t k = ++tiles_done;
                 double frac = opts.time_budget > 0.0
                                   ? elapsed() / opts.time_budget
@@ -96,30 +173,34 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
             });
         }
         tiles_done = 0;
-        if (cancelled()) {
+        if (skipped) {
+            // Cancelled midway: back to the film of complete passes.
+            if (done > 0) film = std::move(*backup);
+            else film = Film(W, H, splat_filter);
             stats.cancelled = true;
-            // Tiles that finished this pass keep their samples; report the least-sampled pixel.
-        } else {
-            done = s1;
+            break;
         }
+        done = s1;
+        invalid += pass_invalid.load();
+        seconds_per_spp = (elapsed() - pass_t0) / double(s1 - s0);
+        if (cancelled()) stats.cancelled = true;
         if (opts.time_budget > 0.0 && elapsed() >= opts.time_budget) break;
-        if (opts.target_rel_error > 0.0 && done >= 2 &&
+        if (opts.target_rel_error > 0.0 && done >= 2 && done == next_error_test(done - 1) &&
             std::sqrt(film.mean_relative_variance()) <= opts.target_rel_error)
             break;
-        pass = adaptive ? std::max(1, std::min(done, 64)) : pass;
     }
+    backup.reset();
     bar.finish();
     if (opts.progress_out) opts.progress_out->fraction.store(1.0, std::memory_order_relaxed);
-    stats.seconds = elapsed();
-    stats.invalid_samples = invalid.load();
-    uint64_t min_n = ~0ull, total = 0;
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-            min_n = std::min(min_n, film.samples(x, y));
-            total += film.samples(x, y);
-        }
-    stats.spp = int(min_n == ~0ull ? 0 : min_n);
-    stats.samples = total + stats.invalid_samples;
-    return RenderResult{film.mean(), film.variance(), stats};
+    stats.seconds = seconds0 + elapsed();
+    stats.invalid_samples = invalid;
+    stats.spp = done;
+    stats.samples = uint64_t(W) * uint64_t(H) * uint64_t(done);
+    state->spp = done;
+    state->invalid_samples = invalid;
+    state->seconds = stats.seconds;
+    RenderResult r{film.mean(), film.variance(), stats, nullptr};
+    r.state = std::move(state);
+    return r;
 }
 }  // namespace pellucid

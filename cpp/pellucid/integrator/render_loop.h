@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "pellucid/image/film.h"
@@ -23,19 +24,24 @@ struct RenderProgress {
 
 struct RenderOptions {
     int spp = -1;                 ///< samples per pixel; -1 = the scene's sample_count
-    int64_t seed = -1;            ///< -1 = the scene's seed
+    int64_t seed = -1;            ///< -1 = the scene's seed (on resume: the state's)
     int threads = 0;              ///< 0 = all hardware threads
     double time_budget = 0.0;     ///< seconds; > 0 stops after the pass that exceeds it
     double target_rel_error = 0;  ///< > 0 stops once the mean relative standard error falls below it
     bool progress = false;        ///< draw a progress bar on stderr if stderr is a terminal
-    const std::atomic<bool>* cancel = nullptr;  ///< set to true to stop after the current tiles
+    /// Set to true (from any thread or a signal handler) to stop: the render returns within one
+    /// pass or, for long passes, within the tiles in flight (see render_loop).
+    const std::atomic<bool>* cancel = nullptr;
     RenderProgress* progress_out = nullptr;     ///< if set, updated after every tile
     std::string sampler;          ///< "" = the scene's sampler type; else "independent" | "sobol"
+    /// Continue this film state (a render of the same scene, size, filter, seed and sampler)
+    /// up to `spp` instead of starting from an empty film.
+    std::shared_ptr<const FilmState> resume;
 };
 
 struct RenderStats {
-    int spp = 0;               ///< samples per pixel actually reached (minimum over pixels)
-    double seconds = 0.0;      ///< wall time of the render loop
+    int spp = 0;               ///< samples per pixel in every pixel (complete passes)
+    double seconds = 0.0;      ///< wall time of the render loop (on resume: including the state's)
     uint64_t samples = 0;      ///< camera samples taken
     uint64_t invalid_samples = 0;  ///< NaN/Inf/negative samples, kept out of the film
     bool cancelled = false;
@@ -45,6 +51,9 @@ struct RenderResult {
     Image image;     ///< per-pixel mean radiance
     Image variance;  ///< per-pixel variance of that mean
     RenderStats stats;
+    /// The film after stats.spp samples per pixel, to continue with RenderOptions::resume or to
+    /// save with save_film_state (the front ends fill in FilmState::integrator).
+    std::shared_ptr<FilmState> state;
 };
 
 /// One unit of parallel work: pixels [x0, x1) × [y0, y1), sample indices [s0, s1).
@@ -55,11 +64,30 @@ struct TileJob {
 /// Renders one tile into the film (it owns those pixels) and returns the number of invalid samples.
 using TileFn = std::function<uint64_t(const TileJob&, Film&)>;
 
-/// Render with a per-tile function: tiles of 16×16 pixels run in parallel, in passes of samples.
-/// The std::function is called once per tile, never per sample or per ray. A splatting film
-/// (scene.film_splatting) writes past a tile's edge, so each pass then runs in P×P colour groups of
-/// tiles at least one splat radius apart: no two tiles running together touch the same pixel, and
-/// every pixel receives its splats in the same order for any thread count.
+/// Render with a per-tile function: tiles of 16×16 pixels run in parallel, in passes over the whole
+/// film, so that after every pass each pixel has the same number of samples. The std::function is
+/// called once per tile, never per sample or per ray.
+///
+/// Passes. With filter sampling, a pixel's samples enter the film in sample order however the
+/// samples are cut into passes, so pass sizes follow the measured speed: a pass takes about 0.1 s
+/// (at least 1 spp), and the image does not depend on them. A splatting film
+/// (scene.film_splatting) writes past a tile's edge, so each pass runs in P×P colour groups of tiles
+/// at least one splat radius apart: no two tiles running together touch the same pixel. The order
+/// in which a pixel receives its neighbours' splats then depends on where passes begin, so those
+/// passes are fixed: samples [2k, 2k + 2), one pair (film.h) per pixel, the same for every thread
+/// count and every run. With target_rel_error, passes also end at spp 2, 4, 8, ..., 64 and every
+/// multiple of 64, where the error is tested, so where the render stops does not depend on speed.
+///
+/// Cancellation (RenderOptions::cancel). A pass expected to take longer than 0.25 s keeps a copy of
+/// the film from before it: on cancellation the tiles not yet started are skipped and the film goes
+/// back to that copy. A shorter pass is finished. Either way the render stops within about 0.25 s
+/// (plus the tiles in flight) and returns a film of whole passes.
+///
+/// Resume (RenderOptions::resume). The film continues from the state's spp with the state's seed;
+/// a different size, reconstruction filter or sampler is an error (pellucid::Error). Every pass
+/// boundary of a finished or cancelled render is a pass boundary of a longer one, so a resumed render
+/// is bit-identical to an uninterrupted render with the same seed (for splatting films this needs
+/// the state's spp to be even, as it is for every cancelled render).
 RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const TileFn& tile_fn);
 
 /// Which estimates the film accepts: radiance must be finite and non-negative; signed outputs

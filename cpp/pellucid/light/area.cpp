@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/light/area.h"
 
+#include "pellucid/light/light.h"
+
 #include <cmath>
 
 #include "pellucid/math/constants.h"
@@ -111,6 +113,41 @@ float AreaLight::pdf_li(const LightSampleContext& ctx, const Vec3f& wi, const Po
     float cos_l = absdot(n_light, wi);
     return cos_l > 0.f ? dist2 / (cos_l * m_area) : 0.f;
 }
+
+template <class LightT>
+EmitterTable make_emitter_table(const std::vector<LightT>& lights, const std::vector<float>& pmf) {
+    EmitterTable t;
+    std::vector<double> weights;
+    for (size_t li = 0; li < lights.size(); ++li) {
+        const AreaLight* al = std::get_if<AreaLight>(&lights[li]);
+        if (!al || al->is_sphere()) return EmitterTable{};
+        if (!(pmf[li] > 0.f) || !(al->area() > 0.f)) continue;
+        const std::vector<Point3f>& v = al->triangles();
+        for (size_t k = 0; 3 * k + 2 < v.size(); ++k) {
+            const double area = 0.5 * double(length(cross(v[3 * k + 1] - v[3 * k], v[3 * k + 2] - v[3 * k])));
+            if (!(area > 0.0)) continue;
+            for (int c = 0; c < 9; ++c) t.data.push_back(v[3 * k + size_t(c / 3)][c % 3]);
+            for (int c = 0; c < 3; ++c) t.data.push_back(al->triangle_normals()[k][c]);
+            for (int c = 0; c < 3; ++c) t.data.push_back(al->triangle_errors()[k][c]);
+            for (int c = 0; c < 3; ++c) t.data.push_back(al->radiance()[c]);
+            t.data.push_back(al->two_sided() ? 1.f : 0.f);
+            t.data.push_back(pmf[li] / al->area());
+            weights.push_back(double(pmf[li]) * area / double(al->area()));
+        }
+    }
+    if (weights.empty()) return EmitterTable{};
+    double sum = 0.0, acc = 0.0;
+    for (double w : weights) sum += w;
+    t.cdf.push_back(0.f);
+    for (double w : weights) {
+        acc += w;
+        t.cdf.push_back(float(acc / sum));
+    }
+    t.cdf.back() = 1.f;
+    while (size_t(t.search_top ? 2 * t.search_top : 1) < weights.size()) t.search_top = t.search_top ? 2 * t.search_top : 1;
+    return t;
+}
+template EmitterTable make_emitter_table<Light>(const std::vector<Light>&, const std::vector<float>&);
 
 float AreaLight::power() const { return kPi * m_area * m_radiance.average() * (m_two_sided ? 2.f : 1.f); }
 

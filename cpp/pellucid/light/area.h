@@ -14,7 +14,9 @@
 
 #include "pellucid/geometry/mesh.h"
 #include "pellucid/light/light_types.h"
+#include "pellucid/math/ray.h"
 #include "pellucid/sampling/distribution_1d.h"
+#include "pellucid/sampling/warp.h"
 
 namespace pellucid {
 
@@ -61,4 +63,66 @@ private:
     bool m_flip = false;
     float m_area = 0.f;
 };
+
+/// Every emitting triangle of a scene whose lights are all mesh area lights, as one table, so that
+/// next-event estimation picks a triangle and a point on it in one step for a whole packet
+/// (integrator/path_kernel.h). Triangle j is picked with probability pmf(light)·area_j/area(light),
+/// the density pbrt's two-step choice (a light, then a triangle by area) gives, so the MIS
+/// densities of AreaLight::pdf_li hold unchanged.
+struct EmitterTable {
+    /// Floats per triangle: corners (9), emitting normal (3), error bound of a sampled point (3),
+    /// radiance (3), two-sided (1 or 0), pmf(light)/area(light) (the density per unit area).
+    static constexpr int kStride = 20;
+    std::vector<float> data;
+    std::vector<float> cdf;  ///< cdf[j] = Σ_{i<j} probability of i; cdf[m] = 1
+    int search_top = 0;      ///< largest power of two below the triangle count (0 for one)
+    bool empty() const { return cdf.empty(); }
+    int size() const { return int(cdf.size()) - 1; }
+};
+/// The table of `lights` (pmf[i]: the probability NEE picks light i), or an empty one when a
+/// light is not an area light on a mesh.
+template <class LightT>
+EmitterTable make_emitter_table(const std::vector<LightT>& lights, const std::vector<float>& pmf);
+
+/// A point sampled on an emitter table, as seen from p_ref, in kLaneWidth<F> lanes.
+template <class F>
+struct EmitterSample {
+    MaskT<F> valid;
+    V3<F> p, n, err, wi;
+    RGB<F> L;
+    F pdf;  ///< solid-angle density at p_ref, the triangle's choice included
+};
+
+/// Pick a triangle with u_sel (a binary search of fixed length, the same in every lane), a uniform
+/// point on it with u (Heitz 2019, square_to_uniform_triangle), and convert its area density to
+/// solid angle at p_ref: pdf = pdf_area·dist²/|cos θ_light| (Veach 1997, eq. 8.10).
+template <class F>
+inline EmitterSample<F> sample_emitter(const EmitterTable& t, const F& u_sel, const V2<F>& u, const V3<F>& p_ref) {
+    using I = IntT<F>;
+    I j(0);
+    const I last(t.size() - 1);
+    for (int step = t.search_top; step > 0; step >>= 1) {
+        const I c = lane::min(j + I(step), last);
+        j = lane::select(lane::int_mask(lane::gather(t.cdf.data(), c) <= u_sel), c, j);
+    }
+    const I base = j * I(EmitterTable::kStride);
+    const float* d = t.data.data();
+    auto E = [&](int k) { return lane::gather(d + k, base); };
+    const V2<F> b = square_to_uniform_triangle<F>(u);
+    const F b0 = F(1.f) - b.x - b.y;
+    EmitterSample<F> s;
+    s.p = V3<F>(E(0) * b0 + E(3) * b.x + E(6) * b.y, E(1) * b0 + E(4) * b.x + E(7) * b.y,
+                E(2) * b0 + E(5) * b.x + E(8) * b.y);
+    s.n = V3<F>(E(9), E(10), E(11));
+    s.err = V3<F>(E(12), E(13), E(14));
+    const V3<F> dp = s.p - p_ref;
+    const F dist2 = dot(dp, dp);
+    s.wi = dp / lane::sqrt(lane::select(dist2 > F(0.f), dist2, F(1.f)));
+    const F cos_w = dot(s.n, s.wi), cos_l = lane::abs(cos_w);
+    s.pdf = E(19) * dist2 / lane::select(cos_l > F(0.f), cos_l, F(1.f));
+    const auto faces = E(18) > F(0.f) || cos_w < F(0.f);  // emits toward -wi
+    s.L = lane::select(faces, RGB<F>(E(15), E(16), E(17)), RGB<F>(F(0.f)));
+    s.valid = dist2 > F(0.f) && cos_l > F(0.f) && s.pdf < F(kInfinity) && !is_black(s.L);
+    return s;
+}
 }  // namespace pellucid

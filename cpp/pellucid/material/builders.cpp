@@ -434,7 +434,7 @@ Material build_material(const Node& node, const BuildContext& ctx, const std::st
     if (it == material_registry().end()) {
         std::vector<std::string> names;
         for (const auto& [k, v] : material_registry()) names.push_back(k);
-        p.fail("type", "unknown material type '" + type + "' (known: " + join_names(names) + ")");
+        p.fail("type", unknown_type_message("material", type, names));
     }
     Material m = it->second(p, ctx);
     read_normal_perturbation(p, ctx);

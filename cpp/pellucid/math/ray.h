@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include "pellucid/math/constants.h"
+#include "pellucid/math/lane_types.h"
 #include "pellucid/math/vec.h"
 
 namespace pellucid {
@@ -36,5 +37,26 @@ inline Point3f offset_ray_origin(const Point3f& p, const Vec3f& p_error, const N
         else if (offset[i] < 0.f) po[i] = next_float_down(po[i]);
     }
     return po;
+}
+
+/// offset_ray_origin over a lane type F (simd/lane.h): p + offset, then one ulp further in the
+/// offset's direction, as next_float_up / next_float_down do for finite values, by integer steps
+/// on the bits.
+template <class F>
+inline F offset_coordinate(const F& p, const F& off) {
+    using I = IntT<F>;
+    const F po = p + off;
+    const I b = lane::as_int(po);
+    const auto zero = lane::int_mask(po == F(0.f));
+    // Up: ±0 goes to the smallest positive number; positives gain an ulp, negatives lose one.
+    const I up = lane::select(zero, I(0), b) + lane::select(lane::int_mask(po >= F(0.f)), I(1), I(-1));
+    const I down = lane::select(zero, I(int32_t(0x80000000u)), b) + lane::select(lane::int_mask(po > F(0.f)), I(-1), I(1));
+    return lane::as_float(lane::select(lane::int_mask(off > F(0.f)), up, lane::select(lane::int_mask(off < F(0.f)), down, b)));
+}
+template <class F>
+inline V3<F> offset_ray_origin(const V3<F>& p, const V3<F>& p_error, const V3<F>& n, const V3<F>& w) {
+    const F d = dot(abs(n), p_error);
+    const F s = lane::select(dot(w, n) < F(0.f), lane::neg(d), d);
+    return V3<F>(offset_coordinate<F>(p.x, s * n.x), offset_coordinate<F>(p.y, s * n.y), offset_coordinate<F>(p.z, s * n.z));
 }
 }  // namespace pellucid

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "pellucid/math/constants.h"
+#include "pellucid/math/lane_types.h"
 #include "pellucid/math/vec.h"
 
 namespace pellucid {
@@ -30,19 +31,30 @@ inline Vec3f reflect(const Vec3f& wo, const Vec3f& n) { return -wo + 2.f * dot(w
 /// Refraction of wi (pointing away from the surface) through a boundary with normal n and relative
 /// IOR eta = η_t/η_i (Snell: η_i sin θi = η_t sin θt). If wi lies below n, the interface is
 /// flipped. Returns false on total internal reflection. etap receives the η actually used.
-inline bool refract(const Vec3f& wi, Vec3f n, float eta, float* etap, Vec3f* wt) {
-    float cos_i = dot(n, wi);
-    if (cos_i < 0.f) {
-        eta = 1.f / eta;
-        cos_i = -cos_i;
-        n = -n;
-    }
-    float sin2_i = std::max(0.f, 1.f - cos_i * cos_i);
-    float sin2_t = sin2_i / (eta * eta);
-    if (sin2_t >= 1.f) return false;
-    float cos_t = safe_sqrt(1.f - sin2_t);
+template <class F>
+inline MaskT<F> refract(const V3<F>& wi, V3<F> n, F eta, F* etap, V3<F>* wt) {
+    // Over a lane type F; the float instantiation is refract() below. Where the result is false
+    // (total internal reflection) *wt is not a direction.
+    F cos_i = dot(n, wi);
+    const auto back = cos_i < F(0.f);
+    eta = lane::select(back, F(1.f) / eta, eta);
+    cos_i = lane::select(back, lane::neg(cos_i), cos_i);
+    n = lane::select(back, -n, n);
+    const F x = F(1.f) - cos_i * cos_i;
+    const F sin2_i = lane::select(F(0.f) < x, x, F(0.f));
+    const F sin2_t = sin2_i / (eta * eta);
+    const F y = F(1.f) - sin2_t;
+    const F cos_t = lane::sqrt(lane::select(F(0.f) < y, y, F(0.f)));
     *wt = -wi / eta + (cos_i / eta - cos_t) * n;
     if (etap) *etap = eta;
+    return !(sin2_t >= F(1.f));
+}
+inline bool refract(const Vec3f& wi, Vec3f n, float eta, float* etap, Vec3f* wt) {
+    Vec3f w;
+    float e;
+    if (!refract<float>(wi, n, eta, &e, &w)) return false;
+    *wt = w;
+    if (etap) *etap = e;
     return true;
 }
 

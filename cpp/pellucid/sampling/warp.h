@@ -6,41 +6,53 @@
 #include <cmath>
 
 #include "pellucid/math/constants.h"
+#include "pellucid/math/lane_types.h"
 #include "pellucid/math/vec.h"
 
 namespace pellucid {
 namespace detail {
 /// sin and cos of |x| ≤ π/4 by their Taylor series to x⁹ and x¹⁰: the truncation error is below
 /// (π/4)¹¹/11! ≈ 2e-9, under float rounding, with no range reduction and no libm call.
-inline void sincos_quarter_pi(float x, float* s, float* c) {
-    const float x2 = x * x;
-    *s = x * (1.f + x2 * (-1.f / 6.f + x2 * (1.f / 120.f + x2 * (-1.f / 5040.f + x2 * (1.f / 362880.f)))));
-    *c = 1.f + x2 * (-0.5f + x2 * (1.f / 24.f + x2 * (-1.f / 720.f + x2 * (1.f / 40320.f - x2 * (1.f / 3628800.f)))));
+template <class F>
+inline void sincos_quarter_pi(const F& x, F* s, F* c) {
+    const F x2 = x * x;
+    *s = x * (F(1.f) + x2 * (F(-1.f / 6.f) + x2 * (F(1.f / 120.f) + x2 * (F(-1.f / 5040.f) + x2 * F(1.f / 362880.f)))));
+    *c = F(1.f) + x2 * (F(-0.5f) + x2 * (F(1.f / 24.f) + x2 * (F(-1.f / 720.f) + x2 * (F(1.f / 40320.f) - x2 * F(1.f / 3628800.f)))));
 }
 }  // namespace detail
 
+// The warps on every path vertex are templates over the lane type F (math/lane_types.h), called
+// as name<F>(u); the float overloads below keep the scalar spelling.
+
 /// Shirley & Chiu 1997 concentric map from the square to the unit disk. Its angle is θ' = π/4 · b/a
 /// in the wedges where |a| > |b|, and π/2 − θ' (with a and b swapped) in the others, so sin and cos
-/// are needed on [−π/4, π/4] only. Inline: it is on every diffuse bounce.
-inline Vec2f square_to_uniform_disk_concentric(Vec2f u) {
-    const float a = 2.f * u.x - 1.f, b = 2.f * u.y - 1.f;
-    if (a == 0.f && b == 0.f) return Vec2f(0.f);
-    float s, c;
-    if (std::fabs(a) > std::fabs(b)) {
-        detail::sincos_quarter_pi(kPiOver4 * (b / a), &s, &c);
-        return Vec2f(a * c, a * s);
-    }
-    detail::sincos_quarter_pi(kPiOver4 * (a / b), &s, &c);  // cos(π/2 − θ') = sin θ'
-    return Vec2f(b * s, b * c);
+/// are needed on [−π/4, π/4] only; the wedge is chosen per lane, without a branch.
+template <class F>
+inline V2<F> square_to_uniform_disk_concentric(const V2<F>& u) {
+    const F a = F(2.f) * u.x - F(1.f), b = F(2.f) * u.y - F(1.f);
+    const auto wide = lane::abs(a) > lane::abs(b);
+    const F major = lane::select(wide, a, b), minor = lane::select(wide, b, a);
+    const auto zero = major == F(0.f);  // then a = b = 0: the centre
+    const F ang = lane::select(zero, F(0.f), F(kPiOver4) * (minor / lane::select(zero, F(1.f), major)));
+    F s, c;
+    detail::sincos_quarter_pi<F>(ang, &s, &c);  // cos(π/2 − θ') = sin θ'
+    return V2<F>{major * lane::select(wide, c, s), major * lane::select(wide, s, c)};
 }
+inline Vec2f square_to_uniform_disk_concentric(Vec2f u) { return square_to_uniform_disk_concentric<float>(u); }
 inline float square_to_uniform_disk_concentric_pdf(Vec2f p) { return (p.x * p.x + p.y * p.y <= 1.f) ? kInvPi : 0.f; }
 
 /// Cosine-weighted hemisphere about +z (Malley's method); pdf = cos θ / π.
-inline Vec3f square_to_cosine_hemisphere(Vec2f u) {
-    const Vec2f d = square_to_uniform_disk_concentric(u);
-    return Vec3f(d.x, d.y, std::sqrt(std::max(0.f, 1.f - d.x * d.x - d.y * d.y)));
+template <class F>
+inline V3<F> square_to_cosine_hemisphere(const V2<F>& u) {
+    const V2<F> d = square_to_uniform_disk_concentric<F>(u);
+    return V3<F>(d.x, d.y, lane::sqrt(lane::max(F(0.f), F(1.f) - d.x * d.x - d.y * d.y)));
 }
-inline float square_to_cosine_hemisphere_pdf(const Vec3f& w) { return w.z > 0.f ? w.z * kInvPi : 0.f; }
+inline Vec3f square_to_cosine_hemisphere(Vec2f u) { return square_to_cosine_hemisphere<float>(u); }
+template <class F>
+inline F square_to_cosine_hemisphere_pdf(const V3<F>& w) {
+    return lane::select(w.z > F(0.f), w.z * F(kInvPi), F(0.f));
+}
+inline float square_to_cosine_hemisphere_pdf(const Vec3f& w) { return square_to_cosine_hemisphere_pdf<float>(w); }
 
 Vec3f square_to_uniform_hemisphere(Vec2f u);
 float square_to_uniform_hemisphere_pdf(const Vec3f& w);
@@ -54,14 +66,13 @@ float square_to_uniform_cone_pdf(const Vec3f& w, float cos_theta_max);
 
 /// Uniform barycentrics (b0, b1) over a triangle (Heitz 2019, "A Low-Distortion Map Between
 /// Triangle and Square"); the area pdf is 1/area of the triangle.
-inline Vec2f square_to_uniform_triangle(Vec2f u) {
-    if (u.x < u.y) {
-        const float b0 = u.x / 2.f;
-        return Vec2f(b0, u.y - b0);
-    }
-    const float b1 = u.y / 2.f;
-    return Vec2f(u.x - b1, b1);
+template <class F>
+inline V2<F> square_to_uniform_triangle(const V2<F>& u) {
+    const auto lower = u.x < u.y;
+    const F h = lane::select(lower, u.x, u.y) * F(0.5f);
+    return V2<F>{lane::select(lower, h, u.x - h), lane::select(lower, u.y - h, h)};
 }
+inline Vec2f square_to_uniform_triangle(Vec2f u) { return square_to_uniform_triangle<float>(u); }
 
 /// Tent on [-r, r] (1D): pdf = (r - |x|)/r².
 float sample_tent(float u, float r);

@@ -114,8 +114,6 @@ private:
         s.light_selection = p.get_string("light_selection", "power");
         if (s.light_selection != "power" && s.light_selection != "uniform")
             p.fail("light_selection", "unknown light selection '" + s.light_selection + "' (known: power, uniform)");
-        s.packets = p.get_bool("packets", true);
-        s.lanes = p.get_bool("lanes", true);
         p.check_unqueried();
     }
 
@@ -195,7 +193,7 @@ private:
         if (it == shape_registry().end()) {
             std::vector<std::string> names;
             for (const auto& [k, v] : shape_registry()) names.push_back(k);
-            p.fail("type", "unknown shape type '" + type + "' (known: " + join_names(names) + ")");
+            p.fail("type", unknown_type_message("shape", type, names));
         }
         ShapeGeometry g = it->second(p, m_ctx);
         Transform to_world = p.get_transform("to_world");
@@ -387,7 +385,7 @@ private:
             value = Spectrum(float(env.integral()));
             light = std::move(env);
         } else {
-            p.fail("type", "unknown light type '" + type + "' (known: constant, directional, envmap, point, spot)");
+            p.fail("type", unknown_type_message("light", type, registry_types().at("lights")));
         }
         p.check_unqueried();
         if (value.is_black()) {

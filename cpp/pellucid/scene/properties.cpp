@@ -5,8 +5,10 @@
 #include <cmath>
 #include <sstream>
 
+#include "pellucid/scene/mitsuba_table.h"
 #include "pellucid/util/error.h"
 #include "pellucid/util/limits.h"
+#include "pellucid/util/suggest.h"
 
 namespace pellucid {
 
@@ -26,6 +28,25 @@ std::string number_text(double v) {
     return os.str();
 }
 thread_local std::vector<ParameterRecord>* t_recorder = nullptr;
+
+/// "unknown parameter", with a hint: what this type calls a Mitsuba parameter of the plugin it
+/// imports from, else the nearest of the keys that the object's builder read.
+std::string unknown_key_message(const Node& node, const std::set<std::string>& queried, const std::string& key) {
+    const Node* t = node.find("type");
+    const std::string type = t && t->is_string() ? t->as_string() : "";
+    for (const MitsubaPlugin& plugin : mitsuba_import_table()) {
+        if (type.empty() || type != plugin.ours) continue;
+        for (const MitsubaParam& q : plugin.params) {
+            if (key != q.mitsuba || key == q.ours) continue;
+            if (q.use == MitsubaParamUse::ignored)
+                return "unknown parameter (Mitsuba's '" + key + "' has no counterpart here)";
+            return "unknown parameter (Mitsuba's '" + key + "' is " +
+                   (q.use == MitsubaParamUse::converted ? "converted to '" : "'") + q.ours + "' here)";
+        }
+    }
+    std::string hint = did_you_mean(key, std::vector<std::string>(queried.begin(), queried.end()));
+    return hint.empty() ? "unknown parameter" : "unknown parameter (" + hint + ")";
+}
 }
 
 void set_parameter_recorder(std::vector<ParameterRecord>* out) { t_recorder = out; }
@@ -281,6 +302,6 @@ void Properties::check_spectrum_range(const std::string& key, const Spectrum& s,
 
 void Properties::check_unqueried() const {
     for (const auto& [key, value] : m_node.members())
-        if (!m_queried.count(key)) fail(key, "unknown parameter");
+        if (!m_queried.count(key)) fail(key, unknown_key_message(m_node, m_queried, key));
 }
 }  // namespace pellucid

@@ -8,8 +8,10 @@
 
 #include "pellucid/geometry/mesh_io.h"
 #include "pellucid/material/builders.h"
+#include "pellucid/scene/mitsuba_table.h"
 #include "pellucid/scene/texture_builder.h"
 #include "pellucid/util/error.h"
+#include "pellucid/util/suggest.h"
 
 namespace pellucid {
 
@@ -23,6 +25,27 @@ std::string join_names(const std::vector<std::string>& names) {
     std::string s;
     for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
     return s;
+}
+
+std::string unknown_type_message(const std::string& family, const std::string& type,
+                                 const std::vector<std::string>& known) {
+    // The Mitsuba plugin kind whose names a user of this family may bring from Mitsuba's XML or dicts.
+    static const std::map<std::string, std::string> kMitsubaKind = {
+        {"material", "bsdf"}, {"shape", "shape"}, {"texture", "texture"}, {"light", "emitter"}, {"filter", "rfilter"}};
+    std::string hint;
+    auto kind = kMitsubaKind.find(family);
+    const MitsubaPlugin* m = kind == kMitsubaKind.end() ? nullptr : find_mitsuba_plugin(kind->second, type);
+    if (m && *m->ours && type != m->ours) {
+        if (std::find(known.begin(), known.end(), m->ours) != known.end())
+            hint = "Mitsuba's '" + type + "' is '" + m->ours + "' here; ";
+        else if (family == "material")  // bumpmap, normalmap: a key of the material they wrap
+            hint = "Mitsuba's '" + type + "' is the material key '" + std::string(m->ours) + "' here; ";
+    }
+    if (hint.empty()) {
+        hint = did_you_mean(type, known);
+        if (!hint.empty()) hint += " ";
+    }
+    return "unknown " + family + " type '" + type + "' (" + hint + "known: " + join_names(known) + ")";
 }
 
 namespace {

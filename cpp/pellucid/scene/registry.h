@@ -59,4 +59,9 @@ const std::map<std::string, TextureBuilderFn>& texture_registry();
 std::map<std::string, std::vector<std::string>> registry_types();
 /// "a, b, c"
 std::string join_names(const std::vector<std::string>& names);
+/// The error for a "type" that `family` ("material", "shape", "texture", "light", "filter") does not
+/// register, with a hint: "unknown material type 'diffuse' (Mitsuba's 'diffuse' is 'lambertian' here;
+/// known: ...)" for a Mitsuba plugin name, "(did you mean 'lambertian'? known: ...)" for a near miss.
+std::string unknown_type_message(const std::string& family, const std::string& type,
+                                 const std::vector<std::string>& known);
 }  // namespace pellucid

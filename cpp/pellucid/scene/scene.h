@@ -43,8 +43,6 @@ struct IntegratorSettings {
     int rr_depth = 5;     ///< Russian roulette starts at this depth
     std::string strategy = "mis";  ///< "mis", "nee", "bsdf", "direct"
     std::string light_selection = "power";  ///< "power" or "uniform"
-    bool packets = true;  ///< type "path": trace 16 paths' rays per Embree packet (same image either way)
-    bool lanes = true;    ///< type "path": scenes the lane kernel models run on it (integrator/path_lanes.h)
     std::string aov;  ///< type "aov": "albedo", "normal" or "depth" (integrator/aov.h)
 };
 

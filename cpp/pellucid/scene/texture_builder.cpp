@@ -137,7 +137,7 @@ uint32_t TextureBuilder::texture(const Node& value, const std::string& path, boo
     if (it == texture_registry().end()) {
         std::vector<std::string> names;
         for (const auto& [k, v] : texture_registry()) names.push_back(k);
-        p.fail("type", "unknown texture type '" + type + "' (known: " + join_names(names) + ")");
+        p.fail("type", unknown_type_message("texture", type, names));
     }
     bool saved = m_linear;
     m_linear = linear;

@@ -53,7 +53,8 @@ void chi2_directions(const std::function<Vec3f(Vec2f)>& warp, const std::functio
 }  // namespace
 
 TEST(WarpChi2, CosineHemisphere) {
-    chi2_directions(square_to_cosine_hemisphere, square_to_cosine_hemisphere_pdf, 1);
+    chi2_directions([](Vec2f u) { return square_to_cosine_hemisphere(u); },
+                    [](const Vec3f& w) { return square_to_cosine_hemisphere_pdf(w); }, 1);
 }
 TEST(WarpChi2, UniformHemisphere) {
     chi2_directions(square_to_uniform_hemisphere, square_to_uniform_hemisphere_pdf, 2);

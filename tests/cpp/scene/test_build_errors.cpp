@@ -23,11 +23,11 @@ TEST(SceneErrors, DanglingMaterialNamesTheKeyPath) {
 
 TEST(SceneErrors, UnknownKeyWrongTypeUnknownType) {
     EXPECT_EQ(build_error(R"({"materials": {"m": {"type": "lambertian", "reflectanse": 0.5}}})"),
-              "scene.json: materials.m.reflectanse: unknown parameter");
+              "scene.json: materials.m.reflectanse: unknown parameter (did you mean 'reflectance'?)");
     EXPECT_EQ(build_error(R"({"film": {"width": "wide"}})"), "scene.json: film.width: expected a number, got a string");
     EXPECT_NE(build_error(R"({"shapes": [{"type": "teapot"}]})").find("shapes[0].type: unknown shape type 'teapot'"),
               std::string::npos);
-    EXPECT_EQ(build_error(R"({"camras": {}})"), "scene.json: camras: unknown parameter");
+    EXPECT_EQ(build_error(R"({"camras": {}})"), "scene.json: camras: unknown parameter (did you mean 'camera'?)");
 }
 
 TEST(SceneErrors, OutOfRangeParameters) {

@@ -1,0 +1,390 @@
+// The path tracer, written once over a lane type F (simd/lane.h): unidirectional path tracing with
+// next-event estimation and multiple importance sampling (Veach 1997, ch. 9; the power heuristic,
+// eq. 9.13), Russian roulette on the throughput with η² removed (pbrt-v4 §13.4.1).
+// SPDX-License-Identifier: Apache-2.0
+//
+// render_tile_kernel<F> runs kLaneWidth<F> paths side by side, one per lane: F = float is one path
+// at a time (PathIntegrator::Li and the width-1 fallback); F = a 16-, 8- or 4-wide packet is the
+// renderer (integrator/kernel_*.cpp instantiate it, one translation unit per instruction set). A
+// lane whose path ends takes the tile's next (pixel, sample) at once, so packets stay full.
+//
+// Per vertex, every lane's quantities are packets: throughput, radiance, MIS densities, the
+// shading frame, the roulette. The BSDF is dispatched per lane group: lanes whose material is the
+// packet Lambertian (PathSetup::packet_lambertian) are shaded by LambertianT<F> in one pass; the
+// other lanes go through BSDF one at a time (path_services.h), as do light sampling, emission and
+// the samplers, until those have packet forms too. Every lane keeps its own Sampler and the
+// estimates reach the film in (pixel, sample) order, so images do not depend on the thread count.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "pellucid/bxdf/dielectric.h"
+#include "pellucid/bxdf/lambertian.h"
+#include "pellucid/integrator/path_services.h"
+#include "pellucid/math/frame.h"
+#include "pellucid/sampling/mis.h"
+
+namespace pellucid {
+
+template <class F>
+uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& film) {
+    constexpr int W = kLaneWidth<F>;
+    using M = MaskT<F>;
+    static_assert(W <= 16, "one Embree packet per vertex");
+    const PathSetup& ps = ps_in;
+    const bool splat = film.splats();
+    const Scene& scene = *ps.scene;
+    const int tile_w = job.x1 - job.x0, n_samples = job.s1 - job.s0;
+    const int64_t n_pixels = int64_t(tile_w) * (job.y1 - job.y0);
+    // Whole pixels of about kChunkPaths paths at a time, so the buffer of estimates stays small.
+    constexpr int64_t kChunkPaths = 4096;
+    const int64_t chunk_pixels = std::max<int64_t>(1, kChunkPaths / n_samples);
+    struct Estimate {
+        Spectrum L;
+        float fx, fy;
+    };
+    std::vector<Estimate> done;
+    done.reserve(size_t(std::min<int64_t>(n_pixels, chunk_pixels) * n_samples));
+
+    // Per-lane records (one lane's scalars) and the state of each lane's path as arrays, loaded
+    // into packets at each vertex.
+    Sampler sampler[W];
+    RayDifferential ray[W];
+    SurfaceInteraction si[W];
+    alignas(BSDF) unsigned char bsdf_mem[W][sizeof(BSDF)];
+    auto bsdf = [&](int i) -> BSDF& { return *reinterpret_cast<BSDF*>(bsdf_mem[i]); };
+    const Ray* ray_ptr[W];
+    Ray shadow[W];
+    const Ray* shadow_ptr[W];
+    int64_t path_of[W];
+    int shadow_lane[W];
+    bool hit[W], active[W], blocked[W];
+    struct alignas(64) Arrays {
+        float Lr[W], Lg[W], Lb[W], br[W], bg[W], bb[W];
+        float prev_pdf[W], eta_scale[W], depth[W];
+        float ppx[W], ppy[W], ppz[W], pnx[W], pny[W], pnz[W];  // the previous vertex (MIS of emission)
+        bool specular[W];
+        // This vertex.
+        float Ler[W], Leg[W], Leb[W], le_pdf[W];
+        float pex[W], pey[W], pez[W];  // error bound of the hit point
+        float px[W], py[W], pz[W], ngx[W], ngy[W], ngz[W], wox[W], woy[W], woz[W];
+        float sx[W], sy[W], sz[W], tx[W], ty[W], tz[W], nx[W], ny[W], nz[W];
+        float q[kPacketParams][W];  // the packet form's parameters (PathSetup::packet_params)
+        float kind[W];              // PacketKind of the lane's material
+        bool fast[W], goes_on[W], nee[W];
+        float u[7][W];
+        // NEE.
+        bool nee_ok[W], delta[W];
+        float lwx[W], lwy[W], lwz[W], lLr[W], lLg[W], lLb[W], lpdf[W];
+        float gfr[W], gfg[W], gfb[W], gpdf[W];  // BSDF-lane eval toward the light
+        // BSDF sampling of the BSDF lanes.
+        bool s_ok[W];
+        float swx[W], swy[W], swz[W], swr[W], swg[W], swb[W], spdf[W], seta[W];
+        int32_t slobe[W];
+        // Results.
+        bool has_shadow[W], alive[W], sampled[W];
+        float Ldr[W], Ldg[W], Ldb[W];
+        float nwx[W], nwy[W], nwz[W];
+    } a{};
+    auto LD = [](const float* p) { return lane::load_as<F>(p); };
+    auto LM = [](const bool* p) { return lane::load_mask_as<M>(p); };
+    auto ST = [](float* p, const F& v) { lane::store(p, v); };
+    auto SM = [](bool* p, const M& v) { lane::store(p, v); };
+    uint64_t bad = 0;
+
+    for (int64_t p0 = 0; p0 < n_pixels; p0 += chunk_pixels) {
+        const int64_t n_paths = std::min(chunk_pixels, n_pixels - p0) * n_samples;
+        done.resize(size_t(n_paths));
+        int64_t next = 0;
+        auto pixel_xy = [&](int64_t k, int* x, int* y) {
+            const int64_t px = p0 + k / n_samples;
+            *x = job.x0 + int(px % tile_w);
+            *y = job.y0 + int(px / tile_w);
+        };
+        // Lane i takes the chunk's next path, or goes idle.
+        auto start = [&](int i) {
+            if (next >= n_paths) {
+                active[i] = false;
+                return;
+            }
+            const int64_t k = next++;
+            int x, y;
+            pixel_xy(k, &x, &y);
+            path_of[i] = k;
+            path_services::start(ps, splat, x, y, job.s0 + int(k % n_samples), job.seed, &sampler[i], &ray[i], &done[k].fx,
+                                 &done[k].fy);
+            a.Lr[i] = a.Lg[i] = a.Lb[i] = 0.f;
+            a.br[i] = a.bg[i] = a.bb[i] = 1.f;
+            a.prev_pdf[i] = 0.f;
+            a.eta_scale[i] = 1.f;
+            a.depth[i] = 1.f;
+            a.ppx[i] = a.ppy[i] = a.ppz[i] = a.pnx[i] = a.pny[i] = a.pnz[i] = 0.f;
+            a.specular[i] = true;  // the camera ray counts as a delta bounce
+            active[i] = true;
+        };
+        for (int i = 0; i < W; ++i) start(i);
+        for (;;) {
+            bool any = false;
+            for (int i = 0; i < W; ++i) {
+                any = any || active[i];
+                ray_ptr[i] = &ray[i];
+            }
+            if (!any) break;
+            path_services::trace(scene, W, ray_ptr, si, hit);
+
+            // One lane at a time: what has no packet form yet.
+            for (int i = 0; i < W; ++i) {
+                a.fast[i] = a.goes_on[i] = a.nee[i] = a.nee_ok[i] = a.s_ok[i] = a.delta[i] = false;
+                a.Ler[i] = a.Leg[i] = a.Leb[i] = a.le_pdf[i] = 0.f;
+                a.kind[i] = 0.f;
+                if (!active[i]) continue;
+                const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]), Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
+                if (!hit[i]) {  // escaped: the lights at infinity
+                    const Spectrum Le = path_services::escaped(ps, prev, ray[i].d, a.specular[i], a.prev_pdf[i]);
+                    a.Ler[i] = Le.r;
+                    a.Leg[i] = Le.g;
+                    a.Leb[i] = Le.b;
+                    a.le_pdf[i] = -1.f;  // weighted already
+                    continue;
+                }
+                const SurfaceInteraction& h = si[i];
+                if (h.light_id >= 0) {
+                    const Spectrum Le = path_services::emitted(ps, h, prev, ray[i].d, a.specular[i], &a.le_pdf[i]);
+                    a.Ler[i] = Le.r;
+                    a.Leg[i] = Le.g;
+                    a.Leb[i] = Le.b;
+                }
+                const int depth = int(a.depth[i]);
+                if (ps.max_depth >= 0 && depth >= ps.max_depth) continue;
+                a.px[i] = h.p.x, a.py[i] = h.p.y, a.pz[i] = h.p.z;
+                a.pex[i] = h.p_error.x, a.pey[i] = h.p_error.y, a.pez[i] = h.p_error.z;
+                a.ngx[i] = h.ng.x, a.ngy[i] = h.ng.y, a.ngz[i] = h.ng.z;
+                a.wox[i] = h.wo.x, a.woy[i] = h.wo.y, a.woz[i] = h.wo.z;
+                a.sx[i] = h.shading.s.x, a.sy[i] = h.shading.s.y, a.sz[i] = h.shading.s.z;
+                a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
+                a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
+                BxDFFlags flags;
+                if (const int32_t kind = ps.packet_kind[h.material_id]; kind != kBSDFLane) {
+                    a.fast[i] = true;
+                    a.kind[i] = float(kind);
+                    const float* q = &ps.packet_params[kPacketParams * size_t(h.material_id)];
+                    for (int k = 0; k < kPacketParams; ++k) a.q[k][i] = q[k];
+                    flags = BxDFFlags(ps.packet_flags[h.material_id]);
+                    // Delta bounces carry ray differentials on from the hit's footprint.
+                    if (scene.has_textures) path_services::footprint(ps, si[i], ray[i]);
+                } else {
+                    flags = path_services::bsdf_begin(ps, si[i], ray[i], &bsdf(i));
+                }
+                if (flags == BxDFFlags::None) continue;
+                a.goes_on[i] = true;
+                a.nee[i] = ps.use_nee && is_non_specular(flags);
+                VertexRandoms r;
+                path_services::randoms(sampler[i], depth, a.nee[i], depth >= ps.rr_depth, &r);
+                for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
+            }
+
+            // Next-event estimation on the emitter table, for all lanes at once: a point on an
+            // emitting triangle and the shadow ray toward it (SurfaceInteraction::spawn_ray_to:
+            // both ends offset off their surfaces).
+            if (!ps.emitters.empty()) {
+                const M nee = LM(a.nee);
+                const V3<F> p(LD(a.px), LD(a.py), LD(a.pz)), ng(LD(a.ngx), LD(a.ngy), LD(a.ngz));
+                const EmitterSample<F> es = sample_emitter<F>(ps.emitters, LD(a.u[0]), V2<F>{LD(a.u[1]), LD(a.u[2])}, p);
+                SM(a.nee_ok, nee && es.valid);
+                ST(a.lwx, es.wi.x), ST(a.lwy, es.wi.y), ST(a.lwz, es.wi.z);
+                ST(a.lLr, es.L.r), ST(a.lLg, es.L.g), ST(a.lLb, es.L.b);
+                ST(a.lpdf, es.pdf);
+                const V3<F> o = offset_ray_origin<F>(p, V3<F>(LD(a.pex), LD(a.pey), LD(a.pez)), ng, es.p - p);
+                const V3<F> e = offset_ray_origin<F>(es.p, es.err, es.n, o - es.p);
+                const V3<F> d = e - o;
+                alignas(64) float b[6][W];
+                ST(b[0], o.x), ST(b[1], o.y), ST(b[2], o.z), ST(b[3], d.x), ST(b[4], d.y), ST(b[5], d.z);
+                for (int i = 0; i < W; ++i)
+                    if (a.nee_ok[i]) shadow[i] = Ray{Vec3f(b[0][i], b[1][i], b[2][i]), Vec3f(b[3][i], b[4][i], b[5][i]), 1.f - 1e-4f};
+            }
+
+            // One lane at a time again: lights without a table, and the BSDF lanes.
+            for (int i = 0; i < W; ++i) {
+                if (!a.goes_on[i]) continue;
+                const SurfaceInteraction& h = si[i];
+                if (a.nee[i] && ps.emitters.empty()) {
+                    LightLiSample ls;
+                    a.nee_ok[i] = path_services::sample_light(ps, h, a.u[0][i], Vec2f(a.u[1][i], a.u[2][i]), &ls,
+                                                              &a.lpdf[i], &shadow[i]);
+                    if (a.nee_ok[i]) {
+                        a.lwx[i] = ls.wi.x, a.lwy[i] = ls.wi.y, a.lwz[i] = ls.wi.z;
+                        a.lLr[i] = ls.L.r, a.lLg[i] = ls.L.g, a.lLb[i] = ls.L.b;
+                        a.delta[i] = ls.delta;
+                    }
+                }
+                if (a.fast[i]) continue;
+                if (a.nee_ok[i]) {
+                    const Spectrum f = path_services::bsdf_eval(bsdf(i), h.wo, Vec3f(a.lwx[i], a.lwy[i], a.lwz[i]), &a.gpdf[i]);
+                    a.gfr[i] = f.r, a.gfg[i] = f.g, a.gfb[i] = f.b;
+                }
+                BxDFSample s;
+                a.s_ok[i] = path_services::bsdf_sample(bsdf(i), h.wo, a.u[3][i], Vec2f(a.u[4][i], a.u[5][i]), &s);
+                if (a.s_ok[i]) {
+                    a.swx[i] = s.wi.x, a.swy[i] = s.wi.y, a.swz[i] = s.wi.z;
+                    a.swr[i] = s.weight.r, a.swg[i] = s.weight.g, a.swb[i] = s.weight.b;
+                    a.spdf[i] = s.pdf;
+                    a.seta[i] = s.eta;
+                    a.slobe[i] = int32_t(s.lobe);
+                }
+            }
+
+            // The packet pass over every lane.
+            {
+                const M on = LM(active), is_hit = LM(hit);
+                const RGB<F> beta0(LD(a.br), LD(a.bg), LD(a.bb));
+                RGB<F> L(LD(a.Lr), LD(a.Lg), LD(a.Lb));
+                // Emission found by the last bounce, MIS-weighted against light sampling.
+                {
+                    const RGB<F> Le(LD(a.Ler), LD(a.Leg), LD(a.Leb));
+                    const F le_pdf = LD(a.le_pdf);
+                    const F w = lane::select(le_pdf < F(0.f), F(1.f),
+                                             bsdf_hit_weight<F>(ps.use_mis, ps.use_nee, LM(a.specular), LD(a.prev_pdf), le_pdf));
+                    L += beta0 * Le * lane::select(on, w, F(0.f));
+                }
+                const M goes_on = LM(a.goes_on) && on && is_hit;
+                const M fast = LM(a.fast) && goes_on;
+                const V3<F> p(LD(a.px), LD(a.py), LD(a.pz)), ng(LD(a.ngx), LD(a.ngy), LD(a.ngz));
+                const V3<F> wo_w(LD(a.wox), LD(a.woy), LD(a.woz));
+                const FrameT<F> frame(V3<F>(LD(a.sx), LD(a.sy), LD(a.sz)), V3<F>(LD(a.tx), LD(a.ty), LD(a.tz)),
+                                      V3<F>(LD(a.nx), LD(a.ny), LD(a.nz)));
+                // The packet forms present, each run once on all lanes; lanes of other kinds ignore
+                // its results (masked calls, merged by select).
+                const F kind = LD(a.kind);
+                const M is_lambert = fast && kind == F(float(kPacketLambertian));
+                const M is_dielectric = fast && kind == F(float(kPacketSmoothDielectric));
+                const LambertianT<F> lambert{RGB<F>(LD(a.q[0]), LD(a.q[1]), LD(a.q[2]))};
+                const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
+                const V3<F> wo = frame.to_local(wo_w);
+
+                // Next-event estimation: the BSDF toward the sampled light point, the MIS weight, and
+                // what the shadow ray carries if it is unoccluded.
+                {
+                    const M nee = LM(a.nee_ok) && goes_on;
+                    const V3<F> wi_w(LD(a.lwx), LD(a.lwy), LD(a.lwz));
+                    const V3<F> wi = frame.to_local(wi_w);
+                    const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
+                    // (Of the packet forms only the Lambertian has a lobe NEE can reach.)
+                    const M off = leak || !is_lambert;
+                    const RGB<F> f_fast = lane::select(off, RGB<F>(F(0.f)), lambert.eval(ctx, wo, wi));
+                    const F pdf_fast = lane::select(off, F(0.f), lambert.pdf(ctx, wo, wi));
+                    const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
+                    const F bsdf_pdf = lane::select(fast, pdf_fast, LD(a.gpdf));
+                    const F light_pdf = lane::select(nee, LD(a.lpdf), F(1.f));
+                    const F w = lane::select(LM(a.delta) || M(!ps.use_mis), F(1.f), power_heuristic<F>(light_pdf, bsdf_pdf));
+                    const RGB<F> Ld = beta0 * f * RGB<F>(LD(a.lLr), LD(a.lLg), LD(a.lLb)) * (w / light_pdf);
+                    SM(a.has_shadow, nee && !is_black(f));
+                    ST(a.Ldr, Ld.r), ST(a.Ldg, Ld.g), ST(a.Ldb, Ld.b);
+                }
+
+                // Continue the path by sampling the BSDF.
+                M sampled;
+                RGB<F> weight;
+                F pdf, eta;
+                M specular, transmission;
+                {
+                    const F u_lobe = LD(a.u[3]);
+                    const V2<F> u2{LD(a.u[4]), LD(a.u[5])};
+                    BxDFSampleT<F> s = lambert.sample(ctx, wo, u_lobe, u2);
+                    if (lane::any(is_dielectric)) {
+                        const SmoothDielectricT<F> diel{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
+                                                        RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};
+                        const BxDFSampleT<F> d = diel.sample(ctx, wo, u_lobe, u2);
+                        const auto di = lane::int_mask(is_dielectric);
+                        s.valid = lane::select(is_dielectric, d.valid, s.valid);
+                        s.wi = lane::select(is_dielectric, d.wi, s.wi);
+                        s.weight = lane::select(is_dielectric, d.weight, s.weight);
+                        s.pdf = lane::select(is_dielectric, d.pdf, s.pdf);
+                        s.eta = lane::select(is_dielectric, d.eta, s.eta);
+                        s.lobe = lane::select(di, d.lobe, s.lobe);
+                    }
+                    const V3<F> wi_w = frame.to_world(s.wi);
+                    const M ok_fast = s.valid && s.pdf > F(0.f) && !is_black(s.weight) && s.wi.z != F(0.f) &&
+                                      !shading_leaks<F>(ng, wo_w, wi_w, wo, s.wi) && wo.z != F(0.f);
+                    const M ok_gen = LM(a.s_ok);
+                    sampled = goes_on && lane::select(fast, ok_fast, ok_gen);
+                    weight = lane::select(fast, s.weight, RGB<F>(LD(a.swr), LD(a.swg), LD(a.swb)));
+                    pdf = lane::select(fast, s.pdf, LD(a.spdf));
+                    eta = lane::select(fast, s.eta, LD(a.seta));
+                    const IntT<F> lobe = lane::select(lane::int_mask(fast), s.lobe, lane::load_int_as<IntT<F>>(a.slobe));
+                    specular = lane::float_mask((lobe & IntT<F>(int32_t(BxDFFlags::Specular))) != IntT<F>(0));
+                    transmission = lane::float_mask((lobe & IntT<F>(int32_t(BxDFFlags::Transmission))) != IntT<F>(0));
+                    const V3<F> nw = lane::select(fast, wi_w, V3<F>(LD(a.swx), LD(a.swy), LD(a.swz)));
+                    ST(a.nwx, nw.x), ST(a.nwy, nw.y), ST(a.nwz, nw.z);
+                }
+                RGB<F> beta = lane::select(sampled, beta0 * weight, beta0);
+                F eta_scale = lane::select(sampled && transmission, LD(a.eta_scale) * (eta * eta), LD(a.eta_scale));
+                const F depth = LD(a.depth);
+                // Russian roulette: survive with q = min(max β·η², 0.95) from rr_depth on.
+                const M rr = sampled && depth >= F(float(ps.rr_depth));
+                const F q = lane::min(max_component(beta) * eta_scale, F(0.95f));
+                const M survives = !rr || LD(a.u[6]) < q;
+                beta = lane::select(rr && survives, beta / lane::select(rr, q, F(1.f)), beta);
+                SM(a.alive, sampled && survives && !is_black(beta));
+                SM(a.sampled, sampled);
+                ST(a.Lr, L.r), ST(a.Lg, L.g), ST(a.Lb, L.b);
+                ST(a.br, beta.r), ST(a.bg, beta.g), ST(a.bb, beta.b);
+                ST(a.eta_scale, eta_scale);
+                ST(a.prev_pdf, lane::select(sampled, pdf, LD(a.prev_pdf)));
+                SM(a.specular, lane::select(sampled, specular, LM(a.specular)));
+                ST(a.ppx, p.x), ST(a.ppy, p.y), ST(a.ppz, p.z);
+                ST(a.pnx, ng.x), ST(a.pny, ng.y), ST(a.pnz, ng.z);
+                ST(a.depth, lane::select(sampled, depth + F(1.f), depth));
+                // The next rays leave from the hit, offset off its surface (SurfaceInteraction::
+                // spawn_ray); a delta bounce that carries ray differentials for textures goes through
+                // the scene one lane at a time.
+                const V3<F> nw(LD(a.nwx), LD(a.nwy), LD(a.nwz));
+                const V3<F> o = offset_ray_origin<F>(p, V3<F>(LD(a.pex), LD(a.pey), LD(a.pez)), ng, nw);
+                alignas(64) bool spec_b[W], trans_b[W];
+                alignas(64) float eta_b[W], ob[3][W];
+                SM(spec_b, specular), SM(trans_b, transmission), ST(eta_b, eta);
+                ST(ob[0], o.x), ST(ob[1], o.y), ST(ob[2], o.z);
+                for (int i = 0; i < W; ++i) {
+                    if (!a.alive[i]) continue;
+                    const Vec3f wi(a.nwx[i], a.nwy[i], a.nwz[i]);
+                    if (scene.has_textures && spec_b[i] && ray[i].has_differentials)
+                        ray[i] = path_services::next_ray(ps, si[i], ray[i], wi, true, trans_b[i], eta_b[i]);
+                    else
+                        ray[i] = RayDifferential(Ray{Vec3f(ob[0][i], ob[1][i], ob[2][i]), wi, kInfinity});
+                }
+            }
+
+            // The shadow rays NEE left, as one packet.
+            int n_shadow = 0;
+            for (int i = 0; i < W; ++i)
+                if (a.has_shadow[i]) {
+                    shadow_lane[n_shadow] = i;
+                    shadow_ptr[n_shadow++] = &shadow[i];
+                }
+            if (n_shadow > 0) {
+                path_services::occluded(scene, n_shadow, shadow_ptr, blocked);
+                for (int j = 0; j < n_shadow; ++j) {
+                    const int i = shadow_lane[j];
+                    if (!blocked[j]) {
+                        a.Lr[i] += a.Ldr[i];
+                        a.Lg[i] += a.Ldg[i];
+                        a.Lb[i] += a.Ldb[i];
+                    }
+                }
+            }
+            // Finished paths hand their estimate over; their lanes start the next ones.
+            for (int i = 0; i < W; ++i) {
+                if (!active[i] || a.alive[i]) continue;
+                done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
+                start(i);
+            }
+        }
+        for (int64_t k = 0; k < n_paths; ++k) {
+            int x, y;
+            pixel_xy(k, &x, &y);
+            if (!path_services::film_add(film, x, y, done[k].fx, done[k].fy, done[k].L)) ++bad;
+        }
+    }
+    return bad;
+}
+}  // namespace pellucid

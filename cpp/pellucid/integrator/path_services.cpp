@@ -1,0 +1,162 @@
+// The one-lane parts of the path tracer (path_services.h).
+// SPDX-License-Identifier: Apache-2.0
+#include "pellucid/integrator/path_services.h"
+
+#include <new>
+
+#include "pellucid/sampling/mis.h"
+#include "pellucid/scene/scene.h"
+
+namespace pellucid {
+
+PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type) {
+    PathSetup ps;
+    ps.scene = &scene;
+    ps.max_depth = max_depth;
+    ps.rr_depth = rr_depth;
+    ps.use_nee = use_nee && !scene.lights.empty();
+    ps.use_mis = use_mis;
+    ps.sampler = type;
+    const size_t n = scene.material_bxdfs.size();
+    ps.packet_kind.assign(n, kBSDFLane);
+    ps.packet_params.assign(kPacketParams * n, 0.f);
+    ps.packet_flags.assign(n, 0u);
+    for (size_t m = 0; m < n; ++m) {
+        const MaterialTextures& mt = scene.material_textures[m];
+        if (mt.has_bindings() || mt.perturbs_normal() || !mt.two_sided) continue;
+        const BxDF& b = scene.material_bxdfs[m];
+        float* q = &ps.packet_params[kPacketParams * m];
+        if (const Lambertian* l = std::get_if<Lambertian>(&b)) {
+            ps.packet_kind[m] = kPacketLambertian;
+            for (int c = 0; c < 3; ++c) q[c] = l->albedo()[c];
+        } else if (const SmoothDielectric* d = std::get_if<SmoothDielectric>(&b)) {
+            ps.packet_kind[m] = kPacketSmoothDielectric;
+            const SmoothDielectricT<float> p = d->lanes();
+            q[0] = p.eta;
+            for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
+        } else {
+            continue;
+        }
+        ps.packet_flags[m] = uint32_t(flags(b));
+    }
+    std::vector<float> pmf(scene.lights.size());
+    for (size_t i = 0; i < pmf.size(); ++i) pmf[i] = scene.light_pmf(i);
+    ps.emitters = make_emitter_table(scene.lights, pmf);
+    return ps;
+}
+
+namespace path_services {
+
+void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, RayDifferential* ray,
+           float* fx, float* fy) {
+    const Scene& scene = *ps.scene;
+    *sampler = Sampler(ps.sampler, uint64_t(y) * uint64_t(scene.width) + uint64_t(x), uint64_t(sample), seed);
+    *ray = camera_sample(scene, splat, x, y, *sampler, fx, fy);
+}
+
+void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) {
+    if (n == 1) hit[0] = scene.intersect(*rays[0], si[0]);
+    else scene.intersect_packet(n, rays, si, hit);
+}
+
+void occluded(const Scene& scene, int n, const Ray* const* rays, bool* blocked) {
+    if (n == 1) blocked[0] = scene.occluded(*rays[0]);
+    else scene.occluded_packet(n, rays, blocked);
+}
+
+Spectrum escaped(const PathSetup& ps, const LightSampleContext& prev, const Vec3f& d, bool specular, float prev_pdf) {
+    const Scene& scene = *ps.scene;
+    Spectrum L(0.f);
+    for (uint32_t li : scene.infinite_lights) {
+        const InfiniteHit env = infinite_hit(scene.lights[li], prev, d);
+        const float lpdf = scene.light_pmf(li) * env.pdf;
+        L += env.Le * bsdf_hit_weight<float>(ps.use_mis, ps.use_nee, specular, prev_pdf, lpdf);
+    }
+    return L;
+}
+
+Spectrum emitted(const PathSetup& ps, const SurfaceInteraction& si, const LightSampleContext& prev, const Vec3f& d,
+                 bool specular, float* light_pdf) {
+    const Scene& scene = *ps.scene;
+    *light_pdf = 0.f;
+    const Spectrum Le = scene.emitted(si);
+    if (Le.is_black() || specular) return Le;
+    const auto& al = std::get<AreaLight>(scene.lights[size_t(si.light_id)]);
+    *light_pdf = scene.light_pmf(size_t(si.light_id)) * al.pdf_li(prev, d, si.p, si.ng);
+    return Le;
+}
+
+void footprint(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray) {
+    ps.scene->compute_footprint(si, ray);
+}
+
+BxDFFlags bsdf_begin(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray, BSDF* out) {
+    const Scene& scene = *ps.scene;
+    // The pixel footprint, for texture filtering and bump steps (and to carry differentials on).
+    if (scene.has_textures) scene.compute_footprint(si, ray);
+    new (out) BSDF(scene.bsdf(si));
+    return out->flags();
+}
+
+Spectrum bsdf_eval(const BSDF& bsdf, const Vec3f& wo, const Vec3f& wi, float* pdf) {
+    return bsdf.eval(wo, wi, TransportMode::Radiance, pdf);
+}
+
+bool bsdf_sample(const BSDF& bsdf, const Vec3f& wo, float u_lobe, Vec2f u, BxDFSample* out) {
+    auto s = bsdf.sample(wo, u_lobe, u);
+    if (!s) return false;
+    *out = *s;
+    return true;
+}
+
+namespace {
+constexpr int kVertexDims = 7;  ///< dimensions per path vertex (the layout at the top of path.cpp)
+}  // namespace
+
+void randoms(Sampler& sampler, int depth, bool nee, bool roulette, VertexRandoms* out) {
+    const int dim0 = Sampler::kPixelDims + kVertexDims * (depth - 1);
+    if (nee) {
+        sampler.set_dimension(dim0);
+        out->u[0] = sampler.get_1d();
+        const Vec2f u = sampler.get_2d();
+        out->u[1] = u.x;
+        out->u[2] = u.y;
+    }
+    sampler.set_dimension(dim0 + 3);
+    out->u[3] = sampler.get_1d();
+    const Vec2f u = sampler.get_2d();
+    out->u[4] = u.x;
+    out->u[5] = u.y;
+    if (roulette) {
+        sampler.set_dimension(dim0 + 6);
+        out->u[6] = sampler.get_1d();
+    }
+}
+
+bool sample_light(const PathSetup& ps, const SurfaceInteraction& si, float u_sel, Vec2f u, LightLiSample* out,
+                  float* light_pdf, Ray* shadow) {
+    const Scene& scene = *ps.scene;
+    float pmf;
+    const size_t li = scene.sample_light(u_sel, &pmf);
+    const LightSampleContext ctx{si.p, si.ng};
+    auto ls = std::visit([&](const auto& l) { return l.sample_li(ctx, u); }, scene.lights[li]);
+    if (!ls || !(ls->pdf > 0.f)) return false;
+    *out = *ls;
+    *light_pdf = pmf * ls->pdf;
+    *shadow = ls->infinite ? si.spawn_ray(ls->wi) : si.spawn_ray_to(ls->p_light, ls->n_light, ls->p_error);
+    return true;
+}
+
+RayDifferential next_ray(const PathSetup& ps, const SurfaceInteraction& si, const RayDifferential& in, const Vec3f& wi,
+                         bool specular, bool transmission, float eta) {
+    const Scene& scene = *ps.scene;
+    if (scene.has_textures && specular && in.has_differentials)
+        return scene.specular_differentials(si, in, si.spawn_ray(wi), transmission, eta);
+    return RayDifferential(si.spawn_ray(wi));
+}
+
+bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L) {
+    return pellucid::film_add<SampleValues::NonNegative>(film, x, y, fx, fy, L);
+}
+}  // namespace path_services
+}  // namespace pellucid

@@ -1,0 +1,84 @@
+// What the templated path tracer (integrator/path_kernel.h) does one lane at a time: the parts of a
+// vertex that have no packet form yet (BSDFs other than the packet Lambertian, light sampling,
+// emission, camera rays, ray differentials, the samplers). They are plain functions compiled once,
+// for the baseline instruction set: the per-target kernels call them and never instantiate scalar
+// code of their own, so no function of the library exists in two instruction sets under one name.
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "pellucid/bxdf/bsdf.h"
+#include "pellucid/geometry/interaction.h"
+#include "pellucid/image/film.h"
+#include "pellucid/integrator/render_loop.h"
+#include "pellucid/light/area.h"
+#include "pellucid/light/light_types.h"
+#include "pellucid/sampling/sampler.h"
+
+namespace pellucid {
+class Scene;
+
+/// What the path tracer reads of a scene and its settings, prepared once per render.
+/// The models the path tracer shades as packets (their templates XT<F>), and kBSDFLane.
+enum PacketKind : int32_t { kBSDFLane = 0, kPacketLambertian = 1, kPacketSmoothDielectric = 2 };
+constexpr int kPacketParams = 8;
+
+struct PathSetup {
+    const Scene* scene = nullptr;
+    int max_depth = -1;  ///< -1 = unbounded ("direct" = 2)
+    int rr_depth = 5;
+    bool use_nee = true, use_mis = true;
+    SamplerType sampler = SamplerType::Independent;
+    /// Per material: which packet form shades its lanes (PacketKind), where its BSDF is the same at
+    /// every hit (untextured, two-sided, no bump or normal map) and its model has one; else
+    /// kBSDFLane (the lane goes through BSDF, one at a time).
+    std::vector<int32_t> packet_kind;
+    /// Per material, kPacketParams floats: the packet form's parameters (Lambertian: reflectance;
+    /// smooth dielectric: η, reflectance, transmittance), and its BxDFFlags.
+    std::vector<float> packet_params;
+    std::vector<uint32_t> packet_flags;
+    /// NEE's triangles when every light is an area light on a mesh (light/area.h), else empty:
+    /// then lights are sampled one lane at a time (path_services::sample_light).
+    EmitterTable emitters;
+};
+PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type);
+
+/// Random numbers of one vertex, in path.cpp's sample-dimension layout: u[0..2] light selection
+/// and point (drawn when nee), u[3..5] lobe and direction, u[6] roulette (drawn when roulette).
+struct VertexRandoms {
+    float u[7];
+};
+
+namespace path_services {
+/// Start sample `sample` of pixel (x, y): its sampler, its camera ray and its film position.
+void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, RayDifferential* ray,
+           float* fx, float* fy);
+/// Trace n ≤ 16 rays (one Embree packet when n > 1).
+void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit);
+void occluded(const Scene& scene, int n, const Ray* const* rays, bool* blocked);
+/// Radiance from the lights at infinity seen along the escaping direction d, MIS-weighted.
+Spectrum escaped(const PathSetup& ps, const LightSampleContext& prev, const Vec3f& d, bool specular, float prev_pdf);
+/// Emission of the surface hit si toward the ray's origin, and NEE's density for it (0 after a
+/// delta bounce).
+Spectrum emitted(const PathSetup& ps, const SurfaceInteraction& si, const LightSampleContext& prev, const Vec3f& d,
+                 bool specular, float* light_pdf);
+/// Set si's pixel footprint from the ray (Scene::compute_footprint).
+void footprint(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray);
+/// The BSDF at si (footprint set first when the scene has textures), built into *out; its flags.
+BxDFFlags bsdf_begin(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray, BSDF* out);
+Spectrum bsdf_eval(const BSDF& bsdf, const Vec3f& wo, const Vec3f& wi, float* pdf);
+bool bsdf_sample(const BSDF& bsdf, const Vec3f& wo, float u_lobe, Vec2f u, BxDFSample* out);
+/// Draw one vertex's random numbers.
+void randoms(Sampler& sampler, int depth, bool nee, bool roulette, VertexRandoms* out);
+/// NEE: pick a light and a point on it; *shadow is the ray toward it. False: no sample.
+bool sample_light(const PathSetup& ps, const SurfaceInteraction& si, float u_sel, Vec2f u, LightLiSample* ls,
+                  float* light_pdf, Ray* shadow);
+/// The ray leaving si in direction wi (with differentials through a delta bounce when textures
+/// need them).
+RayDifferential next_ray(const PathSetup& ps, const SurfaceInteraction& si, const RayDifferential& in, const Vec3f& wi,
+                         bool specular, bool transmission, float eta);
+/// Hand one finished estimate to the film; false if it was rejected.
+bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L);
+}  // namespace path_services
+}  // namespace pellucid

@@ -1,0 +1,107 @@
+// Lane types. The estimator, the BxDFs that have a packet form, the warps, the frames and the ray
+// offsets are written once as templates over a lane type F:
+//   * F = float: one path; the Python BSDF API, the scalar tests and the width-1 fallback use it;
+//   * F = a SIMD packet of 16 (AVX-512), 8 (AVX2) or 4 (SSE4.2) floats: rendering (simd/packet.h).
+// This header holds the lane traits, the float side of every lane operation (namespace `lane`), and
+// nothing from a SIMD library: simd/packet.h is the one file that includes one.
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+namespace pellucid {
+
+/// What a lane type is made of: its width, its mask type and its 32-bit integer type.
+template <class F>
+struct LaneTraits;
+template <>
+struct LaneTraits<float> {
+    static constexpr int kWidth = 1;
+    using Mask = bool;
+    using Int = int32_t;
+};
+template <class F>
+using MaskT = typename LaneTraits<F>::Mask;
+template <class F>
+using IntT = typename LaneTraits<F>::Int;
+template <class F>
+inline constexpr int kLaneWidth = LaneTraits<F>::kWidth;
+
+/// Lane operations on floats, named as their packet overloads (simd/packet.h) so that templated
+/// code calls `lane::sqrt(x)` whatever F is.
+namespace lane {
+inline float select(bool m, float a, float b) { return m ? a : b; }
+inline int32_t select(bool m, int32_t a, int32_t b) { return m ? a : b; }
+inline bool select(bool m, bool a, bool b) { return m ? a : b; }
+inline bool any(bool m) { return m; }
+inline bool all(bool m) { return m; }
+inline bool none(bool m) { return !m; }
+/// -x with the sign bit flipped, zeros included (-(+0) = -0), as the float negation does.
+inline float neg(float x) { return -x; }
+inline float sqrt(float x) { return std::sqrt(x); }
+inline float abs(float x) { return std::fabs(x); }
+inline float min(float a, float b) { return std::min(a, b); }
+inline float max(float a, float b) { return std::max(a, b); }
+inline int32_t min(int32_t a, int32_t b) { return std::min(a, b); }
+inline int32_t max(int32_t a, int32_t b) { return std::max(a, b); }
+/// Sign of y on the magnitude of x.
+inline float copysign(float x, float y) { return std::copysign(x, y); }
+inline float exp(float x) { return std::exp(x); }
+inline float log(float x) { return std::log(x); }
+inline float sin(float x) { return std::sin(x); }
+inline float cos(float x) { return std::cos(x); }
+inline float atan2(float y, float x) { return std::atan2(y, x); }
+inline float pow(float x, float y) { return std::pow(x, y); }
+inline float floor(float x) { return std::floor(x); }
+inline float to_float(int32_t i) { return float(i); }
+/// The bits of x as an integer, and back (for ulp steps).
+inline int32_t as_int(float x) {
+    int32_t i;
+    std::memcpy(&i, &x, sizeof i);
+    return i;
+}
+inline float as_float(int32_t i) {
+    float x;
+    std::memcpy(&x, &i, sizeof x);
+    return x;
+}
+/// base[idx] (one lane).
+inline float gather(const float* base, int32_t idx) { return base[idx]; }
+inline int32_t gather(const int32_t* base, int32_t idx) { return base[idx]; }
+/// The float mask m as a mask of the integer lane type, and back.
+inline bool int_mask(bool m) { return m; }
+inline bool float_mask(bool m) { return m; }
+/// Lane i of a value, and a value with lane i replaced (i = 0 for floats).
+inline float get(float x, int) { return x; }
+inline int32_t get(int32_t x, int) { return x; }
+inline bool get(bool m, int) { return m; }
+/// Bit i set where lane i of m is true.
+inline uint32_t bits(bool m) { return m ? 1u : 0u; }
+/// Load and store W lanes from/to memory.
+inline float load(const float* p) { return *p; }
+inline int32_t load(const int32_t* p) { return *p; }
+inline void store(float* p, float x) { *p = x; }
+inline void store(int32_t* p, int32_t x) { *p = x; }
+inline void store(bool* p, bool m) { *p = m; }
+inline bool load_mask(const bool* p) { return *p; }
+/// kLaneWidth<F> values from memory as an F (a float, or a packet's load).
+template <class F>
+inline F load_as(const float* p) {
+    if constexpr (std::is_same_v<F, float>) return *p;
+    else return F::load_unaligned(p);
+}
+template <class I>
+inline I load_int_as(const int32_t* p) {
+    if constexpr (std::is_same_v<I, int32_t>) return *p;
+    else return I::load_unaligned(p);
+}
+template <class M>
+inline M load_mask_as(const bool* p) {
+    if constexpr (std::is_same_v<M, bool>) return *p;
+    else return M::load_unaligned(p);
+}
+}  // namespace lane
+}  // namespace pellucid

@@ -1,0 +1,136 @@
+// SIMD packets: the lane operations of simd/lane.h on xsimd batches. The one file that includes
+// xsimd; only the per-target translation units (integrator/kernel_*.cpp) include it, each built for
+// its instruction set, so that the rest of the library stays baseline x86-64 (or arm64) code.
+// SPDX-License-Identifier: Apache-2.0
+//
+// Why xsimd (Debian's libxsimd-dev 8.1): a batch is a type, so a template over the lane type F
+// instantiates on it directly (Highway's vectors need a descriptor argument and per-target
+// namespaces); it converts from float implicitly, so `2.f * x` reads as for floats; and it has every
+// function the models need, including atan2 and pow (Highway 1.0.3 has neither).
+#pragma once
+#include <type_traits>
+
+#include <xsimd/xsimd.hpp>
+
+#include "pellucid/simd/lane.h"
+
+namespace pellucid {
+
+template <class A>
+struct LaneTraits<xsimd::batch<float, A>> {
+    static constexpr int kWidth = int(xsimd::batch<float, A>::size);
+    using Mask = xsimd::batch_bool<float, A>;
+    using Int = xsimd::batch<int32_t, A>;
+};
+
+namespace lane {
+template <class A>
+using FP = xsimd::batch<float, A>;
+template <class A>
+using IP = xsimd::batch<int32_t, A>;
+template <class A>
+using MP = xsimd::batch_bool<float, A>;
+template <class A>
+using MIP = xsimd::batch_bool<int32_t, A>;
+
+template <class A>
+inline FP<A> select(const MP<A>& m, const FP<A>& a, const FP<A>& b) { return xsimd::select(m, a, b); }
+template <class A>
+inline IP<A> select(const MIP<A>& m, const IP<A>& a, const IP<A>& b) { return xsimd::select(m, a, b); }
+template <class A>
+inline MP<A> select(const MP<A>& m, const MP<A>& a, const MP<A>& b) { return (m && a) || (!m && b); }
+template <class A>
+inline bool any(const MP<A>& m) { return xsimd::any(m); }
+template <class A>
+inline bool all(const MP<A>& m) { return xsimd::all(m); }
+template <class A>
+inline bool none(const MP<A>& m) { return !xsimd::any(m); }
+template <class A>
+inline bool any(const MIP<A>& m) { return xsimd::any(m); }
+/// The sign bit flipped (xsimd's unary minus subtracts from +0 on some targets, which loses -0).
+template <class A>
+inline FP<A> neg(const FP<A>& x) { return x ^ FP<A>(-0.f); }
+template <class A>
+inline FP<A> sqrt(const FP<A>& x) { return xsimd::sqrt(x); }
+template <class A>
+inline FP<A> abs(const FP<A>& x) { return xsimd::abs(x); }
+template <class A>
+inline FP<A> min(const FP<A>& a, const FP<A>& b) { return xsimd::min(a, b); }
+template <class A>
+inline FP<A> max(const FP<A>& a, const FP<A>& b) { return xsimd::max(a, b); }
+template <class A>
+inline IP<A> min(const IP<A>& a, const IP<A>& b) { return xsimd::min(a, b); }
+template <class A>
+inline IP<A> max(const IP<A>& a, const IP<A>& b) { return xsimd::max(a, b); }
+template <class A>
+inline FP<A> copysign(const FP<A>& x, const FP<A>& y) { return xsimd::copysign(x, y); }
+template <class A>
+inline FP<A> exp(const FP<A>& x) { return xsimd::exp(x); }
+template <class A>
+inline FP<A> log(const FP<A>& x) { return xsimd::log(x); }
+template <class A>
+inline FP<A> sin(const FP<A>& x) { return xsimd::sin(x); }
+template <class A>
+inline FP<A> cos(const FP<A>& x) { return xsimd::cos(x); }
+template <class A>
+inline FP<A> atan2(const FP<A>& y, const FP<A>& x) { return xsimd::atan2(y, x); }
+template <class A>
+inline FP<A> pow(const FP<A>& x, const FP<A>& y) { return xsimd::pow(x, y); }
+template <class A>
+inline FP<A> floor(const FP<A>& x) { return xsimd::floor(x); }
+template <class A>
+inline FP<A> to_float(const IP<A>& i) { return xsimd::to_float(i); }
+template <class A>
+inline IP<A> as_int(const FP<A>& x) { return xsimd::bitwise_cast<IP<A>>(x); }
+template <class A>
+inline FP<A> as_float(const IP<A>& i) { return xsimd::bitwise_cast<FP<A>>(i); }
+/// base[idx[k]] in every lane k.
+/// (xsimd 8.1 gathers element by element; the AVX-512 and AVX2 gather instructions are used here.)
+template <class A>
+inline FP<A> gather(const float* base, const IP<A>& idx) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) return FP<A>(_mm512_i32gather_ps(idx, base, 4));
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_same_v<A, xsimd::avx2>) return FP<A>(_mm256_i32gather_ps(base, idx, 4));
+#endif
+    return FP<A>::gather(base, idx);
+}
+template <class A>
+inline IP<A> gather(const int32_t* base, const IP<A>& idx) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) return IP<A>(_mm512_i32gather_epi32(idx, base, 4));
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_same_v<A, xsimd::avx2>) return IP<A>(_mm256_i32gather_epi32(base, idx, 4));
+#endif
+    return IP<A>::gather(base, idx);
+}
+/// A float-lane mask as an integer-lane mask, and back.
+template <class A>
+inline MIP<A> int_mask(const MP<A>& m) { return as_int(select(m, FP<A>(1.f), FP<A>(0.f))) != IP<A>(0); }
+template <class A>
+inline MP<A> float_mask(const MIP<A>& m) { return to_float(select(m, IP<A>(1), IP<A>(0))) != FP<A>(0.f); }
+template <class A>
+inline float get(const FP<A>& x, int i) { return x.get(size_t(i)); }
+template <class A>
+inline int32_t get(const IP<A>& x, int i) { return x.get(size_t(i)); }
+template <class A>
+inline bool get(const MP<A>& m, int i) { return m.get(size_t(i)); }
+template <class A>
+inline uint32_t bits(const MP<A>& m) {
+    alignas(64) bool b[FP<A>::size];
+    m.store_aligned(b);
+    uint32_t r = 0;
+    for (size_t i = 0; i < FP<A>::size; ++i) r |= uint32_t(b[i]) << i;
+    return r;
+}
+template <class A>
+inline void store(float* p, const FP<A>& x) { x.store_unaligned(p); }
+template <class A>
+inline void store(int32_t* p, const IP<A>& x) { x.store_unaligned(p); }
+template <class A>
+inline void store(bool* p, const MP<A>& m) { m.store_unaligned(p); }
+}  // namespace lane
+
+}  // namespace pellucid

@@ -1,0 +1,71 @@
+// What tests/cpp/simd/test_lanes_equal_scalars.cpp compares across lane types: the packet code of
+// the path tracer (Lambertian, warps, frames, ray offsets, the power heuristic, emitter sampling)
+// evaluated over arrays of inputs, kLaneWidth<F> lanes at a time. It is instantiated on float in
+// the test and on each SIMD target's packet in probe_<target>.cpp (built with that target's flags,
+// exporting only its entry point, as the renderer's kernels do).
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <cstdint>
+
+#include "pellucid/bxdf/bsdf.h"
+#include "pellucid/bxdf/lambertian.h"
+#include "pellucid/light/area.h"
+#include "pellucid/math/frame.h"
+#include "pellucid/math/ray.h"
+#include "pellucid/sampling/mis.h"
+#include "pellucid/sampling/warp.h"
+
+namespace pellucid::probe {
+
+/// Inputs, one array entry per case; n is a multiple of 16. Plain pointers: the probes touch no
+/// container code, so they instantiate nothing shared with other objects.
+struct In {
+    int n = 0;
+    const float *wo[3], *wi[3], *n_[3], *albedo[3], *u[3], *p[3], *err[3], *pdf_a, *pdf_b;
+    const bool* active;
+    const EmitterTable* emitters = nullptr;
+};
+/// Outputs, one array of n floats per quantity (masks as 0/1), zeroed by the caller.
+constexpr int kOutputs = 40;
+struct Out {
+    float* v[kOutputs];
+};
+
+template <class F>
+void run(const In& in, Out& out) {
+    constexpr int W = kLaneWidth<F>;
+    using M = MaskT<F>;
+    alignas(64) bool act[W];
+    for (int o = 0; o < in.n; o += W) {
+        auto L = [&](const float* a) { return lane::load_as<F>(a + o); };
+        auto V = [&](const float* const* a) { return V3<F>(L(a[0]), L(a[1]), L(a[2])); };
+        for (int i = 0; i < W; ++i) act[i] = in.active[o + i];
+        const M active = lane::load_mask_as<M>(act);
+        int k = 0;
+        auto put = [&](const F& x) { lane::store(out.v[k++] + o, lane::select(active, x, F(0.f))); };
+        auto putm = [&](const M& m) { put(lane::select(m, F(1.f), F(0.f))); };
+        const V3<F> wo = V(in.wo), wi = V(in.wi), nrm = V(in.n_);
+        const LambertianT<F> lam{RGB<F>(L(in.albedo[0]), L(in.albedo[1]), L(in.albedo[2]))};
+        const BxDFContext ctx{};
+        const RGB<F> f = lam.eval(ctx, wo, wi);
+        put(f.r), put(f.g), put(f.b), put(lam.pdf(ctx, wo, wi));
+        const BxDFSampleT<F> s = lam.sample(ctx, wo, L(in.u[0]), V2<F>{L(in.u[1]), L(in.u[2])});
+        putm(s.valid), put(s.wi.x), put(s.wi.y), put(s.wi.z), put(s.weight.r), put(s.weight.g), put(s.pdf);
+        const V2<F> d = square_to_uniform_disk_concentric<F>(V2<F>{L(in.u[0]), L(in.u[1])});
+        put(d.x), put(d.y);
+        const V2<F> t = square_to_uniform_triangle<F>(V2<F>{L(in.u[1]), L(in.u[2])});
+        put(t.x), put(t.y);
+        put(power_heuristic<F>(L(in.pdf_a), L(in.pdf_b)));
+        const V3<F> po = offset_ray_origin<F>(V(in.p), abs(V(in.err)), normalize(nrm), wi);
+        put(po.x), put(po.y), put(po.z);
+        const FrameT<F> fr = FrameT<F>::from_xz(wo, normalize(nrm));
+        const V3<F> loc = fr.to_local(wi);
+        put(loc.x), put(loc.y), put(loc.z);
+        putm(shading_leaks<F>(normalize(nrm), wo, wi, fr.to_local(wo), loc));
+        if (in.emitters) {
+            const EmitterSample<F> es = sample_emitter<F>(*in.emitters, L(in.u[0]), V2<F>{L(in.u[1]), L(in.u[2])}, V(in.p));
+            putm(es.valid), put(es.p.x), put(es.p.y), put(es.p.z), put(es.wi.x), put(es.pdf), put(es.L.r);
+        }
+    }
+}
+}  // namespace pellucid::probe

@@ -1,0 +1,241 @@
+"""The benchmark suite (bench/suite/) covers what it claims, and its runner works.
+SPDX-License-Identifier: Apache-2.0
+
+Coverage is read from the scenes themselves: every BxDF of the variant in cpp/pellucid/bxdf/bxdf.h (as
+the material type, distribution and variant that build it), every light type of the registry, area
+lights on spheres and meshes, image textures and bump maps, a generated mesh of at least 1 M
+triangles, and a scene with dozens of materials. The runner is run in its quick mode, without the
+peer, on two tiny scenes.
+"""
+from __future__ import annotations
+
+import csv
+import importlib.util
+import json
+import os
+import pathlib
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import pellucid
+from pellucid import bench, bench_suite
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SUITE = ROOT / "bench" / "suite"
+MESH_SHAPES = {"rectangle", "cube", "disk", "mesh", "obj", "ply"}
+
+
+def _generator():
+    spec = importlib.util.spec_from_file_location("make_suite_under_test", SUITE / "make_suite.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+MANIFEST = bench_suite.load_manifest(SUITE)
+SCENES = {e["name"]: json.loads((SUITE / e["file"]).read_text()) for e in MANIFEST}
+
+
+def _materials(scene: dict):
+    """Every material a scene uses: the named ones and those written inline on shapes."""
+    out = list(scene.get("materials", {}).values())
+    out += [s["material"] for s in scene.get("shapes", []) if isinstance(s.get("material"), dict)]
+    return out
+
+
+def bxdf_of(m: dict) -> str:
+    """The alternative of the BxDF variant (cpp/pellucid/bxdf/bxdf.h) that a material builds."""
+    t = m["type"]
+    dist = "Beckmann" if m.get("distribution", "ggx") == "beckmann" else "GGX"
+    if t == "rough_conductor":
+        return "RoughConductorBeckmann" if dist == "Beckmann" else "RoughConductor"
+    if t in ("rough_dielectric", "rough_plastic"):
+        return {"rough_dielectric": "RoughDielectric", "rough_plastic": "RoughPlastic"}[t] + f"<{dist}>"
+    if t == "principled":
+        return "PrincipledBSDF" if m.get("variant", "2012") == "2015" else "Principled"
+    return {"lambertian": "Lambertian", "oren_nayar": "OrenNayar", "conductor": "SmoothConductor<ConductorFresnel>",
+            "dielectric": "SmoothDielectric", "thin_dielectric": "ThinDielectric", "plastic": "SmoothPlastic"}[t]
+
+
+# Per registered material type, the BxDFs it can build (a new type fails the test until it is listed
+# here and a suite scene uses it).
+BXDFS_OF_TYPE = {
+    "lambertian": ["Lambertian"], "oren_nayar": ["OrenNayar"], "conductor": ["SmoothConductor<ConductorFresnel>"],
+    "rough_conductor": ["RoughConductor", "RoughConductorBeckmann"], "dielectric": ["SmoothDielectric"],
+    "rough_dielectric": ["RoughDielectric<GGX>", "RoughDielectric<Beckmann>"], "thin_dielectric": ["ThinDielectric"],
+    "plastic": ["SmoothPlastic"], "rough_plastic": ["RoughPlastic<GGX>", "RoughPlastic<Beckmann>"],
+    "principled": ["Principled", "PrincipledBSDF"]}
+
+
+def test_generator_reproduces_the_committed_scenes():
+    gen = _generator()
+    outputs = gen.outputs()
+    for name, text in outputs.items():
+        assert (SUITE / name).read_text() == text, f"bench/suite/{name} differs from make_suite.py's output"
+    committed = {p.name for p in SUITE.glob("*.json")}
+    assert committed == set(outputs), f"files not written by make_suite.py: {committed - set(outputs)}"
+    assert len(MANIFEST) >= 12
+
+
+def test_every_bxdf_of_the_variant_appears():
+    registered = pellucid._core.registry_types()["materials"]
+    unknown = [t for t in registered if t not in BXDFS_OF_TYPE]
+    assert not unknown, f"material types with no BxDF listed in this test: {unknown}"
+    expected = {b for t in registered for b in BXDFS_OF_TYPE[t]}
+    used = {bxdf_of(m) for s in SCENES.values() for m in _materials(s)}
+    assert expected - used == set(), f"BxDFs no suite scene uses: {sorted(expected - used)}"
+    aniso = [m for s in SCENES.values() for m in _materials(s)
+             if m["type"] == "rough_conductor" and "alpha_u" in m and m["alpha_u"] != m.get("alpha_v", m["alpha_u"])]
+    assert aniso, "no anisotropic rough conductor"
+
+
+def test_the_variant_has_the_bxdfs_this_test_lists():
+    """The list above is the variant's: compared with `using BxDF = std::variant<...>` while that line
+    exists in this form."""
+    text = (ROOT / "cpp" / "pellucid" / "bxdf" / "bxdf.h").read_text()
+    m = re.search(r"using\s+BxDF\s*=\s*std::variant<(.*?)>\s*;", text, re.S)
+    if m is None:
+        pytest.skip("bxdf.h has no plain `using BxDF = std::variant<...>;`")
+    names = {re.sub(r"\s+", "", n) for n in re.split(r",(?![^<]*>)", m.group(1))}
+    assert names == {b for bs in BXDFS_OF_TYPE.values() for b in bs}
+
+
+def test_lights_and_emitters():
+    lights = {l["type"] for s in SCENES.values() for l in s.get("lights", [])}
+    assert set(pellucid._core.registry_types()["lights"]) <= lights  # constant, directional, envmap, point, spot
+    area_on = {("sphere" if sh["type"] == "sphere" else "mesh" if sh["type"] in MESH_SHAPES else sh["type"])
+               for s in SCENES.values() for sh in s["shapes"] if sh.get("emitter")}
+    assert {"sphere", "mesh"} <= area_on
+
+
+def test_textures_and_bump_maps():
+    def textures(x):
+        if isinstance(x, dict):
+            if x.get("type") in ("image", "checkerboard"):
+                yield x["type"]
+            for v in x.values():
+                yield from textures(v)
+        elif isinstance(x, list):
+            for v in x:
+                yield from textures(v)
+
+    kinds = set(textures(list(SCENES.values())))
+    assert {"image", "checkerboard"} <= kinds
+    assert any("bump_map" in m for s in SCENES.values() for m in _materials(s))
+
+
+def test_dozens_of_materials_and_explicit_settings():
+    assert max(len(s["materials"]) for s in SCENES.values()) >= 24
+    for name, s in SCENES.items():
+        assert "max_depth" in s["integrator"], name
+        px = s["film"]["width"] * s["film"]["height"]
+        assert 128 * 128 <= px <= 384 * 384, f"{name}: {px} pixels"
+
+
+def test_generated_mesh_has_a_million_triangles(tmp_path):
+    gen = _generator()
+    pos, nrm, tri = gen.torus_knot()
+    assert len(tri) >= 1_000_000 and tri.max() < len(pos)
+    assert np.allclose(np.linalg.norm(nrm, axis=1), 1.0, atol=1e-6)
+    big = [e for e in MANIFEST if e.get("assets")]
+    assert big and all(a in gen.ASSETS for e in big for a in e["assets"])
+    for e in big:  # the scene names the generated file, in the git-ignored cache
+        files = [sh["filename"] for sh in SCENES[e["name"]]["shapes"] if sh["type"] == "ply"]
+        assert files and all(f.startswith("../cache/") and pathlib.PurePath(f).name in e["assets"] for f in files)
+    # The writer makes a file pellucid reads (a small knot of the same generator).
+    small = tmp_path / "knot.ply"
+    gen.write_ply(small, *gen.torus_knot(segments=16, sides=6))
+    scene = {"shapes": [{"type": "ply", "filename": str(small)}], "lights": [{"type": "constant"}],
+             "film": {"width": 8, "height": 8}, "camera": {"type": "perspective", "to_world": gen.look_at((0, 0, 9), (0, 0, 0))}}
+    img = pellucid.render(pellucid.load_dict(scene), spp=1)
+    assert np.isfinite(np.asarray(img)).all()
+
+
+def test_scenes_load_in_pellucid():
+    for e in MANIFEST:
+        if e.get("assets"):
+            continue  # needs the generated mesh; the runner writes it
+        pellucid.load_dict(SCENES[e["name"]], SUITE)
+
+
+def test_mitsuba_twins_convert():
+    """Every scene converts without substitutes except those the manifest marks; those convert with."""
+    py = bench.mitsuba_python()
+    if py is None:
+        pytest.skip("Mitsuba 3 is not set up (bench/peers/setup_mitsuba.sh)")
+    names = [e["name"] for e in MANIFEST if not e.get("assets")]
+    code = f"""
+import json, sys
+sys.path.insert(0, {str(ROOT / 'bench' / 'peers')!r})
+import mitsuba_runner as r
+r.mi.set_variant("scalar_rgb")
+out = {{}}
+for name in {names!r}:
+    sj = json.load(open({str(SUITE)!r} + "/" + name + ".json"))
+    try:
+        r.mi.load_dict(r.to_mitsuba_dict(sj, {str(SUITE)!r}))
+        out[name] = "same"
+    except NotImplementedError:
+        r.mi.load_dict(r.to_mitsuba_dict(sj, {str(SUITE)!r}, substitute=True))
+        out[name] = "substitute"
+print(json.dumps(out))
+"""
+    res = subprocess.run([str(py), "-c", code], capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr[-3000:]
+    got = json.loads(res.stdout.strip().splitlines()[-1])
+    assert got == {e["name"]: e["peer"] for e in MANIFEST if not e.get("assets")}
+
+
+def test_equal_time_relmse_and_geomean():
+    ref = np.ones((2, 2, 3))
+    mk = lambda v, s: bench_suite.Run(np.full((2, 2, 3), v), None, 4, s, 16.0 * s, 0.0, None)
+    res = bench_suite.Result("x", "same", 2, 2, 4, 2, ours=mk(1.1, 1.0), mitsuba=mk(1.2, 2.0), reference="r",
+                             ref_floor=0.0)
+    r = bench_suite.row(res, ref)
+    assert r["ratio"] == pytest.approx(1.0)  # both 16 samples per second
+    assert r["ours_eqtime_relmse"] == pytest.approx(0.01 / 1.01)
+    # Mitsuba took twice as long for its relMSE: at pellucid's time it would have twice the error
+    assert r["mitsuba_eqtime_relmse"] == pytest.approx(2 * 0.04 / 1.01)
+    assert r["relmse_ratio"] == pytest.approx(0.125)
+    res.ref_floor = 0.005
+    assert bench_suite.row(res, ref)["ours_eqtime_relmse"] == pytest.approx(0.01 / 1.01 - 0.005)
+    # repeats: relMSE is the mean over the repeats' images, the time their mean
+    res.ref_floor = 0.0
+    res.ours_all = [mk(1.1, 1.0), mk(1.3, 3.0)]
+    r = bench_suite.row(res, ref)
+    assert r["ours_eqtime_relmse"] == pytest.approx((0.01 + 0.09) / 2 / 1.01)
+    assert r["mitsuba_eqtime_relmse"] == pytest.approx(0.04 / 1.01 * 2.0 / 2.0)
+    assert bench_suite.geomean([2.0, 0.5, 4.0]) == pytest.approx(4.0 ** (1 / 3))
+    assert bench_suite.geomean([None]) is None
+    assert "busy" in bench_suite.busy_note([1.0, 10.0], cpus=2, threads=2)
+    assert "idle" in bench_suite.busy_note([2.5, None], cpus=2, threads=2)
+
+
+def test_runner_quick_without_peer(tmp_path):
+    out, cache = tmp_path / "out", tmp_path / "cache"
+    cmd = [sys.executable, "-m", "pellucid", "bench", "--suite", "--quick", "--no-peer",
+           "--scenes", "env_diffuse,cornell_lambert", "--out-dir", str(out), "--cache-dir", str(cache)]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=120, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr[-3000:]
+    rows = list(csv.DictReader((out / "suite.csv").read_text().splitlines()))
+    assert [x["scene"] for x in rows] == ["cornell_lambert", "env_diffuse"]  # manifest order
+    for x in rows:
+        assert float(x["ours_samples_per_second"]) > 0 and x["ratio"] == "" and x["spp"] == "4"
+        assert int(x["width"]) <= 32 and float(x["ours_eqtime_relmse"]) >= 0
+        assert "pellucid mis" in x["reference"]
+        if os.path.exists("/proc/self/status"):
+            assert 10 < float(x["ours_peak_rss_mb"]) < 10_000
+    text = (out / "summary.md").read_text()
+    assert "pellucid only" in text and (out / "suite.png").stat().st_size > 1000
+    assert len(list(cache.glob("ref_*.exr"))) == 4  # two references, each with its variance
+
+
+
+def test_runner_rejects_unknown_scenes(capsys, tmp_path):
+    assert bench.main(["--suite", "--no-peer", "--scenes", "cornell_lambert,nosuch", "--out-dir", str(tmp_path)]) == 2
+    assert "--scenes: unknown scene(s) nosuch" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())
