@@ -13,6 +13,20 @@
 
 namespace pellucid::bind {
 
+namespace {
+std::string where(const std::string& path) { return "<dict>: " + (path.empty() ? std::string("<root>") : path); }
+/// UTF-8 of a str; a pellucid.Error (not a cast error) for text with lone surrogates.
+std::string utf8_of(const py::handle& s, const std::string& path) {
+    Py_ssize_t n = 0;
+    const char* u = PyUnicode_AsUTF8AndSize(s.ptr(), &n);
+    if (!u) {
+        PyErr_Clear();
+        throw Error(where(path) + ": the text cannot be encoded as UTF-8 (it holds a lone surrogate)");
+    }
+    return std::string(u, size_t(n));
+}
+}  // namespace
+
 Node to_node(const py::handle& obj, const std::string& path, int depth) {
     if (depth > max_scene_depth())
         throw Error("<dict>: " + (path.empty() ? std::string("<root>") : path) + ": dicts and lists nested deeper than " +
@@ -21,15 +35,24 @@ Node to_node(const py::handle& obj, const std::string& path, int depth) {
                     "PELLUCID_MAX_SCENE_DEPTH)");
     if (obj.is_none()) return Node();
     if (py::isinstance<py::bool_>(obj)) return Node::boolean(obj.cast<bool>());
-    if (py::isinstance<py::int_>(obj)) return Node::number(obj.cast<double>(), true);
+    if (py::isinstance<py::int_>(obj)) {
+        const double v = PyLong_AsDouble(obj.ptr());
+        if (v == -1.0 && PyErr_Occurred()) {
+            PyErr_Clear();
+            std::string digits = py::str(obj);
+            if (digits.size() > 24) digits = digits.substr(0, 12) + "...(" + std::to_string(digits.size()) + " digits)";
+            throw Error(where(path) + ": value " + digits + " overflows a double");
+        }
+        return Node::number(v, true);
+    }
     if (py::isinstance<py::float_>(obj)) return Node::number(obj.cast<double>(), false);
-    if (py::isinstance<py::str>(obj)) return Node::string(obj.cast<std::string>());
+    if (py::isinstance<py::str>(obj)) return Node::string(utf8_of(obj, path));
     if (py::isinstance<py::dict>(obj)) {
         Node o = Node::object();
         for (auto item : obj.cast<py::dict>()) {
             if (!py::isinstance<py::str>(item.first))
                 throw Error("<dict>: " + (path.empty() ? std::string("<root>") : path) + ": keys must be strings");
-            std::string key = item.first.cast<std::string>();
+            std::string key = utf8_of(item.first, path);
             o.set(key, to_node(item.second, path_join(path, key), depth + 1));
         }
         return o;

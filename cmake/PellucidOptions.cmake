@@ -12,3 +12,11 @@ option(PELLUCID_BUILD_APP "Build the pellucid-render executable" ON)
 # so the default build runs on any x86-64 or arm64 CPU; ON tunes the rest of the library to the
 # build machine as well.
 option(PELLUCID_NATIVE "Compile the library for the build machine's CPU (-march=native)" OFF)
+# Sanitizers for every target of the build, as a comma-separated -fsanitize= list, e.g.
+# "address,undefined" (what `make sanitize` uses). Empty: none. Any finding aborts the process
+# (no recovery), so a test that triggers one fails.
+set(PELLUCID_SANITIZE "" CACHE STRING "Sanitizers to build with, e.g. address,undefined (empty: none)")
+if(PELLUCID_SANITIZE)
+  add_compile_options(-fsanitize=${PELLUCID_SANITIZE} -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=${PELLUCID_SANITIZE})
+endif()

@@ -9,17 +9,26 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <unordered_map>
 
 #include "pellucid/util/error.h"
+#include "pellucid/util/limits.h"
 #include "pellucid/util/log.h"
 
 namespace pellucid {
 namespace {
+
+/// A directory opens as a stream on Linux, and reading it throws from inside the standard library.
+bool is_regular(const std::string& path) {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(path, ec);
+}
 
 void finish(TriangleMesh& m, const MeshLoadOptions& opt) {
     if (opt.face_normals) m.normals.clear();
@@ -61,6 +70,16 @@ struct ObjState {
     bool any_usemtl = false;
     size_t faces = 0;
     std::string error;
+    const size_t max_elements = size_t(max_mesh_elements());
+
+    /// False (with the error set) once `count` elements of kind `what` would pass the limit.
+    bool within_limit(size_t count, const char* what) {
+        if (count < max_elements) return true;
+        if (error.empty())
+            error = std::string("more than ") + std::to_string(max_elements) + " " + what +
+                    " (the mesh element limit; raise it with PELLUCID_MAX_MESH_ELEMENTS)";
+        return false;
+    }
 
     // OBJ indices: 1-based, negative = relative to the end so far, 0 = absent.
     bool resolve(int raw, size_t count, const char* what, int& out_index) {
@@ -99,11 +118,15 @@ struct ObjState {
                 !resolve(idx[k].normal_index, vn.size(), "normal", c.n))
                 return;
             auto [it, inserted] = shared.emplace(c, uint32_t(corners.size()));
-            if (inserted) corners.push_back(c);
+            if (inserted) {
+                if (!within_limit(corners.size(), "vertices")) return;
+                corners.push_back(c);
+            }
             uint32_t id = it->second;
             // Fan triangulation: (0, k-1, k).
             if (k == 0) first = id;
             else if (k >= 2) {
+                if (!within_limit(out.face_material.size(), "triangles")) return;
                 ids[0] = first;
                 ids[1] = prev;
                 ids[2] = id;
@@ -126,17 +149,21 @@ struct ObjState {
 ObjMesh load_obj(const std::string& path, const MeshLoadOptions& options) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open OBJ file (does it exist?)");
+    if (!is_regular(path)) throw Error(path + ": not a regular file (a directory?)");
 
     ObjState st;
     tinyobj::callback_t cb;
     cb.vertex_cb = [](void* u, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z, tinyobj::real_t) {
-        static_cast<ObjState*>(u)->v.emplace_back(x, y, z);
+        auto* s = static_cast<ObjState*>(u);
+        if (s->within_limit(s->v.size(), "vertex positions")) s->v.emplace_back(x, y, z);
     };
     cb.normal_cb = [](void* u, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t z) {
-        static_cast<ObjState*>(u)->vn.emplace_back(x, y, z);
+        auto* s = static_cast<ObjState*>(u);
+        if (s->within_limit(s->vn.size(), "normals")) s->vn.emplace_back(x, y, z);
     };
     cb.texcoord_cb = [](void* u, tinyobj::real_t x, tinyobj::real_t y, tinyobj::real_t) {
-        static_cast<ObjState*>(u)->vt.emplace_back(x, y);
+        auto* s = static_cast<ObjState*>(u);
+        if (s->within_limit(s->vt.size(), "texture coordinates")) s->vt.emplace_back(x, y);
     };
     cb.index_cb = [](void* u, tinyobj::index_t* idx, int n) { static_cast<ObjState*>(u)->face(idx, n); };
     cb.usemtl_cb = [](void* u, const char* name, int) { static_cast<ObjState*>(u)->use_material(name); };
@@ -307,6 +334,7 @@ int find_prop(const PlyElement& e, const char* name) {
 TriangleMesh load_ply(const std::string& path, const MeshLoadOptions& options) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open PLY file (does it exist?)");
+    if (!is_regular(path)) throw Error(path + ": not a regular file (a directory?)");
     std::string buf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 
     // ---- header ----
@@ -356,6 +384,10 @@ TriangleMesh load_ply(const std::string& path, const MeshLoadOptions& options) {
             long long count = -1;
             ls >> e.name >> count;
             if (e.name.empty() || !ls || count < 0) header_fail("malformed element line '" + l + "'");
+            if (count > max_mesh_elements())
+                header_fail("element '" + e.name + "' has " + std::to_string(count) + " items, more than the limit of " +
+                            std::to_string(max_mesh_elements()) +
+                            " (the mesh element limit; raise it with PELLUCID_MAX_MESH_ELEMENTS)");
             e.count = size_t(count);
             e.line = line;
             elems.push_back(e);
@@ -416,8 +448,25 @@ TriangleMesh load_ply(const std::string& path, const MeshLoadOptions& options) {
         throw Error(path + ":" + std::to_string(face->line) + ": face vertex indices must have an integer type");
 
     // ---- data ----
+    // Every item takes at least a few bytes of the file (binary: its fixed-size properties and list
+    // counts; ASCII: one character and a separator per value): a header that claims more items
+    // than the data can hold is truncated, and is reported before any memory is reserved for it.
+    {
+        const size_t data_bytes = buf.size() - std::min(pos, buf.size());
+        double need = 0.0;
+        for (const PlyElement& e : elems) {
+            size_t item = 0;
+            for (const PlyProperty& p : e.props)
+                item += fmt == PlyFormat::Ascii ? 1 : ply_size(p.is_list ? p.count_type : p.type);
+            need += double(e.count) * double(item);
+        }
+        if (fmt == PlyFormat::Ascii) need = 2.0 * need - 1.0;
+        if (need > double(data_bytes))
+            throw Error(path + ": the header declares " + std::to_string(vert->count) + " vertices and " +
+                        std::to_string(face->count) + " faces, more than the " + std::to_string(data_bytes) +
+                        " bytes of data can hold (truncated file?)");
+    }
     TriangleMesh m;
-    if (vert->count > 0xffffffffull) throw Error(path + ": too many vertices");
     m.positions.reserve(vert->count);
     if (has_n && !options.face_normals) m.normals.reserve(vert->count);
     if (has_uv) m.uvs.reserve(vert->count);
@@ -426,6 +475,7 @@ TriangleMesh load_ply(const std::string& path, const MeshLoadOptions& options) {
     std::vector<double> vals;
     for (const PlyElement& e : elems) {
         bool is_vert = &e == vert, is_face = &e == face;
+        if (e.props.empty()) continue;  // items without properties occupy no data
         vals.assign(e.props.size(), 0.0);
         for (size_t item = 0; item < e.count; ++item) {
             data.set_context(&e, item);
@@ -460,13 +510,22 @@ TriangleMesh load_ply(const std::string& path, const MeshLoadOptions& options) {
                 }
             }
             if (is_vert) {
-                Point3f P(float(vals[size_t(px)]), float(vals[size_t(py)]), float(vals[size_t(pz)]));
-                if (!std::isfinite(P.x) || !std::isfinite(P.y) || !std::isfinite(P.z))
-                    data.fail("non-finite vertex position");
-                m.positions.push_back(P);
+                // Checked in double precision, before the conversion to the floats they are stored in.
+                auto value = [&](int prop, const char* what) {
+                    double v = vals[size_t(prop)];
+                    if (!fits_float(v)) {
+                        char text[32];
+                        std::snprintf(text, sizeof text, "%g", v);
+                        data.fail(std::string(what) + " " + e.props[size_t(prop)].name + " = " + text +
+                                  " is not a finite number that fits a 32-bit float");
+                    }
+                    return float(v);
+                };
+                m.positions.emplace_back(value(px, "vertex position"), value(py, "vertex position"),
+                                         value(pz, "vertex position"));
                 if (has_n && !options.face_normals)
-                    m.normals.emplace_back(float(vals[size_t(nx)]), float(vals[size_t(ny)]), float(vals[size_t(nz)]));
-                if (has_uv) m.uvs.emplace_back(float(vals[size_t(pu)]), float(vals[size_t(pv)]));
+                    m.normals.emplace_back(value(nx, "normal"), value(ny, "normal"), value(nz, "normal"));
+                if (has_uv) m.uvs.emplace_back(value(pu, "texture coordinate"), value(pv, "texture coordinate"));
             }
         }
     }

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "pellucid/util/error.h"
+#include "pellucid/util/limits.h"
 
 namespace pellucid {
 namespace {
@@ -90,6 +91,7 @@ Image read_image_file(const std::string& path) {
     const OIIO::ImageSpec& spec = in->spec();
     int w = spec.width, h = spec.height, c = spec.nchannels;
     if (w <= 0 || h <= 0 || c <= 0) throw Error(path + ": image has no pixels");
+    if (std::string e = texture_size_error(w, h); !e.empty()) throw Error(path + ": " + e);  // before decoding
     std::vector<float> raw(size_t(w) * h * c);
     if (!in->read_image(0, 0, 0, c, OIIO::TypeDesc::FLOAT, raw.data()))
         throw Error(path + ": cannot decode image: " + in->geterror());

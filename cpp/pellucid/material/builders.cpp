@@ -49,7 +49,7 @@ public:
 
     /// A colour with channels in [lo, hi] (error outside).
     void colour(const std::string& key, Spectrum& field, float lo = 0.f, float hi = 1.f) {
-        if (bind(key, &field, TextureBinding::Kind::Spectrum, TextureBinding::Op::Identity, lo, hi, true)) return;
+        if (bind(key, &field, TextureBinding::Kind::Spectrum, TextureBinding::Op::Identity, lo, hi, true, false)) return;
         field = m_p.get_spectrum(key, field);
         m_p.check_spectrum_range(key, field, lo, hi);
     }
@@ -62,12 +62,13 @@ public:
     }
     /// A float in [lo, hi] (error outside).
     void range(const std::string& key, float& field, float lo, float hi) {
-        if (bind(key, &field, TextureBinding::Kind::Float, TextureBinding::Op::Identity, lo, hi, true)) return;
+        if (bind(key, &field, TextureBinding::Kind::Float, TextureBinding::Op::Identity, lo, hi, true, false)) return;
         field = m_p.check_range(key, m_p.get_float(key, field), lo, hi);
     }
-    /// Bind `key` to `field` if its value is a texture; true if it was.
+    /// Bind `key` to `field` if its value is a texture; true if it was. The texture's values must lie
+    /// in [lo, hi] (TextureBuilder::check_range); above hi they are clamped when `clamp_high`.
     bool bind(const std::string& key, void* field, TextureBinding::Kind kind, TextureBinding::Op op, float lo,
-              float hi, bool names_ok) {
+              float hi, bool names_ok, bool clamp_high = true) {
         if (!m_p.has(key)) return false;
         const Node* n = m_p.get_node(key);
         bool is_tex = n->is_object() || (names_ok && m_ctx.textures && m_ctx.textures->is_texture(*n, true));
@@ -78,6 +79,7 @@ public:
         if (mt.count >= MaterialTextures::kMaxBindings)
             m_p.fail(key, "too many textured parameters (at most " + std::to_string(MaterialTextures::kMaxBindings) + ")");
         uint32_t id = m_ctx.textures->texture(*n, m_p.key_path(key));
+        m_ctx.textures->check_range(id, m_p.key_path(key), lo, hi, kind == TextureBinding::Kind::Float, clamp_high);
         ptrdiff_t off = static_cast<char*>(field) - m_base;
         PELLUCID_CHECK(off >= 0 && size_t(off) < m_size, "texture binding outside its Params struct");
         mt.bindings[mt.count++] = TextureBinding{id, uint16_t(off), kind, op, lo, hi};

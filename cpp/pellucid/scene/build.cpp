@@ -19,7 +19,6 @@ namespace pellucid {
 namespace {
 
 constexpr int kMaxResolution = 16384;
-constexpr int64_t kMaxPixels = int64_t(1) << 28;
 
 class Builder {
 public:
@@ -63,9 +62,7 @@ private:
             if (v < 1 || v > kMaxResolution)
                 p.fail(key, "resolution " + std::to_string(v) + " is out of range [1, " +
                                 std::to_string(kMaxResolution) + "]");
-        if (int64_t(m_scene.width) * m_scene.height > kMaxPixels)
-            p.fail("", "resolution " + std::to_string(m_scene.width) + "x" + std::to_string(m_scene.height) +
-                           " exceeds the limit of 2^28 pixels");
+        if (std::string e = film_size_error(m_scene.width, m_scene.height); !e.empty()) p.fail("", e);
         if (const Node* f = p.get_node("filter")) {
             Properties fp(*f, m_desc.source, "film.filter");
             std::string type = fp.type();

@@ -80,6 +80,8 @@ Node parse_json(const std::string& text, const std::string& source) {
 SceneDesc read_json_file(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open scene file (does it exist?)");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": not a regular file (a directory?)");
     std::stringstream ss;
     ss << in.rdbuf();
     SceneDesc desc;

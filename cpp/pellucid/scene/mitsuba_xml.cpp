@@ -20,6 +20,7 @@
 
 #include "pellucid/scene/mitsuba_table.h"
 #include "pellucid/util/error.h"
+#include "pellucid/util/limits.h"
 #include "pellucid/util/log.h"
 
 namespace pellucid {
@@ -479,6 +480,14 @@ private:
     // ---- bsdfs ----------------------------------------------------------------------------------
     /// A shape's (or wrapper's) material: a name (for bsdfs with an id, or refs) or an inline object.
     std::optional<Node> bsdf_value(pugi::xml_node n) {
+        // Wrappers (twosided, bumpmap, normalmap) recurse here once per level of nesting.
+        struct Depth {
+            int& d;
+            ~Depth() { --d; }
+        } depth{++m_bsdf_depth};
+        if (m_bsdf_depth > max_scene_depth())
+            fail(n, "bsdfs nested deeper than " + std::to_string(max_scene_depth()) +
+                        " levels (the scene depth limit; raise it with PELLUCID_MAX_SCENE_DEPTH)");
         if (std::string(n.name()) == "ref") {
             const IdEntry& e = lookup_ref(n);
             if (e.kind != "bsdf") fail(n, "reference '" + attr(n, "id") + "' is a " + e.kind + ", expected a bsdf");
@@ -938,6 +947,7 @@ private:
     std::deque<std::unique_ptr<XmlFile>> m_files;
     const XmlFile* m_file = nullptr;
     std::map<std::string, IdEntry> m_ids;
+    int m_bsdf_depth = 0;  ///< nesting of bsdf_value calls
 
     std::optional<Node> m_camera, m_film, m_sampler, m_integrator;
     Node m_materials = Node::object();

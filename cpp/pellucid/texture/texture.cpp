@@ -105,9 +105,20 @@ float noise_value(const NoiseTexture& t, const TextureEvalContext& ctx, Vec3f* g
 
 float perlin_noise(const Vec3f& p, Vec3f* gradient) {
     const auto& perm = permutation();
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+        if (gradient) *gradient = Vec3f(0.f);
+        return 0.f;
+    }
     Vec3f fl(std::floor(p.x), std::floor(p.y), std::floor(p.z));
     Vec3f f = p - fl;
-    int ix = int(fl.x) & 255, iy = int(fl.y) & 255, iz = int(fl.z) & 255;
+    // The lattice index modulo 256; beyond the int range (a large `scale` or far geometry) the
+    // conversion to int would be undefined, so reduce it first (the period is 256).
+    auto lattice = [](float x) {
+        if (std::fabs(x) < 2147483648.f) return int(x) & 255;
+        float m = std::fmod(x, 256.f);
+        return int(m < 0.f ? m + 256.f : m) & 255;
+    };
+    int ix = lattice(fl.x), iy = lattice(fl.y), iz = lattice(fl.z);
     float w[3][2], dw[3][2];
     for (int a = 0; a < 3; ++a) {
         float s = fade(f[a]), ds = dfade(f[a]);

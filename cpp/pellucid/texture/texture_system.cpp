@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "pellucid/util/error.h"
+#include "pellucid/util/limits.h"
 
 namespace pellucid {
 namespace fs = std::filesystem;
@@ -59,6 +60,57 @@ std::string hex(uint64_t v) {
     return s;
 }
 
+float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
+/// Every texel of every MIP level of subimage 0, read a band of scanlines at a time (a few MB): the
+/// range of the channels lookups return, and the first NaN or infinite texel, which is an error.
+void scan_texels(const std::string& path, OIIO::ImageInput& in, bool srgb, ImageTextureInfo& info) {
+    const int lookup_channels = info.channels >= 3 ? 3 : 1;  // as lookup_image_texture
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    std::vector<float> band;
+    for (int level = 0; in.seek_subimage(0, level); ++level) {
+        const OIIO::ImageSpec spec = in.spec();  // a copy: seek_subimage replaces it
+        const int w = spec.width, h = spec.height, nc = spec.nchannels;
+        if (w < 1 || h < 1 || nc < 1 || spec.depth > 1 || spec.deep) break;
+        if (std::string e = texture_size_error(w, h); !e.empty())
+            throw Error(path + ": MIP level " + std::to_string(level) + ": " + e);
+        // Bands of about 1M values; whole rows of tiles for a tiled file.
+        const int unit = spec.tile_width > 0 ? std::max(1, spec.tile_height) : 1;
+        const int rows = unit * int(std::max<int64_t>(1, (int64_t(1) << 20) / (int64_t(w) * nc * unit)));
+        for (int y0 = spec.y; y0 < spec.y + h; y0 += rows) {
+            const int y1 = std::min(spec.y + h, y0 + rows);
+            band.resize(size_t(y1 - y0) * size_t(w) * size_t(nc));
+            const bool ok = spec.tile_width > 0
+                                ? in.read_tiles(0, level, spec.x, spec.x + w, y0, y1, spec.z, spec.z + std::max(1, spec.depth),
+                                                0, nc, OIIO::TypeDesc::FLOAT, band.data())
+                                : in.read_scanlines(0, level, y0, y1, spec.z, 0, nc, OIIO::TypeDesc::FLOAT, band.data());
+            if (!ok) throw Error(path + ": cannot decode texture: " + in.geterror());
+            for (size_t i = 0; i < band.size(); ++i) {
+                const float v = band[i];
+                const int c = int(i % size_t(nc));
+                if (!std::isfinite(v)) {
+                    const size_t texel = i / size_t(nc);
+                    throw Error(path + ": texel (" + std::to_string(texel % size_t(w)) + ", " +
+                                std::to_string(size_t(y0 - spec.y) + texel / size_t(w)) + ") channel " +
+                                std::to_string(c) + (level ? " of MIP level " + std::to_string(level) : "") +
+                                " is " + (std::isnan(v) ? "NaN" : "infinite") +
+                                "; textures must hold finite values");
+                }
+                if (c < lookup_channels) {
+                    lo[c] = std::min(lo[c], v);
+                    hi[c] = std::max(hi[c], v);
+                }
+            }
+        }
+    }
+    if (lookup_channels == 1) lo[1] = lo[2] = lo[0], hi[1] = hi[2] = hi[0];
+    for (int c = 0; c < 3; ++c) {
+        // sRGB decoding is increasing, so it maps the extremes to the extremes.
+        info.lo[c] = srgb ? srgb_to_linear(lo[c]) : lo[c];
+        info.hi[c] = srgb ? srgb_to_linear(hi[c]) : hi[c];
+    }
+}
+
 // Convert an sRGB-encoded file once into a linear half-float tiled MIP map (maketx's job).
 std::string linear_copy(const std::string& path) {
     std::error_code ec;
@@ -76,7 +128,16 @@ std::string linear_copy(const std::string& path) {
     fs::path tmp = dir / (out.stem().string() + ".tmp" + std::to_string(::getpid()) + "-" +
                           std::to_string(counter++) + ".exr");
     // Decode sRGB → linear ourselves (IEC 61966-2-1; OIIO's own conversion needs an OCIO config),
-    // then let make_texture build the tiled MIP pyramid from linear floats.
+    // then let make_texture build the tiled MIP pyramid from linear floats. A failure leaves no
+    // temporary file behind.
+    struct RemoveOnFailure {
+        fs::path file;
+        bool done = false;
+        ~RemoveOnFailure() {
+            std::error_code ignored;
+            if (!done) fs::remove(file, ignored);
+        }
+    } cleanup{tmp};
     OIIO::ImageBuf src(path);
     if (!src.read(0, 0, true, OIIO::TypeDesc::FLOAT))
         throw Error(path + ": cannot read texture: " + src.geterror());
@@ -87,7 +148,7 @@ std::string linear_copy(const std::string& path) {
     for (size_t i = 0; i < px.size(); ++i) {
         if (int(i % size_t(spec.nchannels)) >= colour_channels) continue;  // alpha stays linear
         float c = px[i];
-        px[i] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+        px[i] = srgb_to_linear(c);
     }
     OIIO::ImageSpec lin_spec(spec.width, spec.height, spec.nchannels, OIIO::TypeDesc::FLOAT);
     lin_spec.channelnames = spec.channelnames;
@@ -102,6 +163,7 @@ std::string linear_copy(const std::string& path) {
         throw Error(path + ": cannot convert the texture to linear MIP-mapped form: " + OIIO::geterror());
     fs::rename(tmp, out, ec);
     if (ec) throw Error(path + ": cannot write the texture cache entry " + out.string() + ": " + ec.message());
+    cleanup.done = true;
     return out.string();
 }
 
@@ -119,30 +181,36 @@ OIIO::TextureOpt::Wrap to_oiio(TextureWrap w) {
 ImageTextureHandle open_image_texture(const std::string& path, TextureColorSpace cs, ImageTextureInfo* info) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) throw Error(path + ": texture file not found");
-    int width = 0, height = 0, channels = 0;
-    bool integer_format = false;
+    ImageTextureInfo found;
     {
         auto in = OIIO::ImageInput::open(path);
         if (!in) throw Error(path + ": cannot read texture (unsupported or corrupt image): " + OIIO::geterror());
         const OIIO::ImageSpec& spec = in->spec();
-        width = spec.width;
-        height = spec.height;
-        channels = spec.nchannels;
-        integer_format = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
-                         spec.format.basetype == OIIO::TypeDesc::UINT16 ||
-                         spec.format.basetype == OIIO::TypeDesc::INT8 || spec.format.basetype == OIIO::TypeDesc::INT16;
+        found.width = spec.width;
+        found.height = spec.height;
+        found.channels = spec.nchannels;
+        const bool integer_format =
+            spec.format.basetype == OIIO::TypeDesc::UINT8 || spec.format.basetype == OIIO::TypeDesc::UINT16 ||
+            spec.format.basetype == OIIO::TypeDesc::INT8 || spec.format.basetype == OIIO::TypeDesc::INT16;
+        if (found.width < 1 || found.height < 1 || found.channels < 1) throw Error(path + ": texture has no pixels");
+        if (spec.depth > 1 || spec.deep)
+            throw Error(path + ": " + (spec.deep ? "deep" : "volume (3D)") + " images are not textures");
+        // From the header, before a pixel is decoded: a small file can claim a huge image.
+        if (std::string e = texture_size_error(spec.width, spec.height); !e.empty()) throw Error(path + ": " + e);
+        found.srgb = cs == TextureColorSpace::SRGB || (cs == TextureColorSpace::Auto && integer_format);
+        scan_texels(path, *in, found.srgb, found);
         in->close();
     }
-    if (width < 1 || height < 1 || channels < 1) throw Error(path + ": texture has no pixels");
-    bool srgb = cs == TextureColorSpace::SRGB || (cs == TextureColorSpace::Auto && integer_format);
-    std::string resolved = srgb ? linear_copy(path) : path;
+    found.resolved = found.srgb ? linear_copy(path) : path;
+    const std::string& resolved = found.resolved;
+    const int channels = found.channels;
 
     OIIO::TextureSystem* ts = texture_system();
     static std::mutex mutex;  // handle creation is cheap and rare; keep error reporting per call
     std::lock_guard<std::mutex> lock(mutex);
     OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(OIIO::ustring(resolved));
     if (!h || !ts->good(h)) throw Error(path + ": cannot open texture: " + ts->geterror());
-    if (info) *info = ImageTextureInfo{width, height, channels, srgb, resolved};
+    if (info) *info = found;
     return ImageTextureHandle{h, channels};
 }
 

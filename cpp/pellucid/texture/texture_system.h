@@ -30,6 +30,10 @@ struct ImageTextureInfo {
     int width = 0, height = 0, channels = 0;
     bool srgb = false;         ///< values were decoded from sRGB at load
     std::string resolved;      ///< the file the TextureSystem reads (the cached linear copy if any)
+    /// Smallest and largest value of each channel lookups return (one channel replicated to RGB),
+    /// over every texel of every MIP level of the file, after sRGB decoding. Filtered lookups
+    /// average texels with non-negative weights, so they stay within [lo, hi].
+    Spectrum lo{0.f}, hi{0.f};
 };
 
 /// A loaded texture: an opaque handle into the shared TextureSystem (no heap, trivially copyable).
@@ -39,7 +43,9 @@ struct ImageTextureHandle {
 };
 
 /// Open (and if needed convert) an image for filtered lookups. Throws pellucid::Error naming the
-/// path for a missing file, an unreadable or unsupported format.
+/// path for a missing file, an unreadable or unsupported format, an image larger than the texture
+/// limit (util/limits.h; checked from the header, before decoding), and a NaN or infinite texel
+/// (its position named). Every texel is read once here to find them and the value range.
 ImageTextureHandle open_image_texture(const std::string& path, TextureColorSpace cs, ImageTextureInfo* info);
 
 /// Filtered lookup at texture coordinates (s, t) ∈ [0,1]² (t = 0 is the image's top row) with the

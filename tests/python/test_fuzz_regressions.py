@@ -1,0 +1,89 @@
+"""Inputs the load_dict fuzzer (bench/fuzz/fuzz_load_dict.py) found raising something other than
+pellucid.Error, and the raisable limits (each read once per process, so each case runs in a
+subprocess with its environment variable set)."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import pellucid
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "fuzz"
+
+
+@pytest.mark.parametrize("value, message", [
+    (10**400, r"materials\.m\.reflectance: value 100000000000\.\.\.\(401 digits\) overflows a double"),
+    ("\udcff", r"materials\.m\.reflectance: the text cannot be encoded as UTF-8"),
+])
+def test_unconvertible_values_are_pellucid_errors(value, message) -> None:
+    # Both raised RuntimeError "Unable to cast Python instance ..." before.
+    with pytest.raises(pellucid.Error, match=message):
+        pellucid.load_dict({"materials": {"m": {"type": "lambertian", "reflectance": value}}})
+
+
+def test_surrogate_in_a_key_is_a_pellucid_error() -> None:
+    with pytest.raises(pellucid.Error, match="materials: the text cannot be encoded as UTF-8"):
+        pellucid.load_dict({"materials": {"\udcff": {"type": "lambertian"}}})
+
+
+def test_directory_as_mesh_file_is_a_pellucid_error(tmp_path) -> None:
+    # An empty filename resolves to the base directory; reading it raised std::ios_base::failure.
+    with pytest.raises(pellucid.Error, match=r"shapes\[0\]\.filename: .*not a regular file \(a directory\?\)"):
+        pellucid.load_dict({"shapes": [{"type": "ply", "filename": ""}]}, base_dir=tmp_path)
+
+
+def test_checkerboard_colour_out_of_range_is_an_error() -> None:
+    with pytest.raises(pellucid.Error, match=r"reflectance: the texture reaches -5 \(from "
+                                             r"materials\.m\.reflectance\.color1\), out of range \[0, 1\]"):
+        pellucid.load_dict({"materials": {"m": {"type": "lambertian",
+                                                "reflectance": {"type": "checkerboard", "color1": -5}}}})
+
+
+def _error_with_env(env: dict[str, str], code: str) -> str:
+    r = subprocess.run([sys.executable, "-c", "import pellucid\ntry:\n" +
+                        "".join("    " + line + "\n" for line in code.splitlines()) +
+                        "except pellucid.Error as e:\n    print(e)\n"],
+                       env={**os.environ, **env}, capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    return r.stdout.strip()
+
+
+OBJ = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n"
+
+
+def test_mesh_element_limit_can_be_raised(tmp_path) -> None:
+    (tmp_path / "m.obj").write_text(OBJ)
+    load = f"pellucid.load_dict({{'shapes': [{{'type': 'obj', 'filename': 'm.obj'}}]}}, base_dir={str(tmp_path)!r})"
+    e = _error_with_env({"PELLUCID_MAX_MESH_ELEMENTS": "3"}, load)
+    assert "m.obj: more than 3 vertex positions (the mesh element limit; raise it with PELLUCID_MAX_MESH_ELEMENTS)" in e
+    assert _error_with_env({"PELLUCID_MAX_MESH_ELEMENTS": "4"}, load) == ""
+
+
+def test_film_limit_can_be_raised() -> None:
+    load = "pellucid.load_dict({'film': {'width': 100, 'height': 50}})"
+    e = _error_with_env({"PELLUCID_MAX_FILM_PIXELS": "4999"}, load)
+    assert e == ("<dict>: film: resolution 100x50 is more than the limit of 4999 pixels "
+                 "(raise it with PELLUCID_MAX_FILM_PIXELS)")
+    assert _error_with_env({"PELLUCID_MAX_FILM_PIXELS": "5000"}, load) == ""
+    # The default: 2^25 pixels.
+    e = _error_with_env({}, "pellucid.load_dict({'film': {'width': 8192, 'height': 4097}})")
+    assert "more than the limit of 33554432 pixels" in e
+
+
+def test_texture_limit_can_be_raised() -> None:
+    png = DATA.parent / "mitsuba" / "quad.png"
+    load = ("pellucid.load_dict({'materials': {'m': {'type': 'lambertian', 'reflectance': "
+            f"{{'type': 'image', 'filename': {str(png)!r}}}}}}}}})")
+    e = _error_with_env({"PELLUCID_MAX_TEXTURE_PIXELS": "3"}, load)
+    assert "materials.m.reflectance.filename: " in e and "more than the limit of 3 pixels" in e
+    assert "PELLUCID_MAX_TEXTURE_PIXELS" in e
+    assert _error_with_env({"PELLUCID_MAX_TEXTURE_PIXELS": "1000000"}, load) == ""
+
+
+def test_bad_limit_value_is_an_error() -> None:
+    e = _error_with_env({"PELLUCID_MAX_FILM_PIXELS": "lots"}, "pellucid.load_dict({'film': {'width': 8}})")
+    assert e == "environment variable PELLUCID_MAX_FILM_PIXELS: expected an integer in [1, 268435456], got 'lots'"
