@@ -4,7 +4,7 @@
 // SPDX-License-Identifier: Apache-2.0
 //
 // render_tile_kernel<F> runs kLaneWidth<F> paths side by side, one per lane: F = float is one path
-// at a time (PathIntegrator::Li and the width-1 fallback); F = a 16-, 8- or 4-wide packet is the
+// at a time (the scalar target, which the tests compare every packet target with); F = a 16-, 8- or 4-wide packet is the
 // renderer (integrator/kernel_*.cpp instantiate it, one translation unit per instruction set). A
 // lane whose path ends takes the tile's next (pixel, sample) at once, so packets stay full.
 //

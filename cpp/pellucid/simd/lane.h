@@ -74,19 +74,12 @@ inline int32_t gather(const int32_t* base, int32_t idx) { return base[idx]; }
 /// The float mask m as a mask of the integer lane type, and back.
 inline bool int_mask(bool m) { return m; }
 inline bool float_mask(bool m) { return m; }
-/// Lane i of a value, and a value with lane i replaced (i = 0 for floats).
-inline float get(float x, int) { return x; }
-inline int32_t get(int32_t x, int) { return x; }
-inline bool get(bool m, int) { return m; }
-/// Bit i set where lane i of m is true.
-inline uint32_t bits(bool m) { return m ? 1u : 0u; }
 /// Load and store W lanes from/to memory.
 inline float load(const float* p) { return *p; }
 inline int32_t load(const int32_t* p) { return *p; }
 inline void store(float* p, float x) { *p = x; }
 inline void store(int32_t* p, int32_t x) { *p = x; }
 inline void store(bool* p, bool m) { *p = m; }
-inline bool load_mask(const bool* p) { return *p; }
 /// kLaneWidth<F> values from memory as an F (a float, or a packet's load).
 template <class F>
 inline F load_as(const float* p) {

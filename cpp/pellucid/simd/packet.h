@@ -112,20 +112,6 @@ inline MIP<A> int_mask(const MP<A>& m) { return as_int(select(m, FP<A>(1.f), FP<
 template <class A>
 inline MP<A> float_mask(const MIP<A>& m) { return to_float(select(m, IP<A>(1), IP<A>(0))) != FP<A>(0.f); }
 template <class A>
-inline float get(const FP<A>& x, int i) { return x.get(size_t(i)); }
-template <class A>
-inline int32_t get(const IP<A>& x, int i) { return x.get(size_t(i)); }
-template <class A>
-inline bool get(const MP<A>& m, int i) { return m.get(size_t(i)); }
-template <class A>
-inline uint32_t bits(const MP<A>& m) {
-    alignas(64) bool b[FP<A>::size];
-    m.store_aligned(b);
-    uint32_t r = 0;
-    for (size_t i = 0; i < FP<A>::size; ++i) r |= uint32_t(b[i]) << i;
-    return r;
-}
-template <class A>
 inline void store(float* p, const FP<A>& x) { x.store_unaligned(p); }
 template <class A>
 inline void store(int32_t* p, const IP<A>& x) { x.store_unaligned(p); }
