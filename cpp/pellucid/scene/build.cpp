@@ -111,9 +111,10 @@ private:
         s.strategy = p.get_string("strategy", "mis");
         if (s.strategy != "mis" && s.strategy != "nee" && s.strategy != "bsdf" && s.strategy != "direct")
             p.fail("strategy", "unknown strategy '" + s.strategy + "' (known: bsdf, direct, mis, nee)");
-        s.light_selection = p.get_string("light_selection", "power");
-        if (s.light_selection != "power" && s.light_selection != "uniform")
-            p.fail("light_selection", "unknown light selection '" + s.light_selection + "' (known: power, uniform)");
+        s.light_selection = p.get_string("light_selection", "balanced");
+        if (s.light_selection != "balanced" && s.light_selection != "power" && s.light_selection != "uniform")
+            p.fail("light_selection",
+                   "unknown light selection '" + s.light_selection + "' (known: balanced, power, uniform)");
         p.check_unqueried();
     }
 
@@ -342,13 +343,8 @@ private:
             if (!n->is_array()) fail("lights", std::string("expected an array, got a ") + n->kind_name());
             for (size_t i = 0; i < n->size(); ++i) build_light(n->items()[i], path_index("lights", i), radius);
         }
-        // Light selection for next-event estimation.
-        std::vector<float> weights;
-        for (const auto& l : m_scene.lights) {
-            float w = m_scene.integrator.light_selection == "power" ? light_power(l, radius) : 1.f;
-            weights.push_back(std::isfinite(w) && w > 0.f ? w : 0.f);
-        }
-        m_scene.light_distribution = Distribution1D(weights);
+        m_scene.light_distribution =
+            Distribution1D(light_selection_weights(m_scene.lights, m_scene.integrator.light_selection, radius));
     }
 
     void build_light(const Node& node, const std::string& path, float radius) {

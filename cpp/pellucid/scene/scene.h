@@ -42,7 +42,7 @@ struct IntegratorSettings {
     int max_depth = -1;   ///< longest path in segments (Mitsuba 3 convention), -1 = unbounded
     int rr_depth = 5;     ///< Russian roulette starts at this depth
     std::string strategy = "mis";  ///< "mis", "nee", "bsdf", "direct"
-    std::string light_selection = "power";  ///< "power" or "uniform"
+    std::string light_selection = "balanced";  ///< "balanced", "power" or "uniform" (light/light.h)
     std::string aov;  ///< type "aov": "albedo", "normal" or "depth" (integrator/aov.h)
 };
 
@@ -108,7 +108,7 @@ public:
     const BxDF no_scatter_bxdf = SmoothConductor<ConductorFresnel>(ConductorFresnel{}, Spectrum(0.f));
     std::vector<Light> lights;
     std::vector<uint32_t> infinite_lights;  ///< indices into lights
-    Distribution1D light_distribution;      ///< light selection (uniform or by power)
+    Distribution1D light_distribution;      ///< light selection (light_selection_weights)
     PerspectiveCamera camera;
     Filter filter = GaussianFilter{};
     bool film_splatting = false;  ///< film.reconstruction "splatting" (image/film.h), else filter sampling
