@@ -244,11 +244,13 @@ private:
             rec.kind = ShapeRecord::Kind::Mesh;
             rec.mesh_index = uint32_t(m_scene.meshes.size());
             if (!g.face_material_names.empty()) resolve_face_materials(g, p, has_material, rec);
-            const bool bounds_medium = rec.interior_medium >= 0 || rec.exterior_medium >= 0;
-            if (size_t open = bounds_medium ? open_edge_count(g.mesh) : 0)
-                log_warning(format_error(m_desc.source, path, "the mesh bounds a medium but is not closed (" +
+            // An interior medium needs a closed boundary; a surface with only an exterior medium
+            // merely sits in that medium (a wall in fog).
+            if (size_t open = rec.interior_medium >= 0 ? open_edge_count(g.mesh) : 0)
+                log_warning(format_error(m_desc.source, path, "the mesh has an interior medium but is not closed (" +
                                                                   std::to_string(open) + " edges are not shared by exactly "
-                                                                  "two triangles): paths can leave the medium through it"));
+                                                                  "two triangles): unless other shapes close the volume, "
+                                                                  "paths leave the medium through its open edges"));
         }
         if (emitter) rec.light = build_area_light(*emitter, path_join(path, "emitter"), g);
         uint32_t id = g.is_sphere ? m_scene.accel.add_sphere(g.center, g.radius) : m_scene.accel.add_mesh(g.mesh);

@@ -121,12 +121,14 @@ TEST(MediumScene, OpenMeshBoundingAMediumWarns) {
     set_log_sink([&](LogLevel l, const std::string& m) {
         if (l == LogLevel::Warning) warnings.push_back(m);
     });
-    build_json(std::string("{") + kFog + R"(, "shapes": [{"type": "rectangle", "exterior": "fog"},
-                                                         {"type": "cube", "interior": "fog"}]})");
+    build_json(std::string("{") + kFog + R"(, "shapes": [{"type": "rectangle", "interior": "fog"},
+                                                         {"type": "cube", "interior": "fog"},
+                                                         {"type": "rectangle", "exterior": "fog"}]})");
     set_log_sink(nullptr);
     ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_EQ(warnings[0], "scene.json: shapes[0]: the mesh bounds a medium but is not closed (4 edges are not shared "
-                           "by exactly two triangles): paths can leave the medium through it");
+    EXPECT_EQ(warnings[0], "scene.json: shapes[0]: the mesh has an interior medium but is not closed (4 edges are not "
+                           "shared by exactly two triangles): unless other shapes close the volume, paths leave the "
+                           "medium through its open edges");
     EXPECT_EQ(open_edge_count(TriangleMesh::cube()), 0u);
     EXPECT_EQ(open_edge_count(TriangleMesh::rectangle()), 4u);
 }
