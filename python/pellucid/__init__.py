@@ -31,6 +31,7 @@ from . import materials, scenes
 from ._core import Error, FilmState, Scene, cancel
 from .aov import AOVS, render_aov
 from .bsdf import bsdf
+from .phase import phase
 from .image import Comparison, Image
 
 __version__: str = _core.__version__
@@ -50,6 +51,7 @@ __all__ = [
     "load_file",
     "load_film_state",
     "materials",
+    "phase",
     "read_image",
     "read_image_attributes",
     "render",

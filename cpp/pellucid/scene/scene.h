@@ -14,6 +14,7 @@
 #include "pellucid/light/light.h"
 #include "pellucid/material/material.h"
 #include "pellucid/material/textured.h"
+#include "pellucid/medium/medium.h"
 #include "pellucid/texture/texture.h"
 #include "pellucid/sampling/distribution_1d.h"
 #include "pellucid/sampling/sampler.h"
@@ -34,6 +35,12 @@ struct ShapeRecord {
     std::vector<uint32_t> face_materials;  ///< per triangle (OBJ usemtl); empty = `material` everywhere
     int32_t light = -1;
     std::string name;  ///< key path in the scene description, for messages
+    /// Media on the two sides (indices into Scene::media, -1 = none, i.e. vacuum): `interior` on the
+    /// side the geometric normal points away from, `exterior` on the side it points to.
+    int32_t interior_medium = -1, exterior_medium = -1;
+    /// The `null` material: an index-matched boundary with no surface; a path crosses it unchanged
+    /// and only its current medium changes (`material` then holds the default material, unused).
+    bool null_surface = false;
 };
 
 /// Integrator settings (plain data).
@@ -117,6 +124,13 @@ public:
     uint64_t seed = 0;
     SamplerType sampler = SamplerType::Independent;  ///< sampler.type (sampling/sampler.h)
     IntegratorSettings integrator;
+    /// Participating media (medium/medium.h), in the order of the `media` object; shapes and the
+    /// camera refer to them by index.
+    std::vector<Medium> media;
+    int32_t camera_medium = -1;       ///< the medium the camera sits in (-1 = none)
+    bool has_null_surfaces = false;   ///< any shape has the `null` material
+    /// Does the scene use media or null boundaries (which the path tracer must handle)?
+    bool has_media() const { return !media.empty() || has_null_surfaces || camera_medium >= 0; }
     std::string source;
     uint64_t triangle_count = 0;
 
