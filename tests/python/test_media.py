@@ -1,5 +1,5 @@
 """Media from Python: the phase-function surface pellucid.phase, media in scene dicts and their
-errors, and the render guard that stays until the path tracer renders media (issue #16).
+errors, and rendering a media scene from Python.
 The statistical and analytic checks live in tests/cpp/medium/."""
 from __future__ import annotations
 
@@ -55,10 +55,11 @@ def _fog_scene(**medium) -> dict:
             "shapes": [{"type": "sphere", "material": {"type": "null"}, "interior": "fog"}]}
 
 
-def test_media_load_and_the_render_guard() -> None:
-    scene = pellucid.load_dict(_fog_scene())
-    with pytest.raises(pellucid.Error, match="media are loaded but not yet rendered by the path tracer"):
-        pellucid.render(scene, spp=1)
+def test_media_load_and_render() -> None:
+    d = _fog_scene()
+    d["lights"] = [{"type": "constant", "radiance": 1.0}]
+    img = np.asarray(pellucid.render(pellucid.load_dict(d), spp=4))
+    assert np.isfinite(img).all() and (img >= 0).all() and img.mean() > 0
 
 
 @pytest.mark.parametrize("medium,message", [

@@ -32,8 +32,6 @@ std::unique_ptr<Integrator> make_integrator(const Scene& scene) {
 }
 
 RenderResult PathIntegrator::render(const Scene& scene, const RenderOptions& opts) const {
-    // Issue #16: media are built (medium/medium.h) but the estimator does not trace them yet.
-    if (scene.has_media()) throw Error(scene.source + ": media are loaded but not yet rendered by the path tracer");
     const PathSetup setup = make_path_setup(scene, m_max_depth, m_s.rr_depth, m_use_nee, m_use_mis, sampler_type(scene, opts));
     const PathTileFn tile = path_tile_function(simd_target());
     return render_loop(scene, opts, [&](const TileJob& job, Film& film) { return tile(setup, job, film); });

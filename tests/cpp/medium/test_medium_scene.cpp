@@ -1,7 +1,9 @@
 // Media in scenes: JSON `media`, interior/exterior per shape, the camera medium, the null material,
-// bad input, .vol files, the Mitsuba importer's media, and the render guard.
+// bad input, .vol files, the Mitsuba importer's media, and that media scenes render.
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "pellucid/api.h"
 #include "pellucid/integrator/path.h"
@@ -133,15 +135,21 @@ TEST(MediumScene, OpenMeshBoundingAMediumWarns) {
     EXPECT_EQ(open_edge_count(TriangleMesh::rectangle()), 4u);
 }
 
-TEST(MediumScene, PathTracerRefusesMediaUntilIntegrated) {
-    auto s = build_json(std::string("{") + kFog + R"(, "film": {"width": 4, "height": 4},
-                        "shapes": [{"type": "sphere", "interior": "fog"}]})");
+TEST(MediumScene, MediaScenesRender) {
+    // A scene with a medium, and one with only a null boundary, render without error and with
+    // finite, non-negative pixels (the analytic checks are in integrator/test_media_render.cpp).
     RenderOptions o;
-    o.spp = 1;
-    EXPECT_EQ(error_of_call([&] { render(*s, o); }),
-              "scene.json: media are loaded but not yet rendered by the path tracer");
-    auto n = build_json(R"({"film": {"width": 4, "height": 4}, "shapes": [{"type": "sphere", "material": {"type": "null"}}]})");
-    EXPECT_NE(error_of_call([&] { render(*n, o); }), "");
+    o.spp = 2;
+    for (const std::string& json :
+         {std::string("{") + kFog + R"(, "film": {"width": 4, "height": 4},
+                        "shapes": [{"type": "sphere", "interior": "fog"}], "lights": [{"type": "constant"}]})",
+          std::string(R"({"film": {"width": 4, "height": 4}, "shapes": [{"type": "sphere", "material": {"type": "null"}}],
+                          "lights": [{"type": "constant"}]})")}) {
+        auto s = build_json(json);
+        const RenderResult r = render(*s, o);
+        for (float v : r.image.data) EXPECT_TRUE(std::isfinite(v) && v >= 0.f) << json;
+        EXPECT_EQ(r.stats.invalid_samples, 0u) << json;
+    }
 }
 
 const char* kMitsuba = R"(<scene version="3.0.0">
