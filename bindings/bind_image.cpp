@@ -42,8 +42,14 @@ void bind_image(py::module_& m) {
         write_image(path, img);
     }, py::arg("path"), py::arg("array"),
        "Write an (H, W) or (H, W, C) float array (.exr linear, any C; .png sRGB, C from 1 to 4).");
-    m.def("read_image", [](const std::string& path) { return image_to_array(read_image_channels(path)); },
-          py::arg("path"), py::call_guard<py::gil_scoped_release>(),
+    m.def("read_image", [](const std::string& path) {
+        Image img;
+        {
+            py::gil_scoped_release nogil;
+            img = read_image_channels(path);
+        }
+        return image_to_array(std::move(img));
+    }, py::arg("path"),
           "Read every channel of an image as a linear float32 (H, W, C) array.");
     m.def("write_layers", [](const std::string& path, const py::list& layers, const py::dict& attributes) {
         // layers: [(name, [channel names], array)], the unnamed layer's name "".
