@@ -6,29 +6,9 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BSDFProbe', 'BXDF_FLAGS', 'Error', 'FilmState', 'PhaseProbe', 'RenderProgress', 'Scene', 'cancel', 'check_image_output', 'load_dict', 'load_file', 'load_film_state', 'mitsuba_import_table', 'read_image', 'read_image_attributes', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'set_log_sink', 'write_image', 'write_image_with_attributes']
+__all__: list[str] = ['BSDFProbe', 'BXDF_FLAGS', 'Error', 'FilmState', 'RenderProgress', 'Scene', 'aov_channels', 'aov_names', 'cancel', 'check_image_output', 'load_dict', 'load_file', 'load_film_state', 'mitsuba_import_table', 'read_image', 'read_image_attributes', 'read_layers', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'set_log_sink', 'write_image', 'write_image_with_attributes', 'write_layers']
 class Error(RuntimeError):
     pass
-class PhaseProbe:
-    """
-    One phase function (see pellucid.phase).
-    """
-    def __init__(self, desc: dict) -> None:
-        ...
-    def __repr__(self) -> str:
-        ...
-    def eval(self, wo: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], wi: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.float32]:
-        """
-        p(wo, wi) in 1/sr per row, (N,).
-        """
-    def pdf(self, wo: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], wi: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.float32]:
-        """
-        Solid-angle pdf of wi per row, (N,).
-        """
-    def sample(self, wo: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], u: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> tuple:
-        """
-        (wi, weight, pdf, delta) for u = (u1, u2).
-        """
 class BSDFProbe:
     """
     One material's BxDF at a default hit (see pellucid.bsdf).
@@ -126,6 +106,14 @@ class FilmState:
     @property
     def width(self) -> int:
         ...
+def aov_channels(name: str) -> list[str]:
+    """
+    The channel names of an AOV's layer in a multi-layer EXR (['R', 'G', 'B'], ['Z'], ...).
+    """
+def aov_names() -> list[str]:
+    """
+    Every AOV name render_full(aovs=...) accepts.
+    """
 def cancel() -> None:
     """
     Ask the running render to stop (it returns its complete passes).
@@ -152,11 +140,15 @@ def mitsuba_import_table() -> list[dict[str, typing.Any]]:
     """
 def read_image(path: str) -> numpy.ndarray:
     """
-    Read an image as a linear float32 (H, W, 3) array.
+    Read every channel of an image as a linear float32 (H, W, C) array.
     """
 def read_image_attributes(path: str) -> dict:
     """
     The header attributes of an image file as a dict.
+    """
+def read_layers(path: str) -> list:
+    """
+    An image file's layers as [(name, channel names, array)]. Use pellucid.read_layers.
     """
 def record_parameters(d: dict, base_dir: str = '.') -> list[tuple]:
     """
@@ -170,9 +162,9 @@ def render_aov(scene: Scene, aov: str, spp: typing.SupportsInt | typing.Supports
     """
     Render one AOV; returns (image, variance). Use pellucid.aov.render_aov for the documented API.
     """
-def render_full(scene: Scene, spp: typing.SupportsInt | typing.SupportsIndex = -1, seed: typing.SupportsInt | typing.SupportsIndex = -1, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_budget: typing.SupportsFloat | typing.SupportsIndex = 0.0, target_rel_error: typing.SupportsFloat | typing.SupportsIndex = 0.0, progress: bool = False, monitor: RenderProgress = None, sampler: str = '', resume: typing.Any = None, keep_state: bool = False, aov: str = '') -> tuple:
+def render_full(scene: Scene, spp: typing.SupportsInt | typing.SupportsIndex = -1, seed: typing.SupportsInt | typing.SupportsIndex = -1, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_budget: typing.SupportsFloat | typing.SupportsIndex = 0.0, target_rel_error: typing.SupportsFloat | typing.SupportsIndex = 0.0, progress: bool = False, monitor: RenderProgress = None, sampler: str = '', resume: typing.Any = None, keep_state: bool = False, aov: str = '', aovs: collections.abc.Sequence[str] = []) -> tuple:
     """
-    Render; returns (image, variance, stats), stats['state'] the FilmState if keep_state. A Python signal handler that raises (Ctrl-C) stops it: the exception is raised with .partial = that tuple. Use pellucid.render for the documented API.
+    Render; returns (image, variance, stats), stats['state'] the FilmState if keep_state, stats['aovs'] {name: array} of the requested AOVs (integrator/aov.h) with stats['aov_seconds']. A Python signal handler that raises (Ctrl-C) stops it: the exception is raised with .partial = that tuple. Use pellucid.render for the documented API.
     """
 def set_log_sink(fn: typing.Any) -> None:
     """
@@ -180,11 +172,15 @@ def set_log_sink(fn: typing.Any) -> None:
     """
 def write_image(path: str, array: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> None:
     """
-    Write an (H, W, 3) float array (.exr linear, .png sRGB).
+    Write an (H, W) or (H, W, C) float array (.exr linear, any C; .png sRGB, C from 1 to 4).
     """
 def write_image_with_attributes(path: str, array: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], attributes: dict) -> None:
     """
     write_image with header attributes (EXR attributes; formats without a header drop them).
+    """
+def write_layers(path: str, layers: list, attributes: dict) -> None:
+    """
+    Write [(name, channel names, array)] as one multi-layer EXR. Use pellucid.write_layers.
     """
 BXDF_FLAGS: dict = {'reflection': 1, 'transmission': 2, 'diffuse': 4, 'glossy': 8, 'specular': 16}
 __version__: str = '0.1.0'
