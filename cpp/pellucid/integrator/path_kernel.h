@@ -188,7 +188,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                             a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
                             a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
                             a.goes_on[i] = true;
-                            a.nee[i] = ps.use_nee;
+                            a.nee[i] = ps.use_nee && ps.medium_nee;
                             VertexRandoms r;
                             path_services::randoms(sampler[i], depth, a.nee[i], depth >= ps.rr_depth, &r);
                             for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
@@ -292,6 +292,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     }
                     BxDFSample s;
                     a.s_ok[i] = path_services::phase_sample(ps, medium[i], h.wo, Vec2f(a.u[4][i], a.u[5][i]), &s);
+                    // Without NEE here, light found by this direction is not MIS-weighted: the
+                    // vertex counts as a delta bounce for that.
+                    if (!a.nee[i]) s.lobe |= BxDFFlags::Specular;
                     if (a.s_ok[i]) {
                         a.swx[i] = s.wi.x, a.swy[i] = s.wi.y, a.swz[i] = s.wi.z;
                         a.swr[i] = s.weight.r, a.swg[i] = s.weight.g, a.swb[i] = s.weight.b;
@@ -456,7 +459,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (!a.alive[i] || a.crossing[i]) continue;
                     const Vec3f wi(a.nwx[i], a.nwy[i], a.nwz[i]);
                     if (ps.media && !a.in_medium[i]) medium[i] = path_services::medium_after(ps, si[i], wi, medium[i]);
-                    if (scene.has_textures && spec_b[i] && ray[i].has_differentials)
+                    if (scene.has_textures && spec_b[i] && !a.in_medium[i] && ray[i].has_differentials)
                         ray[i] = path_services::next_ray(ps, si[i], ray[i], wi, true, trans_b[i], eta_b[i]);
                     else
                         ray[i] = RayDifferential(Ray{Vec3f(ob[0][i], ob[1][i], ob[2][i]), wi, kInfinity});

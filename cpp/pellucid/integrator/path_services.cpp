@@ -74,6 +74,8 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.emitters = make_emitter_table(scene.lights, pmf);
     ps.media = scene.has_media();
     ps.camera_medium = scene.camera_medium;
+    ps.medium_nee = scene.integrator.medium_nee;
+    ps.uniform_channels = scene.integrator.channel_sampling == "uniform";
     return ps;
 }
 
@@ -205,7 +207,7 @@ int32_t medium_after(const PathSetup& ps, const SurfaceInteraction& si, const Ve
 
 MediumEvent medium_sample(const PathSetup& ps, int32_t m, const Ray& ray, const Spectrum& beta, PCG32& rng) {
     auto u = [&] { return rng.next_float(); };
-    return sample_distance(ps.scene->media[size_t(m)], ray, beta, u);
+    return sample_distance(ps.scene->media[size_t(m)], ray, ps.uniform_channels ? Spectrum(1.f) : beta, u);
 }
 
 void medium_vertex(const Point3f& p, const Vec3f& d, SurfaceInteraction* out) {
@@ -250,7 +252,7 @@ Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow,
         if (m >= 0) {
             Ray seg = r;
             seg.tmax = hit ? si.t : r.tmax;
-            tr *= transmittance(scene.media[size_t(m)], seg, beta, u);
+            tr *= transmittance(scene.media[size_t(m)], seg, ps.uniform_channels ? Spectrum(1.f) : beta, u);
             if (tr.is_black()) return tr;
         }
         if (!hit) return tr;

@@ -54,6 +54,8 @@ struct PathSetup {
     /// in, which starts as camera_medium (-1: none).
     bool media = false;
     int32_t camera_medium = -1;
+    bool medium_nee = true;        ///< NEE at medium collisions (integrator.medium_nee)
+    bool uniform_channels = false; ///< channel_sampling "uniform": each colour channel 1/3, else ∝ throughput
 };
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type);
 
