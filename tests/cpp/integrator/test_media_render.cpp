@@ -48,6 +48,25 @@ std::string furnace_scene(const std::string& integrator, const std::string& boun
 }
 const char* const kBoundaries[] = {R"({"type": "null"})", R"({"type": "dielectric", "int_ior": 1.0, "ext_ior": 1.0})"};
 
+TEST(MediaRender, SingleScatteringInAThinSlabMatchesItsClosedForm) {
+    // A slab of thickness d (σs = 0.3, σa = 0.1, hg g = 0.3, null boundaries) under a directional
+    // light of irradiance E travelling along −z, seen from below looking up (+z) through a 2° field.
+    // max_depth 2 keeps exactly one collision. Light scattered at height z toward the camera turns
+    // by θ = 0 and has crossed d − z above and z below, so every point of the slab adds the same:
+    //   L = σs · p_HG(cos θ = 1) · E · d · exp(−σt d),   p_HG(1) = (1 + g) / (4π (1 − g)²).
+    const double ss = 0.3, st = 0.4, g = 0.3, E = 2.0, d = 0.5;
+    const double p = (1 + g) / (4 * M_PI * (1 - g) * (1 - g));
+    auto scene = scene_from(R"({"camera": {"type": "perspective", "fov": 2,
+            "to_world": [{"look_at": {"origin": [0, 0, -3], "target": [0, 0, 0], "up": [0, 1, 0]}}]},
+        "film": {"width": 12, "height": 12}, "sampler": {"sample_count": 256, "seed": 8},
+        "integrator": {"type": "path", "max_depth": 2},
+        "media": {"haze": {"type": "homogeneous", "sigma_s": 0.3, "sigma_a": 0.1, "phase": {"type": "hg", "g": 0.3}}},
+        "shapes": [{"type": "cube", "material": {"type": "null"}, "interior": "haze",
+                    "to_world": [{"scale": [50, 50, 0.25]}, {"translate": [0, 0, 0.25]}]}],
+        "lights": [{"type": "directional", "direction": [0, 0, -1], "irradiance": 2}]})");
+    expect_constant_image(render(*scene), ss * p * E * d * std::exp(-st * d), "single scattering");
+}
+
 TEST(MediaRender, AlbedoOneMediumInAWhiteFurnaceIsOne) {
     // A scattering medium of albedo 1 (chromatic σt, hg g = 0.6) bounded by a null sphere, and the
     // same inside an index-matched dielectric sphere, under a constant environment of radiance 1:
