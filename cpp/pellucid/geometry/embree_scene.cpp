@@ -162,15 +162,22 @@ void fill_packet(RayK& r, int* valid, LaneFn&& lane) {
 }
 /// Lanes [0, n) from rays[i]; lanes past n repeat rays[0], invalid.
 auto lanes_of(int n, const Ray* const* rays) {
+    // A null entry is an inactive lane: Embree's mask leaves it out, and its (unused) ray is a
+    // well-formed zero ray rather than whatever the caller's storage held.
     return [n, rays](int i, float* o, float* d, float* tmax) {
-        const bool on = i < n;
-        const Ray& ray = *rays[on ? i : 0];
+        const bool on = i < n && rays[i] != nullptr;
+        if (!on) {
+            for (int k = 0; k < 3; ++k) o[k] = d[k] = 0.f;
+            *tmax = 0.f;
+            return false;
+        }
+        const Ray& ray = *rays[i];
         for (int k = 0; k < 3; ++k) {
             o[k] = ray.o[k];
             d[k] = ray.d[k];
         }
         *tmax = ray.tmax;
-        return on;
+        return true;
     };
 }
 /// rtcIntersect16 / rtcOccluded16 on the lanes `lane` gives (fill_packet); valid receives the mask.

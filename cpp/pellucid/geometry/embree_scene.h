@@ -43,6 +43,7 @@ public:
     /// intersect() for n ≤ kPacketSize rays at once, traced as one packet: Embree tests a BVH node
     /// against all of them in SIMD, which amortises the traversal of incoherent rays too. hits[i]
     /// is filled as intersect() fills it; returns nothing, hits[i].hit() tells.
+    /// A null rays[i] is an inactive lane (no hit).
     void intersect_packet(int n, const Ray* const* rays, RayHit* hits) const;
     /// occluded() for n ≤ kPacketSize rays at once.
     void occluded_packet(int n, const Ray* const* rays, bool* occluded) const;

@@ -149,7 +149,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             bool any = false;
             for (int i = 0; i < W; ++i) {
                 any = any || active[i];
-                ray_ptr[i] = &ray[i];
+                ray_ptr[i] = active[i] ? &ray[i] : nullptr;  // idle lanes hold no ray
             }
             if (!any) break;
             path_services::trace(scene, W, ray_ptr, si, hit);

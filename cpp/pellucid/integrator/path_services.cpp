@@ -89,7 +89,7 @@ void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t s
 }
 
 void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) {
-    if (n == 1) hit[0] = scene.intersect(*rays[0], si[0]);
+    if (n == 1) hit[0] = rays[0] && scene.intersect(*rays[0], si[0]);
     else scene.intersect_packet(n, rays, si, hit);
 }
 

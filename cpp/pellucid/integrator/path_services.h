@@ -69,7 +69,7 @@ namespace path_services {
 /// Start sample `sample` of pixel (x, y): its sampler, its camera ray and its film position.
 void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, RayDifferential* ray,
            float* fx, float* fy);
-/// Trace n ≤ 16 rays (one Embree packet when n > 1).
+/// Trace n ≤ 16 rays (one Embree packet when n > 1); a null rays[i] is an inactive lane (no hit).
 void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit);
 void occluded(const Scene& scene, int n, const Ray* const* rays, bool* blocked);
 /// Radiance from the lights at infinity seen along the escaping direction d, MIS-weighted.

@@ -8,8 +8,8 @@
 namespace pellucid {
 
 struct Ray {
-    Point3f o;
-    Vec3f d;
+    Point3f o{0.f};
+    Vec3f d{0.f};
     float tmax = kInfinity;
 };
 
