@@ -32,6 +32,7 @@ from ._core import Error, FilmState, Scene, cancel
 from .aov import AOVS, render_aov
 from .bsdf import bsdf
 from .image import Comparison, Image
+from .parameters import SceneParameters, parameters
 
 __version__: str = _core.__version__
 __all__ = [
@@ -43,6 +44,7 @@ __all__ = [
     "RenderOutput",
     "SAMPLERS",
     "Scene",
+    "SceneParameters",
     "bsdf",
     "cancel",
     "last_interrupted",
@@ -50,6 +52,7 @@ __all__ = [
     "load_file",
     "load_film_state",
     "materials",
+    "parameters",
     "read_image",
     "read_image_attributes",
     "render",

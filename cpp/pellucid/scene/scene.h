@@ -17,6 +17,7 @@
 #include "pellucid/texture/texture.h"
 #include "pellucid/sampling/distribution_1d.h"
 #include "pellucid/sampling/sampler.h"
+#include "pellucid/scene/scene_desc.h"
 
 namespace pellucid {
 
@@ -119,6 +120,11 @@ public:
     IntegratorSettings integrator;
     std::string source;
     uint64_t triangle_count = 0;
+    /// The description it was built from, which parameter updates edit (scene/scene_update.h; a new
+    /// field that depends on the description is carried over in scene_update.cpp's adopt()).
+    std::shared_ptr<const SceneDesc> desc;
+    uint32_t updates = 0;     ///< parameter updates applied
+    uint32_t bvh_builds = 0;  ///< times `accel` was built: 1 when loaded, +1 per update that moved geometry
 
 private:
     BSDF textured_bsdf(const SurfaceInteraction& si) const;
