@@ -162,7 +162,7 @@ void bind_scene(py::module_& m) {
     m.def("load_dict", [](const py::dict& d, const std::string& base_dir) {
         SceneDesc desc{to_node(d, ""), "<dict>", base_dir};
         py::gil_scoped_release nogil;
-        return std::const_pointer_cast<Scene>(load_desc(desc));
+        return std::const_pointer_cast<Scene>(load_desc(std::move(desc)));
     }, py::arg("d"), py::arg("base_dir") = ".", "Build a scene from a dict with the JSON format's structure.");
 }
 }  // namespace pellucid::bind

@@ -227,6 +227,21 @@ def test_bad_values_raise_the_loaders_error_and_leave_the_scene(key: str, value:
     assert pellucid.parameters(scene)["materials.ball.alpha"] == 0.2
 
 
+def test_a_failed_update_restores_the_description() -> None:
+    scene = pellucid.load_dict(scene_dict())
+    params = pellucid.parameters(scene)
+    values = dict(params)
+    with pytest.raises(pellucid.Error, match=r"camera\.fov: value 500"):
+        params.update({"materials.metal.multiple_scattering": True, "shapes[1].radius": 2.0,
+                       "textures.checker.color0": 0.3, "camera.fov": 500})
+    fresh = pellucid.parameters(scene)
+    assert dict(fresh) == values and "materials.metal.multiple_scattering" not in fresh
+    params.update({"camera.fov": 50})  # and the scene still updates
+    edited = scene_dict()
+    edited["camera"]["fov"] = 50
+    assert np.array_equal(render(scene), render(pellucid.load_dict(edited)))
+
+
 def test_values_are_copies_and_parameters_cannot_be_removed() -> None:
     scene = pellucid.load_dict(scene_dict())
     params = pellucid.parameters(scene)

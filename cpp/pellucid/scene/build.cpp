@@ -490,7 +490,13 @@ private:
 
 std::unique_ptr<Scene> build_scene(const SceneDesc& desc) {
     auto scene = build_scene(desc, GeometryReuse{});
-    scene->desc = std::make_shared<const SceneDesc>(desc);
+    scene->desc = std::make_shared<SceneDesc>(desc);
+    return scene;
+}
+
+std::unique_ptr<Scene> build_scene(SceneDesc&& desc) {
+    auto scene = build_scene(desc, GeometryReuse{});
+    scene->desc = std::make_shared<SceneDesc>(std::move(desc));
     return scene;
 }
 

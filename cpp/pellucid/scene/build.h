@@ -10,8 +10,9 @@
 
 namespace pellucid {
 /// Build an immutable scene. Throws pellucid::Error "<source>: <key path>: <problem>".
-/// The scene keeps a copy of `desc` (Scene::desc) for parameter updates.
+/// The scene keeps a copy of `desc` (Scene::desc) for parameter updates; the second form moves it.
 std::unique_ptr<Scene> build_scene(const SceneDesc& desc);
+std::unique_ptr<Scene> build_scene(SceneDesc&& desc);
 
 /// What a parameter update (scene/scene_update.h) keeps of the scene it rebuilds: every shape whose
 /// key path is not in `changed` takes its geometry (record, mesh) from `prior` instead of from its

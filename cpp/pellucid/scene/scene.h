@@ -122,7 +122,7 @@ public:
     uint64_t triangle_count = 0;
     /// The description it was built from, which parameter updates edit (scene/scene_update.h; a new
     /// field that depends on the description is carried over in scene_update.cpp's adopt()).
-    std::shared_ptr<const SceneDesc> desc;
+    std::shared_ptr<SceneDesc> desc;
     uint32_t updates = 0;     ///< parameter updates applied
     uint32_t bvh_builds = 0;  ///< times `accel` was built: 1 when loaded, +1 per update that moved geometry
 

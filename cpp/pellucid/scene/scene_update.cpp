@@ -129,13 +129,45 @@ std::vector<Step> resolve(const PathIndex& index, const SceneDesc& desc, const s
     return fail(msg);
 }
 
-void set_at(Node& root, const std::vector<Step>& steps, Node value) {
+Node* node_at(Node& root, const std::vector<Step>& steps, size_t count) {
     Node* n = &root;
-    for (size_t i = 0; i + 1 < steps.size(); ++i) n = steps[i].is_index ? &n->item(steps[i].index) : n->find(steps[i].key);
-    const Step& last = steps.back();
-    if (last.is_index) n->item(last.index) = std::move(value);
-    else n->set(last.key, std::move(value));
+    for (size_t i = 0; i < count; ++i) n = steps[i].is_index ? &n->item(steps[i].index) : n->find(steps[i].key);
+    return n;
 }
+
+/// The edits applied to a description, undone in reverse order unless kept.
+class EditLog {
+public:
+    explicit EditLog(Node& root) : m_root(root) {}
+    ~EditLog() {
+        if (m_keep) return;
+        for (auto it = m_undo.rbegin(); it != m_undo.rend(); ++it) *node_at(m_root, it->first, it->first.size()) = std::move(it->second);
+    }
+    EditLog(const EditLog&) = delete;
+    EditLog& operator=(const EditLog&) = delete;
+
+    /// Set the value at `steps`; returns the value it replaces (null for a key that was absent).
+    const Node& set(const std::vector<Step>& steps, Node value) {
+        Node* parent = node_at(m_root, steps, steps.size() - 1);
+        const Step& last = steps.back();
+        Node* target = last.is_index ? &parent->item(last.index) : parent->find(last.key);
+        if (!target) {  // a key left at its default: undone by restoring the whole (small) object
+            m_undo.emplace_back(std::vector<Step>(steps.begin(), steps.end() - 1), *parent);
+            parent->set(last.key, std::move(value));
+            return m_absent;
+        }
+        m_undo.emplace_back(steps, std::move(*target));
+        *target = std::move(value);
+        return m_undo.back().second;
+    }
+    void keep() { m_keep = true; }
+
+private:
+    Node& m_root;
+    std::vector<std::pair<std::vector<Step>, Node>> m_undo;
+    Node m_absent;
+    bool m_keep = false;
+};
 
 bool same(const Node& a, const Node& b) {
     if (a.kind() != b.kind()) return false;
@@ -159,22 +191,6 @@ bool same(const Node& a, const Node& b) {
     return false;
 }
 
-/// Does a shape's geometry read this key? Everything but its material and its emitter.
-bool is_geometry_key(const std::string& key) { return key != "material" && key != "emitter"; }
-
-bool same_geometry(const Node& a, const Node& b) {
-    if (!a.is_object() || !b.is_object()) return same(a, b);
-    std::vector<const Node::Member*> ma, mb;
-    for (const auto& m : a.members())
-        if (is_geometry_key(m.first)) ma.push_back(&m);
-    for (const auto& m : b.members())
-        if (is_geometry_key(m.first)) mb.push_back(&m);
-    if (ma.size() != mb.size()) return false;
-    for (size_t i = 0; i < ma.size(); ++i)
-        if (ma[i]->first != mb[i]->first || !same(ma[i]->second, mb[i]->second)) return false;
-    return true;
-}
-
 /// What fixes the material ids (build.cpp numbers named materials first, then inline and default
 /// materials in shape order): the named materials' names, and per shape the kind of its material.
 std::vector<std::string> material_layout(const Node& root) {
@@ -189,40 +205,27 @@ std::vector<std::string> material_layout(const Node& root) {
     return out;
 }
 
-const Node* shape_member(const Node& shape, const char* key) { return shape.is_object() ? shape.find(key) : nullptr; }
-
 /// Which shapes must be built anew, or `full` when everything must (material ids could move).
 struct Plan {
     bool full = false;
     std::set<std::string> changed;
 };
 
-Plan plan_update(const Node& before, const Node& after) {
-    Plan plan;
-    if (material_layout(before) != material_layout(after)) {
+/// Plan for one edit of the description (at `steps`, replacing `before` with `after`, both applied).
+void plan_edit(Plan& plan, const Node& root, const std::vector<Step>& steps, const Node& before, const Node& after) {
+    if (steps[0].key != "shapes" || same(before, after)) return;
+    if (steps.size() < 3 || !steps[1].is_index) {  // the shape list itself
         plan.full = true;
-        return plan;
+        return;
     }
-    const Node* sb = before.find("shapes");
-    const Node* sa = after.find("shapes");
-    if (!sb && !sa) return plan;
-    if (!sb || !sa || !sa->is_array() || !sb->is_array() || sb->size() != sa->size()) {
-        plan.full = true;
-        return plan;
-    }
-    for (size_t i = 0; i < sa->size(); ++i) {
-        const Node& b = sb->items()[i];
-        const Node& a = sa->items()[i];
-        bool rebuild = !same_geometry(b, a);
-        // An OBJ resolves its usemtl names against the shape's material when it builds its mesh.
-        const Node* type = shape_member(a, "type");
-        const Node* mb = shape_member(b, "material");
-        const Node* ma = shape_member(a, "material");
-        if (type && type->is_string() && type->as_string() == "obj" && mb && ma && mb->is_string() && !same(*mb, *ma))
-            rebuild = true;
-        if (rebuild) plan.changed.insert(path_index("shapes", i));
-    }
-    return plan;
+    const std::string& key = steps[2].key;
+    bool rebuild = key != "material" && key != "emitter";  // every other key of a shape is geometry
+    // An OBJ resolves its usemtl names against the shape's material when it builds its mesh.
+    const Node& shape = root.find("shapes")->items()[steps[1].index];
+    const Node* type = shape.find("type");
+    if (key == "material" && steps.size() == 3 && type && type->is_string() && type->as_string() == "obj")
+        rebuild = true;
+    if (rebuild) plan.changed.insert(path_index("shapes", steps[1].index));
 }
 
 /// Carry the rebuilt parts of `from` into `to`; with `geometry`, the meshes and the BVH too.
@@ -271,27 +274,35 @@ void check_parameter_path(const SceneDesc& desc, const std::string& path, bool a
 UpdateReport update_scene(Scene& scene, const std::vector<std::pair<std::string, Node>>& edits) {
     const auto start = std::chrono::steady_clock::now();
     if (!scene.desc) throw Error(scene.source + ": the scene keeps no description, so it cannot be updated");
-    const SceneDesc& before = *scene.desc;
-    auto after = std::make_shared<SceneDesc>(before);
+    SceneDesc& desc = *scene.desc;
+    std::vector<std::vector<Step>> targets;
     {
-        PathIndex index(before.root);
-        for (const auto& [path, value] : edits) set_at(after->root, resolve(index, before, path, true), value);
+        PathIndex index(desc.root);  // every key path is checked before anything changes
+        for (const auto& [path, value] : edits) targets.push_back(resolve(index, desc, path, true));
     }
-    const Plan plan = plan_update(before.root, after->root);
+    const std::vector<std::string> layout = material_layout(desc.root);
+    EditLog log(desc.root);  // undoes the edits on every exit but success
+    Plan plan;
+    for (size_t i = 0; i < edits.size(); ++i) {
+        const Node& before = log.set(targets[i], edits[i].second);
+        plan_edit(plan, desc.root, targets[i], before, *node_at(desc.root, targets[i], targets[i].size()));
+    }
+    plan.full = plan.full || material_layout(desc.root) != layout;
     GeometryReuse reuse;
     if (!plan.full) {
         reuse.prior = &scene;
         reuse.changed = plan.changed;
     }
-    std::unique_ptr<Scene> built = build_scene(*after, reuse);
+    std::unique_ptr<Scene> built = build_scene(desc, reuse);
     UpdateReport report;
     report.full = plan.full;
     report.geometry = plan.full || !plan.changed.empty();
     report.shapes_rebuilt = plan.full ? built->shapes.size() : plan.changed.size();
+    PELLUCID_CHECK((built->bvh_builds > 0) == report.geometry, "an update builds a BVH exactly when geometry changed");
     adopt(scene, *built, report.geometry);
-    scene.desc = std::move(after);
+    log.keep();
     ++scene.updates;
-    if (report.geometry) ++scene.bvh_builds;
+    scene.bvh_builds += built->bvh_builds;  // the BVH builds the builder ran (Embree commits)
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return report;
 }

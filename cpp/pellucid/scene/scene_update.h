@@ -2,9 +2,10 @@
 // them ("materials.red.reflectance", "lights[0].radiance", "camera.fov"), and updates that change
 // the scene in place, rebuilding only what depends on the changed values (pellucid.parameters).
 //
-// Everything works on the scene description (scene_desc.h) the scene keeps: an update edits a copy
-// of it and runs the scene builder (build.cpp) again on the edited copy, telling it which shapes
-// keep their geometry. Nothing here knows how a material, texture or light stores its values.
+// Everything works on the scene description (scene_desc.h) the scene keeps: an update edits it
+// and runs the scene builder (build.cpp) again on it into a new Scene, telling it which shapes keep
+// their geometry, then moves the rebuilt parts into the scene. Nothing here knows how a material,
+// texture or light stores its values.
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <string>
@@ -42,15 +43,15 @@ struct UpdateReport {
     double seconds = 0.0;
 };
 
-/// Set each key path of `edits` to its value in a copy of the scene's description and rebuild from
-/// that copy, in place: film, sampler, integrator, camera, textures, materials and lights (with the
+/// Set each key path of `edits` to its value in the scene's description and rebuild from it, in
+/// place: film, sampler, integrator, camera, textures, materials and lights (with the
 /// light-selection distribution) always; the geometry only of the shapes whose non-material,
 /// non-emitter keys changed (to_world, center, radius, positions, filename, ...), and then the BVH.
 /// Unchanged meshes are kept (copied into the new BVH when one is built), never read again. When a
 /// change could renumber the materials (a shape's `material` becomes or stops being inline, or is
 /// added), everything is built anew from the description.
 /// Errors are the scene builder's, naming the key path and value; unknown key paths get a
-/// "did you mean". On any error the scene is left unchanged. Not thread-safe with a render of the
-/// same scene.
+/// "did you mean". On any error the edits are undone and the scene is left unchanged. Not
+/// thread-safe with a render of the same scene.
 UpdateReport update_scene(Scene& scene, const std::vector<std::pair<std::string, Node>>& edits);
 }  // namespace pellucid
