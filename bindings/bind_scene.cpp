@@ -95,7 +95,7 @@ py::object from_node(const Node& n) {
 }  // namespace
 
 void bind_scene(py::module_& m) {
-    py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A built, immutable scene.")
+    py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A built scene. Rendering reads it; pellucid.parameters(scene).update() changes it in place.")
         .def_property_readonly("width", [](const Scene& s) { return s.width; })
         .def_property_readonly("height", [](const Scene& s) { return s.height; })
         .def_property_readonly("spp", [](const Scene& s) { return s.spp; })

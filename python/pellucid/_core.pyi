@@ -42,7 +42,7 @@ class BSDFProbe:
         ...
 class Scene:
     """
-    A built, immutable scene.
+    A built scene. Rendering reads it; pellucid.parameters(scene).update() changes it in place.
     """
     def __repr__(self) -> str:
         ...

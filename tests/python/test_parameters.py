@@ -268,3 +268,34 @@ def test_a_file_scene_keeps_its_base_dir(tmp_path) -> None:
     d["shapes"][2]["material"] = "ball"
     assert scene.bvh_builds == 2
     assert np.array_equal(render(scene), render(pellucid.load_dict(copy.deepcopy(d), base_dir=tmp_path)))
+
+
+XML = """<scene version="3.0.0">
+  <default name="alpha" value="0.1"/>
+  <integrator type="path"><integer name="max_depth" value="4"/></integrator>
+  <sensor type="perspective">
+    <float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <sampler type="independent"><integer name="sample_count" value="4"/></sampler>
+    <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="12"/></film>
+  </sensor>
+  <bsdf type="roughconductor" id="metal"><float name="alpha" value="$alpha"/><string name="material" value="Cu"/></bsdf>
+  <shape type="sphere"><ref id="metal"/></shape>
+  <emitter type="constant"><rgb name="radiance" value="0.5, 0.6, 0.7"/></emitter>
+  <emitter type="point"><point name="position" x="2" y="2" z="3"/><rgb name="intensity" value="5"/></emitter>
+</scene>
+"""
+
+
+def test_a_mitsuba_xml_scene_has_the_key_paths_of_its_conversion(tmp_path) -> None:
+    path = tmp_path / "scene.xml"
+    path.write_text(XML)
+    scene = pellucid.load_file(path)
+    params = pellucid.parameters(scene)
+    assert params["materials.metal.alpha"] == 0.1 and params["lights[1].intensity"] == 5.0
+    params.update({"materials.metal.alpha": 0.4})
+    expected = render(pellucid.load_file(path, alpha=0.4))
+    assert not np.array_equal(expected, render(pellucid.load_file(path)))
+    assert np.array_equal(render(scene), expected)
+    with pytest.raises(pellucid.Error, match=r"scene\.xml: materials\.metal\.alpha: expected a number"):
+        params.update({"materials.metal.alpha": "rough"})

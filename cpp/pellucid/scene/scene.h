@@ -1,4 +1,5 @@
-// Scene: the immutable, built scene that rendering reads (const Scene&).
+// Scene: the built scene that rendering reads (const Scene&); only parameter updates
+// (scene/scene_update.h) change it, in place.
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <cstdint>
