@@ -1,9 +1,10 @@
 // The BxDF testing surface: pellucid._core.BSDFProbe, vectorised over (N, 3) float32 arrays in
-// the local shading frame. All loops live in pellucid_core (bxdf/batch.h); this file only checks
+// the local shading frame; and the same for phase functions (pellucid._core.PhaseProbe). All loops live in pellucid_core (bxdf/batch.h); this file only checks
 // shapes, allocates outputs and releases the GIL.
 // SPDX-License-Identifier: Apache-2.0
 #include "bind.h"
 #include "pellucid/material/bsdf_probe.h"
+#include "pellucid/medium/phase_batch.h"
 #include "pellucid/util/error.h"
 
 namespace pellucid::bind {
@@ -76,9 +77,54 @@ py::dict benchmark(const BSDFProbe& p, int64_t n) {
     d["ns_sample"] = t.ns_sample;
     return d;
 }
+// ---- phase functions (medium/phase.h) ------------------------------------------------------------
+struct PhaseProbe {
+    PhaseFunction phase;
+};
+size_t rows2(const FArr& a, const char* name) {
+    if (a.ndim() != 2 || a.shape(1) != 2)
+        throw Error(std::string(name) + ": expected an array of shape (N, 2), got shape " + shape_text(a));
+    return size_t(a.shape(0));
+}
+py::array_t<float> phase_eval(const PhaseProbe& p, const FArr& wo, const FArr& wi) {
+    size_t n = rows_pair(wo, "wo", wi, "wi");
+    py::array_t<float> r = empty(n, false);
+    float* out = r.mutable_data();
+    py::gil_scoped_release nogil;
+    phase_eval_batch(p.phase, wo.data(), wi.data(), n, out);
+    return r;
+}
+py::array_t<float> phase_pdf(const PhaseProbe& p, const FArr& wo, const FArr& wi) {
+    size_t n = rows_pair(wo, "wo", wi, "wi");
+    py::array_t<float> r = empty(n, false);
+    float* out = r.mutable_data();
+    py::gil_scoped_release nogil;
+    phase_pdf_batch(p.phase, wo.data(), wi.data(), n, out);
+    return r;
+}
+py::tuple phase_sample(const PhaseProbe& p, const FArr& wo, const FArr& u) {
+    size_t n = rows3(wo, "wo");
+    if (rows2(u, "u") != n)
+        throw Error("wo and u: expected the same number of rows, got shapes " + shape_text(wo) + " and " + shape_text(u));
+    py::array_t<float> wi = empty(n, true), w = empty(n, false), pd = empty(n, false);
+    py::array_t<bool> delta{py::ssize_t(n)};
+    float *wi_p = wi.mutable_data(), *w_p = w.mutable_data(), *pd_p = pd.mutable_data();
+    bool* d_p = delta.mutable_data();
+    {
+        py::gil_scoped_release nogil;
+        phase_sample_batch(p.phase, wo.data(), u.data(), n, wi_p, w_p, pd_p, d_p);
+    }
+    return py::make_tuple(wi, w, pd, delta);
+}
 }  // namespace
 
 void bind_bxdf(py::module_& m) {
+    py::class_<PhaseProbe>(m, "PhaseProbe", "One phase function (see pellucid.phase).")
+        .def(py::init([](const py::dict& d) { return PhaseProbe{phase_from_desc(to_node(d, ""))}; }), py::arg("desc"))
+        .def("eval", &phase_eval, py::arg("wo"), py::arg("wi"), "p(wo, wi) in 1/sr per row, (N,).")
+        .def("pdf", &phase_pdf, py::arg("wo"), py::arg("wi"), "Solid-angle pdf of wi per row, (N,).")
+        .def("sample", &phase_sample, py::arg("wo"), py::arg("u"), "(wi, weight, pdf, delta) for u = (u1, u2).")
+        .def("__repr__", [](const PhaseProbe& p) { return to_string(p.phase); });
     py::class_<BSDFProbe>(m, "BSDFProbe", "One material's BxDF at a default hit (see pellucid.bsdf).")
         .def(py::init([](const py::dict& d, const std::string& mode) {
                  return BSDFProbe::from_desc(to_node(d, ""), mode);

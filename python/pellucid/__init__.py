@@ -31,6 +31,7 @@ from . import materials, scenes
 from ._core import Error, FilmState, Scene, cancel
 from .aov import AOVS, render_aov
 from .bsdf import bsdf
+from .phase import phase
 from .image import Comparison, Image
 from .parameters import SceneParameters, parameters
 
@@ -53,6 +54,7 @@ __all__ = [
     "load_film_state",
     "materials",
     "parameters",
+    "phase",
     "read_image",
     "read_image_attributes",
     "render",

@@ -6,9 +6,29 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BSDFProbe', 'BXDF_FLAGS', 'Error', 'FilmState', 'RenderProgress', 'Scene', 'cancel', 'check_image_output', 'check_parameter_path', 'load_dict', 'load_file', 'load_film_state', 'mitsuba_import_table', 'read_image', 'read_image_attributes', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'scene_parameters', 'set_log_sink', 'update_scene', 'write_image', 'write_image_with_attributes']
+__all__: list[str] = ['BSDFProbe', 'BXDF_FLAGS', 'Error', 'FilmState', 'PhaseProbe', 'RenderProgress', 'Scene', 'cancel', 'check_image_output', 'check_parameter_path', 'load_dict', 'load_file', 'load_film_state', 'mitsuba_import_table', 'read_image', 'read_image_attributes', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'scene_parameters', 'set_log_sink', 'update_scene', 'write_image', 'write_image_with_attributes']
 class Error(RuntimeError):
     pass
+class PhaseProbe:
+    """
+    One phase function (see pellucid.phase).
+    """
+    def __init__(self, desc: dict) -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def eval(self, wo: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], wi: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        p(wo, wi) in 1/sr per row, (N,).
+        """
+    def pdf(self, wo: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], wi: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        Solid-angle pdf of wi per row, (N,).
+        """
+    def sample(self, wo: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], u: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> tuple:
+        """
+        (wi, weight, pdf, delta) for u = (u1, u2).
+        """
 class BSDFProbe:
     """
     One material's BxDF at a default hit (see pellucid.bsdf).

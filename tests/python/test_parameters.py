@@ -299,3 +299,32 @@ def test_a_mitsuba_xml_scene_has_the_key_paths_of_its_conversion(tmp_path) -> No
     assert np.array_equal(render(scene), expected)
     with pytest.raises(pellucid.Error, match=r"scene\.xml: materials\.metal\.alpha: expected a number"):
         params.update({"materials.metal.alpha": "rough"})
+
+
+def fog_dict() -> Dict[str, Any]:
+    import json
+    import pathlib
+    d = json.loads((pathlib.Path(__file__).resolve().parents[2] / "scenes" / "fog.json").read_text())
+    d["film"] = {"width": 16, "height": 16}
+    d["sampler"] = {"sample_count": 4, "seed": 0}
+    d["media"]["thick"] = {"type": "homogeneous", "sigma_t": 4.0, "albedo": [0.9, 0.5, 0.3]}
+    return d
+
+
+@pytest.mark.parametrize("values,geometry", [
+    ({"media.fog.sigma_t": 1.5, "media.fog.phase.g": -0.3}, False),          # a medium and its phase function
+    ({"shapes[8].interior": "thick", "shapes[6].exterior": "thick"}, False),  # media references of shapes
+    ({"shapes[2].material": "boundary"}, True),                              # a null surface: ids may move
+], ids=["medium", "shape media", "null material"])
+def test_media_parameters_update_as_a_fresh_load(values: Dict[str, Any], geometry: bool) -> None:
+    scene = pellucid.load_dict(fog_dict())
+    params = pellucid.parameters(scene)
+    assert params["media.fog.sigma_t"] == 0.6 and params["media.fog.phase.g"] == 0.7
+    report = params.update(values)
+    assert report["geometry"] is geometry
+    edited = fog_dict()
+    for k, v in values.items():
+        set_path(edited, k, v)
+    expected = render(pellucid.load_dict(edited))
+    assert not np.array_equal(expected, render(pellucid.load_dict(fog_dict())))
+    assert np.array_equal(render(scene), expected)

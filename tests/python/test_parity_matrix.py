@@ -169,13 +169,13 @@ def test_listed_differences_are_rows() -> None:
 
 
 # ---- coverage -------------------------------------------------------------------------------
-KINDS = ("bsdf", "texture", "shape", "emitter", "sensor", "film", "rfilter", "sampler", "integrator")
+KINDS = ("bsdf", "texture", "shape", "emitter", "sensor", "film", "rfilter", "sampler", "integrator", "medium", "phase")
 PROPERTY_TAGS = ("float", "integer", "boolean", "string", "rgb", "spectrum", "point", "vector", "transform")
 
 
 def exercised(xml_text: str) -> Set[Tuple[str, str, Optional[str]]]:
     """(kind, plugin, None) for every plugin in a scene and (kind, plugin, parameter) for every
-    parameter given to it (a property, a named nested texture or a named texture reference)."""
+    parameter given to it (a property, a named nested texture or medium, or a named reference)."""
     out = set()
     for el in ET.fromstring(xml_text).iter():
         if el.tag not in KINDS or "type" not in el.attrib:
@@ -183,7 +183,7 @@ def exercised(xml_text: str) -> Set[Tuple[str, str, Optional[str]]]:
         kind, plugin = el.tag, el.attrib["type"]
         out.add((kind, plugin, None))
         for child in el:
-            if child.tag in PROPERTY_TAGS or (child.tag in ("texture", "ref") and "name" in child.attrib):
+            if child.tag in PROPERTY_TAGS or (child.tag in ("texture", "ref", "medium") and "name" in child.attrib):
                 out.add((kind, plugin, child.attrib["name"]))
     return out
 

@@ -45,7 +45,9 @@ Film::Film(int width, int height, std::optional<Filter> splat)
         // Pixel centres px + ½ within the radius r of a sample in [x, x + 1) satisfy
         // |px − x| <= ⌈r − ½⌉.
         m_margin = std::max(0, int(std::ceil(filter_radius(*m_splat) - 0.5f)));
-        m_splats.resize(size_t(width) * height);
+        m_sums.resize(size_t(width) * height);
+        m_pair_sums.resize(size_t(width) * height);
+        m_sources.resize(size_t(width) * height);
     } else {
         m_pixels.resize(size_t(width) * height);
     }
@@ -63,7 +65,7 @@ void Film::splat(int x, int y, float fx, float fy, const Spectrum& L) {
     eval_filter_taps(*m_splat, float(x - m) + 0.5f - fx, n_taps, wx);
     eval_filter_taps(*m_splat, float(y - m) + 0.5f - fy, n_taps, wy);
     const size_t src_index = size_t(y) * m_width + x;
-    SplatPixel& src = m_splats[src_index];
+    SplatSource& src = m_sources[src_index];
     const bool second = src.n % 2 == 1;
     TapCache& cache = t_taps;
     if (!second) {
@@ -90,30 +92,36 @@ void Film::splat(int x, int y, float fx, float fy, const Spectrum& L) {
     while (j1 > j0 && !(wy[j1 + m] > 0.f) && !(py[j1 + m] > 0.f)) --j1;
     i0 = std::max(i0, -x), i1 = std::min(i1, m_width - 1 - x);
     j0 = std::max(j0, -y), j1 = std::min(j1, m_height - 1 - y);
-    const double l[3] = {L[0], L[1], L[2]};
-    const double lp[3] = {src.last_l[0], src.last_l[1], src.last_l[2]};
+    // (1, L) and (1, L_prev): w·l4 is (w, wL), and its pair difference (Δw, Δ(wL)).
+    const double l4[4] = {1.0, L[0], L[1], L[2]};
+    const double lp4[4] = {1.0, src.last_l[0], src.last_l[1], src.last_l[2]};
     for (int j = j0; j <= j1; ++j) {
         const double wyj = wy[j + m], pyj = py[j + m];
-        SplatPixel* row = &m_splats[size_t(y + j) * m_width + x];
+        const size_t row = size_t(y + j) * m_width + x;
+        SplatSums* sums = &m_sums[row];
         if (!second) {
             for (int i = i0; i <= i1; ++i) {
                 const double w = double(wx[i + m]) * wyj;
-                SplatPixel& t = row[i];
-                t.w += w;
-                for (int k = 0; k < 3; ++k) t.wl[k] += w * l[k];
+                double* t = sums[i].v;
+                for (int k = 0; k < 4; ++k) t[k] += w * l4[k];
             }
             continue;
         }
+        SplatPairSums* pairs = &m_pair_sums[row];
         for (int i = i0; i <= i1; ++i) {
-            const double w = double(wx[i + m]) * wyj, wp = double(px[i + m]) * pyj, dw = w - wp;
-            SplatPixel& t = row[i];
-            t.w += w;
-            t.dw2 += dw * dw;
-            for (int k = 0; k < 3; ++k) {
-                t.wl[k] += w * l[k];
-                const double dl = w * l[k] - wp * lp[k];
-                t.dl2[k] += dl * dl;
-                t.dldw[k] += dl * dw;
+            const double w = double(wx[i + m]) * wyj, wp = double(px[i + m]) * pyj;
+            double* t = sums[i].v;
+            double d[4];
+            for (int k = 0; k < 4; ++k) {
+                t[k] += w * l4[k];
+                d[k] = w * l4[k] - wp * lp4[k];
+            }
+            const double dw = d[0];
+            double* sq = pairs[i].sq;
+            double* cr = pairs[i].cr;
+            for (int k = 0; k < 4; ++k) {
+                sq[k] += d[k] * d[k];
+                cr[k] += d[k] * dw;
             }
         }
     }
@@ -133,16 +141,19 @@ void Film::pixel_stats(size_t i, double mean[3], double var[3]) const {
         }
         return;
     }
-    const SplatPixel& p = m_splats[i];
-    if (!(p.w > 0.0)) {
+    const double* sum = m_sums[i].v;
+    const SplatPairSums& q = m_pair_sums[i];
+    const uint64_t n = m_sources[i].n;
+    const double w = sum[0];
+    if (!(w > 0.0)) {
         for (int k = 0; k < 3; ++k) mean[k] = var[k] = 0.0;
         return;
     }
     // ⌊n/2⌋ pairs of each stratum estimate 2⌊n/2⌋ Var_q; its share of Var(Σ z) is n Var_q (film.h).
-    const double scale = p.n > 1 ? double(p.n) / (2.0 * double(p.n / 2)) / (p.w * p.w) : 0.0;
+    const double scale = n > 1 ? double(n) / (2.0 * double(n / 2)) / (w * w) : 0.0;
     for (int k = 0; k < 3; ++k) {
-        const double r = p.wl[k] / p.w;
-        const double s = p.dl2[k] - 2.0 * r * p.dldw[k] + r * r * p.dw2;  // Σ (Δ(wL) − R Δw)²
+        const double r = sum[k + 1] / w;
+        const double s = q.sq[k + 1] - 2.0 * r * q.cr[k + 1] + r * r * q.sq[0];  // Σ (Δ(wL) − R Δw)²
         mean[k] = r;
         var[k] = std::max(0.0, s) * scale;
     }
@@ -172,7 +183,7 @@ double Film::mean_relative_variance() const {
     double sum = 0.0, m[3], v[3];
     const size_t n = size_t(m_width) * m_height;
     for (size_t i = 0; i < n; ++i) {
-        if ((splats() ? m_splats[i].n : m_pixels[i].n) < 2) return 1e30;
+        if ((splats() ? m_sources[i].n : m_pixels[i].n) < 2) return 1e30;
         pixel_stats(i, m, v);
         double lm = 0.2126 * m[0] + 0.7152 * m[1] + 0.0722 * m[2];
         double lv = 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
@@ -290,8 +301,13 @@ void save_film_state(const std::string& path, const FilmState& st) {
     w.put_string(st.sampler);
     w.put_string(st.integrator);
     if (f.splats()) {
-        for (const Film::SplatPixel& p : f.m_splats) {
-            w.put(p.wl), w.put(p.w), w.put(p.dl2), w.put(p.dldw), w.put(p.dw2), w.put(p.n);
+        for (size_t i = 0; i < f.m_sums.size(); ++i) {
+            const double* v = f.m_sums[i].v;
+            const Film::SplatPairSums& q = f.m_pair_sums[i];
+            const Film::SplatSource& p = f.m_sources[i];
+            const double wl[3] = {v[1], v[2], v[3]}, dl2[3] = {q.sq[1], q.sq[2], q.sq[3]},
+                         dldw[3] = {q.cr[1], q.cr[2], q.cr[3]};
+            w.put(wl), w.put(v[0]), w.put(dl2), w.put(dldw), w.put(q.sq[0]), w.put(p.n);
             w.put(p.last_fx), w.put(p.last_fy), w.put(p.last_l);
         }
     } else {
@@ -350,10 +366,15 @@ std::shared_ptr<FilmState> load_film_state(const std::string& path) {
     r.need(size_t(width) * height * record + 8, "the pixels");
     Film& f = st->film;
     if (splat) {
-        for (Film::SplatPixel& p : f.m_splats) {
-            r.get(p.wl, "pixels"), p.w = r.get<double>("pixels"), r.get(p.dl2, "pixels"), r.get(p.dldw, "pixels");
-            p.dw2 = r.get<double>("pixels"), p.n = r.get<uint64_t>("pixels");
+        for (size_t i = 0; i < f.m_sums.size(); ++i) {
+            double* v = f.m_sums[i].v;
+            Film::SplatPairSums& q = f.m_pair_sums[i];
+            Film::SplatSource& p = f.m_sources[i];
+            double wl[3], dl2[3], dldw[3];
+            r.get(wl, "pixels"), v[0] = r.get<double>("pixels"), r.get(dl2, "pixels"), r.get(dldw, "pixels");
+            q.sq[0] = q.cr[0] = r.get<double>("pixels"), p.n = r.get<uint64_t>("pixels");
             p.last_fx = r.get<float>("pixels"), p.last_fy = r.get<float>("pixels"), r.get(p.last_l, "pixels");
+            for (int k = 0; k < 3; ++k) v[k + 1] = wl[k], q.sq[k + 1] = dl2[k], q.cr[k + 1] = dldw[k];
         }
     } else {
         for (Film::Pixel& p : f.m_pixels) r.get(p.mean, "pixels"), r.get(p.m2, "pixels"), p.n = r.get<uint64_t>("pixels");

@@ -78,7 +78,7 @@ public:
     /// Camera samples taken inside pixel (x, y).
     uint64_t samples(int x, int y) const {
         size_t i = size_t(y) * m_width + x;
-        return splats() ? m_splats[i].n : m_pixels[i].n;
+        return splats() ? m_sources[i].n : m_pixels[i].n;
     }
     /// Mean over pixels of the relative variance of each pixel's estimate, Var/(mean²+1e-4), on
     /// luminance; the quantity target_rel_error drives to e². The luminance variance is the weighted
@@ -97,15 +97,17 @@ private:
         double m2[3] = {0, 0, 0};
         uint64_t n = 0;
     };
-    struct SplatPixel {
-        // As a target: sums over the samples splatted here.
-        double wl[3] = {0, 0, 0};    ///< Σ w L
-        double w = 0;                ///< Σ w
-        // Sums over the pairs of samples within each source pixel (Δ = second − first).
-        double dl2[3] = {0, 0, 0};   ///< Σ Δ(wL)²
-        double dldw[3] = {0, 0, 0};  ///< Σ Δ(wL)·Δw
-        double dw2 = 0;              ///< Σ Δw²
-        // As a source: the samples taken in this pixel and the last of them.
+    // A splatting film keeps three arrays, so that the first sample of a pair touches only the
+    // 32 bytes of SplatSums in each target pixel, and both are laid out as 4-vectors (Σw first,
+    // then the three channels) that the compiler updates with packed arithmetic.
+    struct SplatSums {             // as a target: sums over the samples splatted here
+        double v[4] = {0, 0, 0, 0};  ///< Σ w, Σ w L (channels 0..2)
+    };
+    struct SplatPairSums {          // sums over the pairs of samples within each source pixel
+        double sq[4] = {0, 0, 0, 0};  ///< Σ Δw², Σ Δ(wL)² (Δ = second − first)
+        double cr[4] = {0, 0, 0, 0};  ///< Σ Δw·Δw (unused: sq[0]), Σ Δ(wL)·Δw
+    };
+    struct SplatSource {            // as a source: the samples taken in this pixel and the last of them
         uint64_t n = 0;
         float last_fx = 0, last_fy = 0, last_l[3] = {0, 0, 0};
     };
@@ -117,7 +119,9 @@ private:
     int m_margin = 0;
     uint64_t m_id = 0;  ///< unique per splatting Film: the key of splat()'s per-thread tap cache
     std::vector<Pixel> m_pixels;      // filter sampling
-    std::vector<SplatPixel> m_splats; // splatting
+    std::vector<SplatSums> m_sums;          // splatting
+    std::vector<SplatPairSums> m_pair_sums;
+    std::vector<SplatSource> m_sources;
 };
 
 /// A film and what a render needs to continue it (`--resume`, `render(..., resume=...)`): the

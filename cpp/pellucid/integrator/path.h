@@ -6,7 +6,7 @@
 // | max_depth | int    | -1      | longest path in segments (1 = emitters seen directly, 2 = direct light); -1 = unbounded |
 // | rr_depth  | int    | 5       | Russian roulette from this depth on                                  |
 // | strategy  | string | "mis"   | "mis": light + BSDF sampling, power heuristic; "nee": light sampling (BSDF sampling only through delta lobes); "bsdf": BSDF sampling only; "direct": one bounce (mis, max_depth 2) |
-// | light_selection | string | "power" | NEE picks a light with probability ∝ its power, or "uniform" |
+// | light_selection | string | "balanced" | how NEE picks a light: "balanced" (each light at infinity as often as all finite lights together; finite lights ∝ power), "power" or "uniform" (light/light.h) |
 // JSON: "integrator": {"type": "path", "max_depth": 8}
 #pragma once
 #include "pellucid/integrator/integrator.h"

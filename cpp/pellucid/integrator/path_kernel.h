@@ -14,6 +14,14 @@
 // other lanes go through BSDF one at a time (path_services.h), as do light sampling, emission and
 // the samplers, until those have packet forms too. Every lane keeps its own Sampler and the
 // estimates reach the film in (pixel, sample) order, so images do not depend on the thread count.
+//
+// Media (medium/medium.h, docs/media.md), when the scene has any: each lane tracks the medium its
+// ray runs through. Before a hit is shaded, distance sampling over the segment either finds a
+// collision, which becomes a vertex scattered by the medium's phase function in place of a BSDF
+// (with NEE and MIS as at a surface), or passes to the surface with the throughput reweighted. A
+// `null` boundary is crossed without a vertex, changing only the medium. Leaving a surface that
+// bounds media enters its interior or exterior by the side, and shadow rays carry the
+// transmittance of the media and null boundaries they cross (path_services::shadow_transmittance).
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -59,6 +67,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     const Ray* shadow_ptr[W];
     int64_t path_of[W];
     int shadow_lane[W];
+    // Media (PathSetup::media): the medium each lane's ray runs through, the stream of its medium
+    // events, and how many null boundaries its path has crossed.
+    int32_t medium[W];
+    PCG32 medium_rng[W];
+    int crossings[W];
     bool hit[W], active[W], blocked[W];
     struct alignas(64) Arrays {
         float Lr[W], Lg[W], Lb[W], br[W], bg[W], bb[W];
@@ -73,6 +86,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         float q[kPacketParams][W];  // the packet form's parameters (PathSetup::packet_params)
         float kind[W];              // PacketKind of the lane's material
         bool fast[W], goes_on[W], nee[W];
+        bool in_medium[W];   // this vertex is a collision in a medium (the phase function scatters)
+        bool crossing[W];    // the ray crossed a null boundary: the path goes on unchanged
         float u[7][W];
         // NEE.
         bool nee_ok[W], delta[W];
@@ -121,6 +136,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             a.depth[i] = 1.f;
             a.ppx[i] = a.ppy[i] = a.ppz[i] = a.pnx[i] = a.pny[i] = a.pnz[i] = 0.f;
             a.specular[i] = true;  // the camera ray counts as a delta bounce
+            if (ps.media) {
+                medium[i] = ps.camera_medium;
+                medium_rng[i] = path_services::medium_rng(ps, x, y, job.s0 + int(k % n_samples), job.seed);
+                crossings[i] = 0;
+            }
             active[i] = true;
         };
         for (int i = 0; i < W; ++i) start(i);
@@ -136,10 +156,54 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             // One lane at a time: what has no packet form yet.
             for (int i = 0; i < W; ++i) {
                 a.fast[i] = a.goes_on[i] = a.nee[i] = a.nee_ok[i] = a.s_ok[i] = a.delta[i] = false;
+                a.in_medium[i] = a.crossing[i] = false;
                 a.Ler[i] = a.Leg[i] = a.Leb[i] = a.le_pdf[i] = 0.f;
                 a.kind[i] = 0.f;
                 if (!active[i]) continue;
                 const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]), Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
+                if (ps.media) {
+                    // The segment up to the surface (or to infinity) runs through the lane's medium:
+                    // distance sampling either finds a collision there or passes, reweighting the
+                    // throughput either way (medium/medium.h).
+                    if (medium[i] >= 0) {
+                        Ray seg = ray[i];
+                        seg.tmax = hit[i] ? si[i].t : kInfinity;
+                        const Spectrum beta(a.br[i], a.bg[i], a.bb[i]);
+                        const MediumEvent e = path_services::medium_sample(ps, medium[i], seg, beta, medium_rng[i]);
+                        a.Lr[i] += beta.r * e.emitted.r, a.Lg[i] += beta.g * e.emitted.g, a.Lb[i] += beta.b * e.emitted.b;
+                        a.br[i] *= e.weight.r, a.bg[i] *= e.weight.g, a.bb[i] *= e.weight.b;
+                        if (e.scattered) {
+                            a.in_medium[i] = true;
+                            path_services::medium_vertex(ray[i].o + ray[i].d * e.t, ray[i].d, &si[i]);
+                            const int depth = int(a.depth[i]);
+                            if (ps.max_depth >= 0 && depth >= ps.max_depth) continue;
+                            if (a.br[i] == 0.f && a.bg[i] == 0.f && a.bb[i] == 0.f) continue;
+                            const SurfaceInteraction& h = si[i];
+                            a.px[i] = h.p.x, a.py[i] = h.p.y, a.pz[i] = h.p.z;
+                            a.pex[i] = a.pey[i] = a.pez[i] = 0.f;
+                            a.ngx[i] = a.ngy[i] = a.ngz[i] = 0.f;
+                            a.wox[i] = h.wo.x, a.woy[i] = h.wo.y, a.woz[i] = h.wo.z;
+                            a.sx[i] = h.shading.s.x, a.sy[i] = h.shading.s.y, a.sz[i] = h.shading.s.z;
+                            a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
+                            a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
+                            a.goes_on[i] = true;
+                            a.nee[i] = ps.use_nee;
+                            VertexRandoms r;
+                            path_services::randoms(sampler[i], depth, a.nee[i], depth >= ps.rr_depth, &r);
+                            for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
+                            continue;
+                        }
+                    }
+                    // A null boundary: the path goes on in the same direction, in the medium on
+                    // its other side (bounded, so rays cannot cross forever).
+                    if (hit[i] && path_services::is_null_surface(ps, si[i])) {
+                        if (++crossings[i] > 1024) continue;
+                        medium[i] = path_services::medium_after(ps, si[i], ray[i].d, medium[i]);
+                        ray[i] = RayDifferential(si[i].spawn_ray(ray[i].d));
+                        a.crossing[i] = true;
+                        continue;
+                    }
+                }
                 if (!hit[i]) {  // escaped: the lights at infinity
                     const Spectrum Le = path_services::escaped(ps, prev, ray[i].d, a.specular[i], a.prev_pdf[i]);
                     a.Ler[i] = Le.r;
@@ -219,6 +283,23 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     }
                 }
                 if (a.fast[i]) continue;
+                if (a.in_medium[i]) {  // the phase function in place of the BSDF
+                    if (a.nee_ok[i]) {
+                        const Spectrum f =
+                            path_services::phase_eval(ps, medium[i], h.wo, Vec3f(a.lwx[i], a.lwy[i], a.lwz[i]), &a.gpdf[i]);
+                        a.gfr[i] = f.r, a.gfg[i] = f.g, a.gfb[i] = f.b;
+                    }
+                    BxDFSample s;
+                    a.s_ok[i] = path_services::phase_sample(ps, medium[i], h.wo, Vec2f(a.u[4][i], a.u[5][i]), &s);
+                    if (a.s_ok[i]) {
+                        a.swx[i] = s.wi.x, a.swy[i] = s.wi.y, a.swz[i] = s.wi.z;
+                        a.swr[i] = s.weight.r, a.swg[i] = s.weight.g, a.swb[i] = s.weight.b;
+                        a.spdf[i] = s.pdf;
+                        a.seta[i] = s.eta;
+                        a.slobe[i] = int32_t(s.lobe);
+                    }
+                    continue;
+                }
                 if (a.nee_ok[i]) {
                     const Spectrum f = path_services::bsdf_eval(bsdf(i), h.wo, Vec3f(a.lwx[i], a.lwy[i], a.lwz[i]), &a.gpdf[i]);
                     a.gfr[i] = f.r, a.gfg[i] = f.g, a.gfb[i] = f.b;
@@ -247,7 +328,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                                              bsdf_hit_weight<F>(ps.use_mis, ps.use_nee, LM(a.specular), LD(a.prev_pdf), le_pdf));
                     L += beta0 * Le * lane::select(on, w, F(0.f));
                 }
-                const M goes_on = LM(a.goes_on) && on && is_hit;
+                const M goes_on = LM(a.goes_on) && on && (is_hit || LM(a.in_medium));
                 const M fast = LM(a.fast) && goes_on;
                 const V3<F> p(LD(a.px), LD(a.py), LD(a.pz)), ng(LD(a.ngx), LD(a.ngy), LD(a.ngz));
                 const V3<F> wo_w(LD(a.wox), LD(a.woy), LD(a.woz));
@@ -325,15 +406,17 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const F q = lane::min(max_component(beta) * eta_scale, F(0.95f));
                 const M survives = !rr || LD(a.u[6]) < q;
                 beta = lane::select(rr && survives, beta / lane::select(rr, q, F(1.f)), beta);
-                SM(a.alive, sampled && survives && !is_black(beta));
+                SM(a.alive, (sampled && survives && !is_black(beta)) || (LM(a.crossing) && on && !is_black(beta0)));
                 SM(a.sampled, sampled);
                 ST(a.Lr, L.r), ST(a.Lg, L.g), ST(a.Lb, L.b);
                 ST(a.br, beta.r), ST(a.bg, beta.g), ST(a.bb, beta.b);
                 ST(a.eta_scale, eta_scale);
                 ST(a.prev_pdf, lane::select(sampled, pdf, LD(a.prev_pdf)));
                 SM(a.specular, lane::select(sampled, specular, LM(a.specular)));
-                ST(a.ppx, p.x), ST(a.ppy, p.y), ST(a.ppz, p.z);
-                ST(a.pnx, ng.x), ST(a.pny, ng.y), ST(a.pnz, ng.z);
+                ST(a.ppx, lane::select(sampled, p.x, LD(a.ppx))), ST(a.ppy, lane::select(sampled, p.y, LD(a.ppy)));
+                ST(a.ppz, lane::select(sampled, p.z, LD(a.ppz)));
+                ST(a.pnx, lane::select(sampled, ng.x, LD(a.pnx))), ST(a.pny, lane::select(sampled, ng.y, LD(a.pny)));
+                ST(a.pnz, lane::select(sampled, ng.z, LD(a.pnz)));
                 ST(a.depth, lane::select(sampled, depth + F(1.f), depth));
                 // The next rays leave from the hit, offset off its surface (SurfaceInteraction::
                 // spawn_ray); a delta bounce that carries ray differentials for textures goes through
@@ -345,8 +428,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 SM(spec_b, specular), SM(trans_b, transmission), ST(eta_b, eta);
                 ST(ob[0], o.x), ST(ob[1], o.y), ST(ob[2], o.z);
                 for (int i = 0; i < W; ++i) {
-                    if (!a.alive[i]) continue;
+                    if (!a.alive[i] || a.crossing[i]) continue;
                     const Vec3f wi(a.nwx[i], a.nwy[i], a.nwz[i]);
+                    if (ps.media && !a.in_medium[i]) medium[i] = path_services::medium_after(ps, si[i], wi, medium[i]);
                     if (scene.has_textures && spec_b[i] && ray[i].has_differentials)
                         ray[i] = path_services::next_ray(ps, si[i], ray[i], wi, true, trans_b[i], eta_b[i]);
                     else
@@ -361,7 +445,18 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     shadow_lane[n_shadow] = i;
                     shadow_ptr[n_shadow++] = &shadow[i];
                 }
-            if (n_shadow > 0) {
+            if (n_shadow > 0 && ps.media) {
+                // Through media and null boundaries: each shadow ray carries a transmittance.
+                for (int j = 0; j < n_shadow; ++j) {
+                    const int i = shadow_lane[j];
+                    const int32_t m = a.in_medium[i] ? medium[i] : path_services::medium_after(ps, si[i], shadow[i].d, medium[i]);
+                    const Spectrum tr = path_services::shadow_transmittance(ps, m, shadow[i], Spectrum(a.br[i], a.bg[i], a.bb[i]),
+                                                                            medium_rng[i]);
+                    a.Lr[i] += a.Ldr[i] * tr.r;
+                    a.Lg[i] += a.Ldg[i] * tr.g;
+                    a.Lb[i] += a.Ldb[i] * tr.b;
+                }
+            } else if (n_shadow > 0) {
                 path_services::occluded(scene, n_shadow, shadow_ptr, blocked);
                 for (int j = 0; j < n_shadow; ++j) {
                     const int i = shadow_lane[j];

@@ -42,6 +42,8 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     std::vector<float> pmf(scene.lights.size());
     for (size_t i = 0; i < pmf.size(); ++i) pmf[i] = scene.light_pmf(i);
     ps.emitters = make_emitter_table(scene.lights, pmf);
+    ps.media = scene.has_media();
+    ps.camera_medium = scene.camera_medium;
     return ps;
 }
 
@@ -153,6 +155,79 @@ RayDifferential next_ray(const PathSetup& ps, const SurfaceInteraction& si, cons
     if (scene.has_textures && specular && in.has_differentials)
         return scene.specular_differentials(si, in, si.spawn_ray(wi), transmission, eta);
     return RayDifferential(si.spawn_ray(wi));
+}
+
+PCG32 medium_rng(const PathSetup& ps, int x, int y, int sample, uint64_t seed) {
+    // The sampler's streams use the seed as given; this one mixes in a constant so the two differ.
+    return PCG32::for_sample(uint64_t(y) * uint64_t(ps.scene->width) + uint64_t(x), uint64_t(sample),
+                             seed ^ 0x6d656469756d7321ULL);
+}
+
+bool is_null_surface(const PathSetup& ps, const SurfaceInteraction& si) {
+    return ps.scene->shapes[si.shape_id].null_surface;
+}
+
+int32_t medium_after(const PathSetup& ps, const SurfaceInteraction& si, const Vec3f& w, int32_t current) {
+    const ShapeRecord& sh = ps.scene->shapes[si.shape_id];
+    if (sh.interior_medium < 0 && sh.exterior_medium < 0) return current;  // not a medium boundary
+    return dot(w, si.ng) < 0.f ? sh.interior_medium : sh.exterior_medium;
+}
+
+MediumEvent medium_sample(const PathSetup& ps, int32_t m, const Ray& ray, const Spectrum& beta, PCG32& rng) {
+    auto u = [&] { return rng.next_float(); };
+    return sample_distance(ps.scene->media[size_t(m)], ray, beta, u);
+}
+
+void medium_vertex(const Point3f& p, const Vec3f& d, SurfaceInteraction* out) {
+    *out = SurfaceInteraction{};
+    out->p = p;
+    out->wo = -normalize(d);
+    out->ng = Normal3f(0.f);
+    out->shading = Frame::from_z(out->wo);
+    out->light_id = -1;
+}
+
+Spectrum phase_eval(const PathSetup& ps, int32_t m, const Vec3f& wo, const Vec3f& wi, float* pdf_out) {
+    const PhaseFunction& ph = phase_of(ps.scene->media[size_t(m)]);
+    const float p = eval(ph, wo, wi);
+    *pdf_out = pdf(ph, wo, wi);
+    return Spectrum(p);
+}
+
+bool phase_sample(const PathSetup& ps, int32_t m, const Vec3f& wo, Vec2f u, BxDFSample* out) {
+    const auto s = sample(phase_of(ps.scene->media[size_t(m)]), wo, u);
+    if (!s || !(s->pdf > 0.f)) return false;
+    out->wi = s->wi;
+    out->weight = Spectrum(s->weight);
+    out->pdf = s->pdf;
+    out->eta = 1.f;
+    out->lobe = s->delta ? BxDFFlags::SpecularReflection : BxDFFlags::DiffuseReflection;
+    return true;
+}
+
+Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow, const Spectrum& beta, PCG32& rng) {
+    const Scene& scene = *ps.scene;
+    auto u = [&] { return rng.next_float(); };
+    Spectrum tr(1.f);
+    Ray r = shadow;
+    // The segment's far end, which every continuation after a null boundary aims at.
+    const bool finite = std::isfinite(shadow.tmax);
+    const Point3f end = finite ? shadow.o + shadow.d * shadow.tmax : Point3f(0.f);
+    for (int crossings = 0; crossings < 256; ++crossings) {
+        SurfaceInteraction si;
+        const bool hit = scene.intersect(r, si);
+        if (hit && !scene.shapes[si.shape_id].null_surface) return Spectrum(0.f);
+        if (m >= 0) {
+            Ray seg = r;
+            seg.tmax = hit ? si.t : r.tmax;
+            tr *= transmittance(scene.media[size_t(m)], seg, beta, u);
+            if (tr.is_black()) return tr;
+        }
+        if (!hit) return tr;
+        m = medium_after(ps, si, r.d, m);
+        r = finite ? si.spawn_ray_to(end, Normal3f(0.f), Vec3f(0.f)) : si.spawn_ray(r.d);
+    }
+    return Spectrum(0.f);  // a path through 256 null boundaries: treated as blocked
 }
 
 bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L) {

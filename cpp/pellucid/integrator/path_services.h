@@ -14,6 +14,8 @@
 #include "pellucid/integrator/render_loop.h"
 #include "pellucid/light/area.h"
 #include "pellucid/light/light_types.h"
+#include "pellucid/medium/medium.h"
+#include "pellucid/sampling/rng.h"
 #include "pellucid/sampling/sampler.h"
 
 namespace pellucid {
@@ -41,6 +43,10 @@ struct PathSetup {
     /// NEE's triangles when every light is an area light on a mesh (light/area.h), else empty:
     /// then lights are sampled one lane at a time (path_services::sample_light).
     EmitterTable emitters;
+    /// The scene has media or null boundaries (medium/medium.h): paths track the medium they are
+    /// in, which starts as camera_medium (-1: none).
+    bool media = false;
+    int32_t camera_medium = -1;
 };
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type);
 
@@ -79,6 +85,28 @@ bool sample_light(const PathSetup& ps, const SurfaceInteraction& si, float u_sel
 RayDifferential next_ray(const PathSetup& ps, const SurfaceInteraction& si, const RayDifferential& in, const Vec3f& wi,
                          bool specular, bool transmission, float eta);
 /// Hand one finished estimate to the film; false if it was rejected.
+// ---- media (medium/medium.h, docs/media.md) ----------------------------------------------------
+/// The random numbers of one path's medium events: a stream of its own per (pixel, sample, seed),
+/// apart from the sampler's dimensions, since tracking draws an unbounded number of them.
+PCG32 medium_rng(const PathSetup& ps, int x, int y, int sample, uint64_t seed);
+/// Whether si lies on a `null` boundary, which a path crosses unchanged.
+bool is_null_surface(const PathSetup& ps, const SurfaceInteraction& si);
+/// The medium a path is in after leaving si in direction w: the shape's interior (w against the
+/// geometric normal) or exterior where the shape bounds media, else `current`.
+int32_t medium_after(const PathSetup& ps, const SurfaceInteraction& si, const Vec3f& w, int32_t current);
+/// Distance sampling over the segment [0, ray.tmax) of medium m (sample_distance).
+MediumEvent medium_sample(const PathSetup& ps, int32_t m, const Ray& ray, const Spectrum& beta, PCG32& rng);
+/// The vertex of a collision at p, reached along direction d: an interaction with no surface
+/// (zero normal and error bound, so rays leave from p itself), wo = −d.
+void medium_vertex(const Point3f& p, const Vec3f& d, SurfaceInteraction* out);
+/// The phase function of medium m in place of a BSDF: its value (= its density, no cosine) and
+/// a sampled direction (lobe DiffuseReflection, or SpecularReflection for the delta of |g| = 1).
+Spectrum phase_eval(const PathSetup& ps, int32_t m, const Vec3f& wo, const Vec3f& wi, float* pdf);
+bool phase_sample(const PathSetup& ps, int32_t m, const Vec3f& wo, Vec2f u, BxDFSample* out);
+/// Transmittance of a shadow ray that starts in medium m (-1: none): through `null` boundaries,
+/// where the medium changes, and 0 at any other surface.
+Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow, const Spectrum& beta, PCG32& rng);
+
 bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L);
 }  // namespace path_services
 }  // namespace pellucid

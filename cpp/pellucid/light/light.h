@@ -1,8 +1,12 @@
 // The closed list of light types, and the queries that treat the lights at infinity alike.
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <algorithm>
+#include <cmath>
+#include <string>
 #include <type_traits>
 #include <variant>
+#include <vector>
 
 #include "pellucid/light/area.h"
 #include "pellucid/light/constant.h"
@@ -43,5 +47,46 @@ inline float light_power(const Light& l, float scene_radius) {
         if constexpr (is_infinite_area_light_v<T>) return x.power(scene_radius);
         else return x.power();
     }, l);
+}
+
+/// Whether a light is at infinity (an environment, a constant or a directional light).
+inline bool is_at_infinity(const Light& l) {
+    return std::visit([](const auto& x) {
+        using T = std::decay_t<decltype(x)>;
+        return is_infinite_area_light_v<T> || std::is_same_v<T, DirectionalLight>;
+    }, l);
+}
+
+/// Unnormalised probabilities with which next-event estimation picks each light.
+///  - "uniform": every light alike (Mitsuba 3's emitter sampling).
+///  - "power": in proportion to light_power. A light at infinity counts the power crossing a disk
+///    of the scene's radius, which a large ground plane makes large, so a small light beside an
+///    environment is then rarely picked.
+///  - "balanced" (the default): each light at infinity is picked as often as all finite lights
+///    together, and the finite lights share their part in proportion to their power. This is the
+///    top level of pbrt-v4's BVH light sampler (Pharr et al., pbrt-v4 §12.6.3), which gives the
+///    infinite lights the probability n_inf / (n_inf + 1), without its spatial bounds below.
+/// Under "power" and "balanced", a power that is not finite and positive gives weight 0.
+inline std::vector<float> light_selection_weights(const std::vector<Light>& lights, const std::string& mode,
+                                                  float scene_radius) {
+    std::vector<float> w(lights.size(), 0.f);
+    auto valid = [](float x) { return std::isfinite(x) && x > 0.f ? x : 0.f; };
+    if (mode == "uniform") {
+        std::fill(w.begin(), w.end(), 1.f);
+        return w;
+    }
+    if (mode == "power") {
+        for (size_t i = 0; i < lights.size(); ++i) w[i] = valid(light_power(lights[i], scene_radius));
+        return w;
+    }
+    double finite_power = 0.0;
+    for (size_t i = 0; i < lights.size(); ++i)
+        if (!is_at_infinity(lights[i])) finite_power += valid(light_power(lights[i], scene_radius));
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const float p = valid(light_power(lights[i], scene_radius));
+        if (p == 0.f) continue;
+        w[i] = is_at_infinity(lights[i]) ? 1.f : float(double(p) / finite_power);
+    }
+    return w;
 }
 }  // namespace pellucid

@@ -4,11 +4,13 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <type_traits>
 
 #include "pellucid/geometry/mesh_io.h"
 #include "pellucid/image/image_io.h"
 #include "pellucid/material/builders.h"
+#include "pellucid/medium/medium_builder.h"
 #include "pellucid/scene/registry.h"
 #include "pellucid/scene/texture_builder.h"
 #include "pellucid/util/error.h"
@@ -34,6 +36,7 @@ public:
         build_film(root.get_node("film"));
         build_sampler(root.get_node("sampler"));
         build_integrator(root.get_node("integrator"));
+        if (const Node* media = root.get_node("media")) build_media(*media, m_ctx, m_scene.media);  // docs/media.md
         build_camera(root.get_node("camera"));
         if (const Node* t = root.get_node("textures")) m_textures.build_named(*t, "textures");
         build_materials(root.get_node("materials"));
@@ -115,9 +118,10 @@ private:
         s.strategy = p.get_string("strategy", "mis");
         if (s.strategy != "mis" && s.strategy != "nee" && s.strategy != "bsdf" && s.strategy != "direct")
             p.fail("strategy", "unknown strategy '" + s.strategy + "' (known: bsdf, direct, mis, nee)");
-        s.light_selection = p.get_string("light_selection", "power");
-        if (s.light_selection != "power" && s.light_selection != "uniform")
-            p.fail("light_selection", "unknown light selection '" + s.light_selection + "' (known: power, uniform)");
+        s.light_selection = p.get_string("light_selection", "balanced");
+        if (s.light_selection != "balanced" && s.light_selection != "power" && s.light_selection != "uniform")
+            p.fail("light_selection",
+                   "unknown light selection '" + s.light_selection + "' (known: balanced, power, uniform)");
         p.check_unqueried();
     }
 
@@ -139,6 +143,7 @@ private:
                                        " is beyond the coordinate limit of 1e18 scene units");
             if (axis != "x" && axis != "y" && axis != "smaller" && axis != "larger")
                 p.fail("fov_axis", "unknown axis '" + axis + "' (known: x, y, smaller, larger)");
+            m_scene.camera_medium = resolve_medium(p, "medium", m_scene.media);
             p.check_unqueried();
         }
         float w = float(m_scene.width), h = float(m_scene.height);
@@ -163,12 +168,27 @@ private:
     void build_materials(const Node* n) {
         if (!n) return;
         if (!n->is_object()) fail("materials", std::string("expected an object of named materials, got a ") + n->kind_name());
-        for (const auto& [name, m] : n->members()) m_materials[name] = add_material(m, path_join("materials", name), name);
+        for (const auto& [name, m] : n->members()) {
+            if (is_null_material(m)) {  // no surface: bounds media only (docs/media.md)
+                check_null_material(m, path_join("materials", name));
+                m_null_materials.insert(name);
+                continue;
+            }
+            m_materials[name] = add_material(m, path_join("materials", name), name);
+        }
     }
 
-    uint32_t resolve_material(Properties& p, const std::string& path) {
+    void check_null_material(const Node& n, const std::string& path) const {
+        Properties q(n, m_desc.source, path);
+        q.type();
+        q.check_unqueried();  // the null material takes no parameters
+    }
+
+    uint32_t resolve_material(Properties& p, const std::string& path, bool* null_surface) {
         const Node* m = p.get_node("material");
-        if (!m) {
+        *null_surface = m && ((m->is_string() && m_null_materials.count(m->as_string())) || is_null_material(*m));
+        if (*null_surface && m->is_object()) check_null_material(*m, path_join(path, "material"));
+        if (!m || *null_surface) {
             if (m_default_material < 0) {
                 m_scene.materials.push_back(DiffuseMaterial{});
                 m_scene.material_names.push_back("<default>");
@@ -205,7 +225,9 @@ private:
         ShapeRecord rec;
         rec.name = path;
         const bool has_material = p.has("material");
-        rec.material = resolve_material(p, path);
+        rec.material = resolve_material(p, path, &rec.null_surface);
+        rec.interior_medium = resolve_medium(p, "interior", m_scene.media);
+        rec.exterior_medium = resolve_medium(p, "exterior", m_scene.media);
         const Node* emitter = p.get_node("emitter");
         p.check_unqueried();
         if (g.is_sphere) {
@@ -228,6 +250,13 @@ private:
             rec.kind = ShapeRecord::Kind::Mesh;
             rec.mesh_index = uint32_t(m_scene.meshes.size());
             if (!g.face_material_names.empty()) resolve_face_materials(g, p, has_material, rec);
+            // An interior medium needs a closed boundary; a surface with only an exterior medium
+            // merely sits in that medium (a wall in fog).
+            if (size_t open = rec.interior_medium >= 0 ? open_edge_count(g.mesh) : 0)
+                log_warning(format_error(m_desc.source, path, "the mesh has an interior medium but is not closed (" +
+                                                                  std::to_string(open) + " edges are not shared by exactly "
+                                                                  "two triangles): unless other shapes close the volume, "
+                                                                  "paths leave the medium through its open edges"));
         }
         if (emitter) rec.light = build_area_light(*emitter, path_join(path, "emitter"), g);
         uint32_t id = g.is_sphere ? m_scene.accel.add_sphere(g.center, g.radius) : m_scene.accel.add_mesh(g.mesh);
@@ -237,6 +266,7 @@ private:
             m_scene.triangle_count += g.mesh.triangle_count();
             m_scene.meshes.push_back(std::move(g.mesh));
         }
+        m_scene.has_null_surfaces = m_scene.has_null_surfaces || rec.null_surface;
         m_scene.shapes.push_back(std::move(rec));
     }
 
@@ -248,16 +278,22 @@ private:
         return it == m_prior_shapes.end() ? nullptr : it->second;
     }
 
-    // An unchanged shape in a parameter update: geometry from the prior scene, material and emitter
-    // built anew. Material ids equal the prior build's (scene_update.cpp builds from scratch when they
-    // could move, and builds an OBJ anew when its material changes), so per-face ids stay valid.
+    // An unchanged shape in a parameter update: geometry from the prior scene; material, media and
+    // emitter built anew. Material ids equal the prior build's (scene_update.cpp builds from scratch
+    // when they could move, and builds an OBJ anew when its material changes), so per-face ids stay valid.
     void reuse_shape(Properties& p, const std::string& path, const std::string& type, const ShapeRecord& old) {
         ShapeRecord rec = old;
         rec.light = -1;
-        const uint32_t material = resolve_material(p, path);
+        const uint32_t material = resolve_material(p, path, &rec.null_surface);
         if (type != "obj") rec.material = material;
+        rec.interior_medium = resolve_medium(p, "interior", m_scene.media);
+        rec.exterior_medium = resolve_medium(p, "exterior", m_scene.media);
         const TriangleMesh* mesh =
             old.kind == ShapeRecord::Kind::Mesh ? &m_reuse.prior->meshes[old.mesh_index] : nullptr;
+        if (mesh && rec.interior_medium >= 0 && old.interior_medium < 0)
+            if (size_t open = open_edge_count(*mesh))
+                log_warning(format_error(m_desc.source, path, "the mesh has an interior medium but is not closed (" +
+                                                                  std::to_string(open) + " open edges)"));
         if (const Node* emitter = p.get_node("emitter")) {
             ShapeGeometry g;
             g.is_sphere = !mesh;
@@ -276,6 +312,7 @@ private:
                 m_scene.meshes.push_back(*mesh);
             }
         }
+        m_scene.has_null_surfaces = m_scene.has_null_surfaces || rec.null_surface;
         m_scene.shapes.push_back(std::move(rec));
     }
 
@@ -386,13 +423,8 @@ private:
             if (!n->is_array()) fail("lights", std::string("expected an array, got a ") + n->kind_name());
             for (size_t i = 0; i < n->size(); ++i) build_light(n->items()[i], path_index("lights", i), radius);
         }
-        // Light selection for next-event estimation.
-        std::vector<float> weights;
-        for (const auto& l : m_scene.lights) {
-            float w = m_scene.integrator.light_selection == "power" ? light_power(l, radius) : 1.f;
-            weights.push_back(std::isfinite(w) && w > 0.f ? w : 0.f);
-        }
-        m_scene.light_distribution = Distribution1D(weights);
+        m_scene.light_distribution =
+            Distribution1D(light_selection_weights(m_scene.lights, m_scene.integrator.light_selection, radius));
     }
 
     void build_light(const Node& node, const std::string& path, float radius) {
@@ -482,6 +514,7 @@ private:
     BuildContext m_ctx;
     TextureBuilder m_textures;
     std::map<std::string, uint32_t> m_materials;
+    std::set<std::string> m_null_materials;  ///< named `null` materials
     int m_default_material = -1;
     const GeometryReuse& m_reuse;
     std::map<std::string, const ShapeRecord*> m_prior_shapes;

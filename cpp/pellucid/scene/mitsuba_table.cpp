@@ -24,6 +24,9 @@ std::vector<MitsubaPlugin> make_table() {
     // nonlinear selects our plastic variant: false (Mitsuba's default) "linear", true "coupled".
     const MitsubaParam nonlinear{"nonlinear", "variant", kConverted};
     const MitsubaParam sobol_jitter = ignored("jitter"), sobol_dimension = ignored("dimension");
+    // Media attached to a shape (docs/media.md): a named <ref> to a medium, or a nested <medium>
+    // with that name. An open disk can only sit in a medium, not bound one.
+    const MitsubaParam interior{"interior", "interior"}, exterior{"exterior", "exterior"};
     return {
         // ---- bsdfs
         {"bsdf", "diffuse", "lambertian", {{"reflectance", "reflectance"}}},
@@ -58,6 +61,8 @@ std::vector<MitsubaPlugin> make_table() {
           ignored("specular_reflectance_sampling_rate"), ignored("specular_transmittance_sampling_rate"),
           ignored("diffuse_transmittance_sampling_rate")}},
         {"bsdf", "twosided", "", {}},
+        // null: an index-matched boundary with no surface, bounding media only.
+        {"bsdf", "null", "null", {}},
         // bumpmap takes its height texture under any name (or none); flip_invalid_normals false only
         // warns (we always correct such normals).
         {"bsdf", "bumpmap", "bump_map",
@@ -74,12 +79,21 @@ std::vector<MitsubaPlugin> make_table() {
         // ---- shapes
         {"shape", "obj", "obj",
          {{"filename", "filename"}, {"face_normals", "face_normals"}, {"flip_tex_coords", "flip_tex_coords"},
-          flip_normals, to_world}},
-        {"shape", "ply", "ply", {{"filename", "filename"}, {"face_normals", "face_normals"}, flip_normals, to_world}},
-        {"shape", "sphere", "sphere", {{"center", "center"}, {"radius", "radius"}, flip_normals, to_world}},
-        {"shape", "rectangle", "rectangle", {flip_normals, to_world}},
-        {"shape", "cube", "cube", {flip_normals, to_world}},
-        {"shape", "disk", "disk", {flip_normals, to_world}},
+          flip_normals, to_world, interior, exterior}},
+        {"shape", "ply", "ply",
+         {{"filename", "filename"}, {"face_normals", "face_normals"}, flip_normals, to_world, interior, exterior}},
+        {"shape", "sphere", "sphere",
+         {{"center", "center"}, {"radius", "radius"}, flip_normals, to_world, interior, exterior}},
+        {"shape", "rectangle", "rectangle", {flip_normals, to_world, interior, exterior}},
+        {"shape", "cube", "cube", {flip_normals, to_world, interior, exterior}},
+        {"shape", "disk", "disk", {flip_normals, to_world, exterior}},
+        // ---- media and phase functions (docs/media.md). sigma_a / sigma_s are Mitsuba 0.6's
+        // names (Mitsuba 3 takes sigma_t and albedo); our homogeneous takes either pair.
+        {"medium", "homogeneous", "homogeneous",
+         {{"sigma_t", "sigma_t"}, {"albedo", "albedo"}, {"scale", "scale"}, {"sigma_a", "sigma_a"},
+          {"sigma_s", "sigma_s"}}},
+        {"phase", "isotropic", "isotropic", {}},
+        {"phase", "hg", "hg", {{"g", "g"}}},
         // ---- emitters
         {"emitter", "area", "area", {{"radiance", "radiance"}}},
         {"emitter", "point", "point", {{"position", "position"}, {"intensity", "intensity"}, to_world}},
@@ -108,7 +122,7 @@ std::vector<MitsubaPlugin> make_table() {
         {"sampler", "orthogonal", "sobol", {sample_count, seed, sobol_jitter, sobol_dimension}},
         {"sampler", "ldsampler", "sobol", {sample_count, seed, sobol_jitter, sobol_dimension}},
         {"sampler", "low_discrepancy", "sobol", {sample_count, seed, sobol_jitter, sobol_dimension}},
-        // ---- integrators: volpath without media renders as path
+        // ---- integrators: volpath is our path integrator, which renders media
         {"integrator", "path", "path", {depth, rr_depth}},
         {"integrator", "volpath", "path", {depth, rr_depth}},
     };

@@ -23,7 +23,8 @@ struct MitsubaParam {
 };
 
 struct MitsubaPlugin {
-    const char* kind;    ///< bsdf, texture, shape, emitter, sensor, film, rfilter, sampler or integrator
+    const char* kind;    ///< bsdf, texture, shape, emitter, sensor, film, rfilter, sampler, integrator,
+                         ///< medium or phase
     const char* plugin;  ///< Mitsuba's plugin name
     const char* ours;    ///< our type; for bumpmap/normalmap the key added to the nested material, for
                          ///< twosided "" (it unwraps to its nested bsdf)

@@ -105,6 +105,7 @@ public:
         if (m_film) d.root.set("film", *m_film);
         if (m_sampler) d.root.set("sampler", *m_sampler);
         if (m_integrator) d.root.set("integrator", *m_integrator);
+        if (m_media.size()) d.root.set("media", m_media);
         if (m_materials.size()) d.root.set("materials", m_materials);
         if (m_shapes.size()) d.root.set("shapes", m_shapes);
         if (m_lights.size()) d.root.set("lights", m_lights);
@@ -616,7 +617,7 @@ private:
 
         Collected c = collect(n);
         Node out = make(plugin->ours, n);
-        if (type == "diffuse") {
+        if (type == "diffuse" || type == "null") {
             map_params(out, c, what, *plugin);
         } else if (type == "roughdiffuse") {
             // Mitsuba's alpha is an RMS slope; its Oren-Nayar sigma (radians) is alpha / sqrt(2).
@@ -692,6 +693,57 @@ private:
         return out;
     }
 
+    // ---- media ----------------------------------------------------------------------------------
+    /// A medium (a <medium>, or a <ref> to one) as the name of an entry of our `media` object. An
+    /// inline medium without an id gets the name "medium@<file line>".
+    std::optional<Node> medium_value(pugi::xml_node n) {
+        if (std::string(n.name()) == "ref") {
+            const IdEntry& e = lookup_ref(n);
+            if (e.kind != "medium") fail(n, "reference '" + attr(n, "id") + "' is a " + e.kind + ", expected a medium");
+            return e.value;
+        }
+        std::string type = attr(n, "type");
+        std::string what = "medium plugin '" + type + "'";
+        const MitsubaPlugin* plugin = find_mitsuba_plugin("medium", type);
+        if (!plugin) {
+            unsupported(n, "unsupported " + what + " (known: " + mitsuba_known_plugins("medium") + ")");
+            return std::nullopt;
+        }
+        Collected c = collect(n);
+        Node out = make(plugin->ours, n);
+        map_params(out, c, what, *plugin);
+        for (pugi::xml_node o : c.objects) {
+            std::string t = o.name();
+            if (t != "phase") {
+                unsupported(o, "unexpected <" + t + "> inside " + what);
+                continue;
+            }
+            if (out.find("phase")) fail(o, "a medium takes one phase function");
+            if (std::optional<Node> ph = convert_phase(o)) out.set("phase", *ph);
+        }
+        auto id = opt_attr(n, "id");
+        std::string name = id ? *id : "medium@" + m_file->name + ":" + std::to_string(line(n));
+        if (m_media.find(name)) fail(n, "duplicate medium '" + name + "'");
+        if (id) register_id(n, *id, {"medium", Node::string(name), 0});
+        m_media.set(name, out);
+        return Node::string(name);
+    }
+
+    std::optional<Node> convert_phase(pugi::xml_node n) {
+        std::string type = attr(n, "type");
+        std::string what = "phase plugin '" + type + "'";
+        const MitsubaPlugin* plugin = find_mitsuba_plugin("phase", type);
+        if (!plugin) {
+            unsupported(n, "unsupported " + what + " (known: " + mitsuba_known_plugins("phase") + ")");
+            return std::nullopt;
+        }
+        Collected c = collect(n);
+        Node out = make(plugin->ours, n);
+        map_params(out, c, what, *plugin);
+        no_objects(c, what);
+        return out;
+    }
+
     // ---- shapes and emitters --------------------------------------------------------------------
     std::optional<Node> convert_shape(pugi::xml_node n) {
         std::string type = attr(n, "type");
@@ -727,7 +779,18 @@ private:
                 if (emitter) fail(o, "a shape takes one emitter");
                 emitter = convert_area(o);
             } else if (kind == "medium") {
-                unsupported(o, "participating media are not supported yet");
+                // interior / exterior: a parameter of the shape in the importer table.
+                const std::string side = o.attribute("name").value();
+                auto known = std::find_if(plugin->params.begin(), plugin->params.end(),
+                                          [&](const MitsubaParam& m) { return side == m.mitsuba; });
+                if (side != "interior" && side != "exterior")
+                    fail(o, "a medium inside a shape needs name=\"interior\" or name=\"exterior\", got '" + side + "'");
+                if (known == plugin->params.end()) {
+                    unsupported(o, "unsupported parameter '" + side + "' of " + what);
+                    continue;
+                }
+                if (out.find(known->ours)) fail(o, "parameter '" + side + "' given twice");
+                if (std::optional<Node> m = medium_value(o)) out.set(known->ours, *m);
             } else {
                 unsupported(o, "unexpected <" + t + "> inside " + what);
             }
@@ -791,7 +854,10 @@ private:
             std::string t = o.name();
             if (t == "film") convert_film(o);
             else if (t == "sampler") convert_sampler(o);
-            else unsupported(o, "unexpected <" + t + "> inside a sensor");
+            else if (t == "medium" || (t == "ref" && lookup_ref(o).kind == "medium")) {
+                if (cam.find("medium")) fail(o, "a sensor takes one medium");
+                if (std::optional<Node> m = medium_value(o)) cam.set("medium", *m);
+            } else unsupported(o, "unexpected <" + t + "> inside a sensor");
         }
         m_camera = cam;
     }
@@ -930,9 +996,17 @@ private:
             } else if (tag == "integrator") {
                 if (m_integrator) fail(ch, "more than one <integrator>");
                 convert_integrator(ch);
-            } else if (tag == "medium" || tag == "phase" || tag == "volume") {
+            } else if (tag == "medium") {
+                if (!ch.attribute("id")) {
+                    log_warning(where(ch) + ": a top-level medium without an id cannot be used; ignored");
+                    continue;
+                }
+                medium_value(ch);
+            } else if (tag == "phase") {
+                unsupported(ch, "a <phase> belongs inside a <medium>");
+            } else if (tag == "volume") {
                 std::string type = ch.attribute("type").value();
-                unsupported(ch, "participating media (" + tag + " '" + type + "') are not supported yet");
+                unsupported(ch, "volume textures (volume '" + type + "') are not supported; use a homogeneous medium");
             } else if (is_object_tag(tag) || is_property_tag(tag)) {
                 unsupported(ch, "<" + tag + "> is not allowed at the top level of a scene");
             } else {
@@ -951,6 +1025,7 @@ private:
 
     std::optional<Node> m_camera, m_film, m_sampler, m_integrator;
     Node m_materials = Node::object();
+    Node m_media = Node::object();
     Node m_shapes = Node::array();
     Node m_lights = Node::array();
 };

@@ -258,6 +258,7 @@ std::map<std::string, std::vector<std::string>> registry_types() {
     out["cameras"] = {"perspective"};
     out["integrators"] = {"aov", "path"};
     out["samplers"] = {"independent", "sobol"};
+    out["media"] = {"grid", "homogeneous"};  // medium/medium_builder.cpp
     return out;
 }
 }  // namespace pellucid

@@ -15,6 +15,7 @@
 #include "pellucid/light/light.h"
 #include "pellucid/material/material.h"
 #include "pellucid/material/textured.h"
+#include "pellucid/medium/medium.h"
 #include "pellucid/texture/texture.h"
 #include "pellucid/sampling/distribution_1d.h"
 #include "pellucid/sampling/sampler.h"
@@ -36,6 +37,12 @@ struct ShapeRecord {
     std::vector<uint32_t> face_materials;  ///< per triangle (OBJ usemtl); empty = `material` everywhere
     int32_t light = -1;
     std::string name;  ///< key path in the scene description, for messages
+    /// Media on the two sides (indices into Scene::media, -1 = none, i.e. vacuum): `interior` on the
+    /// side the geometric normal points away from, `exterior` on the side it points to.
+    int32_t interior_medium = -1, exterior_medium = -1;
+    /// The `null` material: an index-matched boundary with no surface; a path crosses it unchanged
+    /// and only its current medium changes (`material` then holds the default material, unused).
+    bool null_surface = false;
 };
 
 /// Integrator settings (plain data).
@@ -44,7 +51,7 @@ struct IntegratorSettings {
     int max_depth = -1;   ///< longest path in segments (Mitsuba 3 convention), -1 = unbounded
     int rr_depth = 5;     ///< Russian roulette starts at this depth
     std::string strategy = "mis";  ///< "mis", "nee", "bsdf", "direct"
-    std::string light_selection = "power";  ///< "power" or "uniform"
+    std::string light_selection = "balanced";  ///< "balanced", "power" or "uniform" (light/light.h)
     std::string aov;  ///< type "aov": "albedo", "normal" or "depth" (integrator/aov.h)
 };
 
@@ -110,7 +117,7 @@ public:
     const BxDF no_scatter_bxdf = SmoothConductor<ConductorFresnel>(ConductorFresnel{}, Spectrum(0.f));
     std::vector<Light> lights;
     std::vector<uint32_t> infinite_lights;  ///< indices into lights
-    Distribution1D light_distribution;      ///< light selection (uniform or by power)
+    Distribution1D light_distribution;      ///< light selection (light_selection_weights)
     PerspectiveCamera camera;
     Filter filter = GaussianFilter{};
     bool film_splatting = false;  ///< film.reconstruction "splatting" (image/film.h), else filter sampling
@@ -119,6 +126,13 @@ public:
     uint64_t seed = 0;
     SamplerType sampler = SamplerType::Independent;  ///< sampler.type (sampling/sampler.h)
     IntegratorSettings integrator;
+    /// Participating media (medium/medium.h), in the order of the `media` object; shapes and the
+    /// camera refer to them by index.
+    std::vector<Medium> media;
+    int32_t camera_medium = -1;       ///< the medium the camera sits in (-1 = none)
+    bool has_null_surfaces = false;   ///< any shape has the `null` material
+    /// Does the scene use media or null boundaries (which the path tracer must handle)?
+    bool has_media() const { return !media.empty() || has_null_surfaces || camera_medium >= 0; }
     std::string source;
     uint64_t triangle_count = 0;
     /// The description it was built from, which parameter updates edit (scene/scene_update.h; a new

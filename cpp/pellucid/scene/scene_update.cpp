@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "pellucid/medium/medium_builder.h"
 #include "pellucid/scene/build.h"
 #include "pellucid/scene/properties.h"
 #include "pellucid/util/error.h"
@@ -192,15 +193,21 @@ bool same(const Node& a, const Node& b) {
 }
 
 /// What fixes the material ids (build.cpp numbers named materials first, then inline and default
-/// materials in shape order): the named materials' names, and per shape the kind of its material.
+/// materials in shape order, a shape with no material or a `null` one taking the default): the
+/// named materials' names, and per shape the kind of its material.
 std::vector<std::string> material_layout(const Node& root) {
     std::vector<std::string> out;
+    std::set<std::string> null_names;
     if (const Node* m = root.find("materials"); m && m->is_object())
-        for (const auto& [name, v] : m->members()) out.push_back("named " + name);
+        for (const auto& [name, v] : m->members()) {
+            out.push_back("named " + name);
+            if (is_null_material(v)) null_names.insert(name);
+        }
     if (const Node* shapes = root.find("shapes"); shapes && shapes->is_array())
         for (const Node& s : shapes->items()) {
             const Node* m = s.is_object() ? s.find("material") : nullptr;
-            out.push_back(m ? m->kind_name() : "-");
+            const bool null = m && (is_null_material(*m) || (m->is_string() && null_names.count(m->as_string())));
+            out.push_back(!m || null ? "default" : m->kind_name());
         }
     return out;
 }
@@ -219,7 +226,8 @@ void plan_edit(Plan& plan, const Node& root, const std::vector<Step>& steps, con
         return;
     }
     const std::string& key = steps[2].key;
-    bool rebuild = key != "material" && key != "emitter";  // every other key of a shape is geometry
+    // Every key of a shape but these is geometry.
+    bool rebuild = key != "material" && key != "emitter" && key != "interior" && key != "exterior";
     // An OBJ resolves its usemtl names against the shape's material when it builds its mesh.
     const Node& shape = root.find("shapes")->items()[steps[1].index];
     const Node* type = shape.find("type");
@@ -255,6 +263,9 @@ void adopt(Scene& to, Scene& from, bool geometry) {
     to.seed = from.seed;
     to.sampler = from.sampler;
     to.integrator = from.integrator;
+    to.media = std::move(from.media);
+    to.camera_medium = from.camera_medium;
+    to.has_null_surfaces = from.has_null_surfaces;
 }
 }  // namespace
 

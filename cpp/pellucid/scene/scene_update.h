@@ -45,8 +45,9 @@ struct UpdateReport {
 
 /// Set each key path of `edits` to its value in the scene's description and rebuild from it, in
 /// place: film, sampler, integrator, camera, textures, materials and lights (with the
-/// light-selection distribution) always; the geometry only of the shapes whose non-material,
-/// non-emitter keys changed (to_world, center, radius, positions, filename, ...), and then the BVH.
+/// light-selection distribution) and media always; the geometry only of the shapes whose keys other
+/// than material, emitter, interior and exterior changed (to_world, center, radius, positions,
+/// filename, ...), and then the BVH.
 /// Unchanged meshes are kept (copied into the new BVH when one is built), never read again. When a
 /// change could renumber the materials (a shape's `material` becomes or stops being inline, or is
 /// added), everything is built anew from the description.

@@ -35,7 +35,7 @@ constexpr int64_t kDefaultMaxMeshElements = int64_t(1) << 28;
 int64_t max_mesh_elements();
 
 /// Largest film, in pixels. The default, 2^25 pixels (for example 8192 x 4096, or 8K UHD
-/// 7680 x 4320), needs about 2.3 GB (filter sampling) or 4.4 GB (splatting) of film and output
+/// 7680 x 4320), needs about 2.3 GB (filter sampling) or 4.7 GB (splatting) of film and output
 /// image. Raised with PELLUCID_MAX_FILM_PIXELS (up to 2^28, since each side is at most 16384).
 constexpr int64_t kDefaultMaxFilmPixels = int64_t(1) << 25;
 int64_t max_film_pixels();

@@ -144,7 +144,7 @@ TEST_P(DeltaLights, MixedLightsAgreeAcrossSelection) {
     expect_constant_image(render(*scene, RenderOptions{}), (a / M_PI) * (I / (R * R)) / (1 - a), "mixed lights");
 }
 
-INSTANTIATE_TEST_SUITE_P(Selection, DeltaLights, ::testing::Values("power", "uniform"));
+INSTANTIATE_TEST_SUITE_P(Selection, DeltaLights, ::testing::Values("balanced", "power", "uniform"));
 
 TEST(SceneErrors, LightParameters) {
     SceneDesc d;

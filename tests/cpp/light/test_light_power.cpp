@@ -207,3 +207,36 @@ TEST(DeltaLightSemantics, DirectionalSampleSemanticsAndPower) {
     // The power crossing a disk of the scene's bounding radius, perpendicular to the light.
     EXPECT_NEAR(light.power(), M_PI * radius * radius * 1.5, 1e-4);
 }
+
+TEST(LightSelection, BalancedGivesEachLightAtInfinityTheShareOfAllFiniteLights) {
+    // Two point lights of power 4π·1 and 4π·3, a constant environment and a directional light.
+    // balanced: the two lights at infinity and the finite set get 1/3 each; the finite third is
+    // split 1 : 3 by power. The environment's power over the scene's disk must not matter.
+    auto scene = scene_from(R"({"camera": {"type": "perspective"}, "film": {"width": 4, "height": 4},
+        "integrator": {"type": "path"},
+        "shapes": [{"type": "sphere", "radius": 50, "material": {"type": "lambertian"}}],
+        "lights": [{"type": "point", "position": [0, 0, 0], "intensity": 1},
+                   {"type": "constant", "radiance": 7},
+                   {"type": "point", "position": [1, 0, 0], "intensity": 3},
+                   {"type": "directional", "direction": [0, -1, 0], "irradiance": 0.01}]})");
+    ASSERT_EQ(scene->lights.size(), 4u);
+    EXPECT_NEAR(scene->light_pmf(0), 1.0 / 12.0, 1e-6);
+    EXPECT_NEAR(scene->light_pmf(1), 1.0 / 3.0, 1e-6);
+    EXPECT_NEAR(scene->light_pmf(2), 3.0 / 12.0, 1e-6);
+    EXPECT_NEAR(scene->light_pmf(3), 1.0 / 3.0, 1e-6);
+}
+
+TEST(LightSelection, PowerAndUniformModes) {
+    const std::string lights = R"("lights": [{"type": "point", "position": [0, 0, 0], "intensity": 1},
+                   {"type": "point", "position": [1, 0, 0], "intensity": 3}]})";
+    auto make = [&](const std::string& mode) {
+        return scene_from(R"({"camera": {"type": "perspective"}, "film": {"width": 4, "height": 4},
+            "integrator": {"type": "path", "light_selection": ")" + mode + R"("},
+            "shapes": [{"type": "sphere", "radius": 50, "material": {"type": "lambertian"}}], )" + lights);
+    };
+    auto power = make("power"), uniform = make("uniform");
+    EXPECT_NEAR(power->light_pmf(0), 0.25, 1e-6);
+    EXPECT_NEAR(power->light_pmf(1), 0.75, 1e-6);
+    EXPECT_NEAR(uniform->light_pmf(0), 0.5, 1e-6);
+    EXPECT_NEAR(uniform->light_pmf(1), 0.5, 1e-6);
+}

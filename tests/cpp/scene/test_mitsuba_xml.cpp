@@ -365,8 +365,8 @@ TEST(MitsubaXml, MalformedXmlAndOtherErrors) {
     EXPECT_EQ(error_of("<shape type=\"cube\"/>"), "scene.xml:1: expected a <scene> root element, got <shape>");
     EXPECT_EQ(error_of(scene("<shape type=\"sphere\"><float name=\"radius\" value=\"big\"/></shape>")),
               "scene.xml:2: expected a number, got 'big'");
-    EXPECT_EQ(error_of(scene("\n\n<medium type=\"homogeneous\" id=\"fog\"/>")),
-              "scene.xml:4: participating media (medium 'homogeneous') are not supported yet");
+    EXPECT_EQ(error_of(scene("\n\n<volume type=\"gridvolume\" id=\"fog\"/>")),
+              "scene.xml:4: volume textures (volume 'gridvolume') are not supported; use a homogeneous medium");
     EXPECT_EQ(error_of(scene("<shape type=\"cube\">\n<ref name=\"interior\" id=\"m\"/></shape>")),
               "scene.xml:3: unknown reference id 'm'");
     EXPECT_EQ(error_of(scene("<emitter type=\"area\"/>")),

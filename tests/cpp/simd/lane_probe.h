@@ -1,5 +1,6 @@
 // What tests/cpp/simd/test_lanes_equal_scalars.cpp compares across lane types: the packet code of
-// the path tracer (Lambertian, warps, frames, ray offsets, the power heuristic, emitter sampling)
+// the path tracer (Lambertian, Fresnel terms, warps, frames, ray offsets, the power heuristic,
+// emitter sampling)
 // evaluated over arrays of inputs, kLaneWidth<F> lanes at a time. It is instantiated on float in
 // the test and on each SIMD target's packet in probe_<target>.cpp (built with that target's flags,
 // exporting only its entry point, as the renderer's kernels do).
@@ -8,6 +9,7 @@
 #include <cstdint>
 
 #include "pellucid/bxdf/bsdf.h"
+#include "pellucid/bxdf/fresnel.h"
 #include "pellucid/bxdf/lambertian.h"
 #include "pellucid/light/area.h"
 #include "pellucid/math/frame.h"
@@ -62,6 +64,10 @@ void run(const In& in, Out& out) {
         const V3<F> loc = fr.to_local(wi);
         put(loc.x), put(loc.y), put(loc.z);
         putm(shading_leaks<F>(normalize(nrm), wo, wi, fr.to_local(wo), loc));
+        // Fresnel: a conductor (η, k from the albedo inputs, which include 0) and a dielectric
+        // seen from both sides.
+        put(fresnel_conductor<F>(lane::abs(wo.z), F(4.f) * L(in.albedo[0]), F(5.f) * L(in.albedo[1])));
+        put(fresnel_dielectric<F>(wo.z, F(1.f) + L(in.albedo[2])));
         if (in.emitters) {
             const EmitterSample<F> es = sample_emitter<F>(*in.emitters, L(in.u[0]), V2<F>{L(in.u[1]), L(in.u[2])}, V(in.p));
             putm(es.valid), put(es.p.x), put(es.p.y), put(es.p.z), put(es.wi.x), put(es.pdf), put(es.L.r);
