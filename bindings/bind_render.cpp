@@ -1,5 +1,6 @@
 // render(): releases the GIL, returns zero-copy numpy arrays, stops on Python signals (Ctrl-C).
 // SPDX-License-Identifier: Apache-2.0
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -11,6 +12,7 @@
 
 #include "bind.h"
 #include "pellucid/api.h"
+#include "pellucid/integrator/aov.h"
 #include "pellucid/util/error.h"
 
 namespace pellucid::bind {
@@ -89,6 +91,19 @@ py::dict stats_dict(const RenderResult& r) {
     throw py::error_already_set();
 }
 
+/// "a, b, c" -> {"a", "b", "c"}.
+std::vector<std::string> split_names(const std::string& list) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    while (start < list.size()) {
+        size_t end = list.find(", ", start);
+        if (end == std::string::npos) end = list.size();
+        out.push_back(list.substr(start, end - start));
+        start = end + 2;
+    }
+    return out;
+}
+
 std::shared_ptr<const FilmState> as_state(const py::object& resume) {
     if (resume.is_none()) return nullptr;
     if (py::isinstance<FilmState>(resume)) return resume.cast<std::shared_ptr<FilmState>>();
@@ -145,27 +160,59 @@ void bind_render(py::module_& m) {
     m.def("render_full", [](const Scene& scene, int spp, int64_t seed, int threads, double time_budget,
                             double target_rel_error, bool progress, RenderProgress* monitor,
                             const std::string& sampler, const py::object& resume, bool keep_state,
-                            const std::string& aov) {
+                            const std::string& aov, const std::vector<std::string>& aovs) {
         RenderOptions o;
         o.spp = spp, o.seed = seed, o.threads = threads, o.time_budget = time_budget;
         o.target_rel_error = target_rel_error, o.progress = progress, o.progress_out = monitor, o.sampler = sampler;
         o.resume = as_state(resume);
+        std::vector<Aov> aov_list;
+        for (const std::string& name : aovs) {
+            const Aov a = parse_aov(name);
+            if (std::find(aov_list.begin(), aov_list.end(), a) == aov_list.end()) aov_list.push_back(a);
+        }
         py::object pending;
+        std::vector<ImageLayer> layers;
+        double aov_seconds = 0.0;
         RenderResult r = run_interruptible(o, [&](const RenderOptions& opts) {
-            return aov.empty() ? render(scene, opts) : render_aov(scene, aov, opts);
+            RenderResult b = aov.empty() ? render(scene, opts) : render_aov(scene, aov, opts);
+            // The AOV pass after a complete beauty render (a cancelled render keeps only the beauty).
+            if (!aov_list.empty() && !b.stats.cancelled && b.stats.spp > 0)
+                layers = render_aovs(scene, aov_list, b, opts, nullptr, &aov_seconds);
+            return b;
         }, pending);
         py::dict stats = stats_dict(r);
         if (keep_state || pending) stats["state"] = std::move(r.state);
+        if (!layers.empty()) {
+            py::dict named;
+            for (ImageLayer& l : layers) named[py::str(l.name)] = image_to_array(std::move(l.image));
+            stats["aovs"] = named;
+            stats["aov_seconds"] = aov_seconds;
+            if (std::count(aov_list.begin(), aov_list.end(), Aov::ShapeId)) {
+                py::list names;
+                for (const ShapeRecord& s : scene.shapes) names.append(s.name);
+                stats["shape_names"] = names;
+            }
+            if (std::count(aov_list.begin(), aov_list.end(), Aov::MaterialId))
+                stats["material_names"] = py::cast(scene.material_names);
+        }
         py::tuple out = py::make_tuple(image_to_array(std::move(r.image)), image_to_array(std::move(r.variance)), stats);
         if (pending) raise_with_partial(pending, out);
         return out;
     }, py::arg("scene"), py::arg("spp") = -1, py::arg("seed") = -1, py::arg("threads") = 0,
        py::arg("time_budget") = 0.0, py::arg("target_rel_error") = 0.0, py::arg("progress") = false,
        py::arg("monitor") = py::none(), py::arg("sampler") = "", py::arg("resume") = py::none(),
-       py::arg("keep_state") = false, py::arg("aov") = "",
-       "Render; returns (image, variance, stats), stats['state'] the FilmState if keep_state. A Python signal "
+       py::arg("keep_state") = false, py::arg("aov") = "", py::arg("aovs") = std::vector<std::string>{},
+       "Render; returns (image, variance, stats), stats['state'] the FilmState if keep_state, stats['aovs'] "
+       "{name: array} of the requested AOVs (integrator/aov.h) with stats['aov_seconds']. A Python signal "
        "handler that raises (Ctrl-C) stops it: the exception is raised with .partial = that tuple. Use "
        "pellucid.render for the documented API.");
+    m.def("aov_names", [] {
+        std::vector<std::string> names;
+        for (const std::string& n : split_names(known_aovs())) names.push_back(n);
+        return names;
+    }, "Every AOV name render_full(aovs=...) accepts.");
+    m.def("aov_channels", [](const std::string& name) { return aov_channels(parse_aov(name)); }, py::arg("name"),
+          "The channel names of an AOV's layer in a multi-layer EXR (['R', 'G', 'B'], ['Z'], ...).");
     m.def("render_aov", [](const Scene& scene, const std::string& aov, int spp, int64_t seed, int threads,
                            const std::string& sampler) {
         RenderOptions o;

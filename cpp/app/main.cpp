@@ -1,6 +1,7 @@
 // pellucid-render: the standalone renderer (no Python needed).
 // Usage: pellucid-render [render] SCENE -o OUT [-o OUT2 ...] [--spp N] [--seed S] [--threads T]
-//                        [--sampler independent|sobol] [--aov albedo|normal|depth] [--time-budget SECONDS]
+//                        [--sampler independent|sobol] [--aov albedo|normal|depth] [--aovs LIST]
+//                        [--time-budget SECONDS]
 //                        [-D NAME=VALUE ...] [--resume STATE] [--state STATE] [--lenient] [--quiet]
 // The same flags, help and error format as `python -m pellucid render`; the same scene and seed
 // give the same image. Arguments are parsed with CLI11 (only here).
@@ -10,6 +11,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -20,6 +22,7 @@
 #include <vector>
 
 #include "pellucid/api.h"
+#include "pellucid/integrator/aov.h"
 #include "pellucid/util/error.h"
 
 namespace {
@@ -174,7 +177,7 @@ CLI::Validator one_of(const std::string& what, std::vector<std::string> known) {
 struct Args {
     std::string scene;
     std::vector<std::string> outputs, defines;
-    std::string sampler, aov, resume, state;
+    std::string sampler, aov, aovs, resume, state;
     int spp = -1, threads = 0;
     int64_t seed = -1;
     double time_budget = 0.0;
@@ -212,6 +215,21 @@ int parse(int argc, char** argv, Args& a) {
                    "render this AOV of the first hit instead of the scene's integrator (as python -m pellucid render --aov)")
         ->type_name("{albedo,normal,depth}")
         ->check(one_of("aov", {"albedo", "depth", "normal"}));
+    app.add_option("--aovs", a.aovs,
+                   "also render these AOVs (comma-separated: " + pellucid::known_aovs() +
+                       "), written as layers of every .exr OUTPUT (as python -m pellucid render --aovs)")
+        ->type_name("AOVS")
+        ->check(CLI::Validator(
+            [](std::string& v) -> std::string {
+                try {
+                    pellucid::parse_aov_list(v, "aovs");
+                } catch (const pellucid::Error& e) {
+                    const std::string m = e.what();
+                    return m.substr(m.find(": ") + 2);
+                }
+                return "";
+            },
+            ""));
     app.add_option("--time-budget", a.time_budget, "stop after about this many seconds")
         ->type_name("TIME_BUDGET")
         ->check(number_above(0.0, false));
@@ -254,6 +272,13 @@ int parse(int argc, char** argv, Args& a) {
     return -1;
 }
 
+/// Does the output path name an OpenEXR file (the format that holds AOV layers)?
+bool is_exr(const std::string& path) {
+    std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".exr";
+}
+
 /// -D NAME=VALUE pairs as a map; an entry without '=' or with an empty name is a usage error.
 bool parse_defines(const std::vector<std::string>& defines, std::map<std::string, std::string>& out) {
     for (const std::string& d : defines) {
@@ -285,6 +310,10 @@ int main(int argc, char** argv) {
     try {
         // Everything that can fail before rendering does: outputs, the state file, the scene.
         for (const auto& out : a.outputs) pellucid::check_image_output(out);
+        const std::vector<pellucid::Aov> aovs = a.aovs.empty() ? std::vector<pellucid::Aov>{}
+                                                               : pellucid::parse_aov_list(a.aovs, "--aovs");
+        if (!aovs.empty() && std::none_of(a.outputs.begin(), a.outputs.end(), is_exr))
+            throw pellucid::Error("--aovs: AOVs are written as layers of a multi-layer EXR: give an .exr OUTPUT");
         if (!a.resume.empty()) opts.resume = pellucid::load_film_state(a.resume);
         auto scene = pellucid::load_file(a.scene, a.lenient, params);
         pellucid::RenderResult r = a.aov.empty() ? pellucid::render(*scene, opts)
@@ -295,9 +324,20 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "%s: interrupted before the first pass finished; nothing written\n", kProg);
             return interrupted_rc;
         }
+        // The AOV pass (skipped when the beauty render was interrupted: the image holds its passes).
+        std::vector<pellucid::ImageLayer> layers;
+        if (!aovs.empty() && !r.stats.cancelled) {
+            bool aov_cancelled = false;
+            double aov_seconds = 0.0;
+            layers = pellucid::render_aovs(*scene, aovs, r, opts, &aov_cancelled, &aov_seconds);
+            r.stats.cancelled = aov_cancelled;
+            if (!a.quiet && !aov_cancelled) std::fprintf(stderr, "AOVs: %.3f s\n", aov_seconds);
+        }
+        if (!layers.empty()) layers.insert(layers.begin(), pellucid::ImageLayer{"", {"R", "G", "B"}, r.image});
         const auto attributes = pellucid::render_attributes(r);
         for (const auto& out : a.outputs) {
-            pellucid::write_image(out, r.image, attributes);
+            if (!layers.empty() && is_exr(out)) pellucid::write_layers_file(out, layers, attributes);
+            else pellucid::write_image(out, r.image, attributes);
             if (!a.quiet) std::fprintf(stderr, "wrote %s\n", out.c_str());
         }
         std::string state_path = a.state;

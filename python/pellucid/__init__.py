@@ -8,6 +8,8 @@ Quick start::
     image = pellucid.render(scene, spp=64, progress=True)  # pellucid.Image: float32 (H, W, 3) radiance
     image.save("out/cornell_box.png")                      # .exr keeps HDR; .png is sRGB
     image.compare(reference)                               # Comparison(rmse=..., relmse=...)
+    result = pellucid.render(scene, spp=16, aovs=["albedo", "normal"])  # beauty + AOVs (RenderLayers)
+    clean = pellucid.denoise(result.image, result["albedo"], result["normal"])  # needs pyoidn
 
 C++ log messages go to the ``logging`` logger ``"pellucid"`` (warnings show by default).
 
@@ -29,7 +31,8 @@ import numpy as _np
 from . import _core
 from . import materials, scenes
 from ._core import Error, FilmState, Scene, cancel
-from .aov import AOVS, render_aov
+from .aov import AOVS, RenderLayers, read_layers, render_aov, write_layers
+from .denoise import denoise
 from .bsdf import bsdf
 from .phase import phase
 from .image import Comparison, Image
@@ -42,12 +45,14 @@ __all__ = [
     "Error",
     "FilmState",
     "Image",
+    "RenderLayers",
     "RenderOutput",
     "SAMPLERS",
     "Scene",
     "SceneParameters",
     "bsdf",
     "cancel",
+    "denoise",
     "last_interrupted",
     "load_dict",
     "load_file",
@@ -57,11 +62,13 @@ __all__ = [
     "phase",
     "read_image",
     "read_image_attributes",
+    "read_layers",
     "render",
     "render_aov",
     "render_with_stats",
     "scenes",
     "write_image",
+    "write_layers",
     "__version__",
 ]
 
@@ -113,8 +120,9 @@ def load_dict(d: Dict[str, Any], base_dir: Union[str, "_os.PathLike[str]"] = "."
 
 def write_image(path: Union[str, "_os.PathLike[str]"], array: _np.ndarray,
                 attributes: Optional[Dict[str, Any]] = None) -> None:
-    """Write an (H, W, 3) or (H, W) float array: .exr/.hdr keep linear HDR values, .png/.jpg are
-    clamped and sRGB-encoded. Missing folders are created. ``attributes`` (name -> int, float or
+    """Write an (H, W) or (H, W, C) float array: .exr keeps linear HDR values and any number of
+    channels (R, G, B, A, then OpenImageIO's default names); .png/.jpg are clamped and sRGB-encoded
+    (alpha stays linear), PNG with 1 to 4 channels. Missing folders are created. ``attributes`` (name -> int, float or
     str) go into the file's header where the format has one (EXR attributes). Raises
     pellucid.Error naming the path."""
     if attributes:
@@ -124,8 +132,10 @@ def write_image(path: Union[str, "_os.PathLike[str]"], array: _np.ndarray,
 
 
 def read_image(path: Union[str, "_os.PathLike[str]"]) -> Image:
-    """Read an image as a linear float32 (H, W, 3) :class:`Image` (8-bit files are decoded from
-    sRGB)."""
+    """Read every channel of an image file as a linear float32 (H, W, C) :class:`Image`, in the
+    file's channel order: an RGBA file gives C = 4 (alpha kept), a grey one C = 1, a multi-layer
+    EXR all its channels (:func:`read_layers` splits them into named images). 8-bit files are
+    decoded from sRGB, except alpha."""
     return _core.read_image(_os.fspath(path)).view(Image)
 
 
@@ -328,7 +338,8 @@ def render(
     progress: bool = False,
     sampler: Optional[str] = None,
     resume: Union[FilmState, str, "_os.PathLike[str]", None] = None,
-) -> Image:
+    aovs: Union[str, "list[str]", "tuple[str, ...]", None] = None,
+) -> Union[Image, RenderLayers]:
     """Render ``scene`` and return the image: an :class:`Image` (a numpy.ndarray subclass), float32
     (H, W, 3) linear radiance that views the renderer's memory (no copy). The GIL is released
     while rendering.
@@ -338,10 +349,22 @@ def render(
     ``sampler`` (``"independent"`` or ``"sobol"``) overrides the scene's ``sampler.type``.
     ``resume`` continues a :class:`FilmState` (or state file) up to ``spp``.
 
+    ``aovs`` (names from :data:`AOVS`, as a list or a comma-separated string) also renders those
+    AOVs and returns a :class:`RenderLayers` instead of the image: ``.image`` is the beauty,
+    ``.aovs["albedo"]`` (or ``["albedo"]``) each AOV as an :class:`Image`, ``.save(path)`` writes
+    one multi-layer EXR. The AOV pass runs after the beauty, along its camera rays (pellucid.aov).
+
     Ctrl-C (Jupyter's interrupt too) stops the render within about a second and raises
     ``KeyboardInterrupt``; the complete passes are kept: ``e.partial`` or
-    :func:`last_interrupted` (a :class:`RenderOutput` with image, variance, stats and state).
+    :func:`last_interrupted` (a :class:`RenderOutput` with image, variance, stats and state;
+    without AOVs).
     """
+    if aovs is not None:
+        from .aov import layers_from_render, parse_aovs
+        kwargs = _render_kwargs(scene, spp, seed, threads, time_budget, target_rel_error, sampler, resume)
+        kwargs["aovs"] = parse_aovs(aovs)
+        image, variance, stats = _render_full(kwargs, progress)
+        return layers_from_render(image, variance, stats)
     image, _, _ = render_with_stats(scene, spp, seed, threads, time_budget, target_rel_error, progress, sampler,
                                     resume)
     return image

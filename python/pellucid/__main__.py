@@ -1,5 +1,5 @@
 """Command line: ``python -m pellucid render SCENE -o OUT [--spp N] [--seed S] [--threads T] [--sampler S]
-[-D NAME=VALUE] [--resume STATE] [--state STATE] ...`` and ``python -m pellucid bench ...`` (the
+[--aovs albedo,normal,...] [-D NAME=VALUE] [--resume STATE] [--state STATE] ...`` and ``python -m pellucid bench ...`` (the
 benchmarks of ``pellucid.bench``).
 
 ``render`` takes the same flags as the C++ ``pellucid-render``, prints the same help and errors, and
@@ -43,6 +43,18 @@ def _seconds(text: str) -> float:
     return v
 
 
+def _aov_list(text: str) -> List[str]:
+    """An argparse type: a comma-separated list of AOV names, worded as pellucid-render."""
+    try:
+        return pellucid.aov.parse_aovs(text)
+    except pellucid.Error as e:
+        raise argparse.ArgumentTypeError(str(e).split(": ", 1)[1]) from None
+
+
+def _is_exr(path: str) -> bool:
+    return os.fspath(path).lower().endswith(".exr")
+
+
 def _build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="pellucid", description="pellucid physically based renderer")
     p.add_argument("--version", action="version", version=f"pellucid {pellucid.__version__}")
@@ -58,8 +70,11 @@ def _build_parser() -> argparse.ArgumentParser:
     r.add_argument("--threads", type=_int_in(0, 4096), default=0, metavar="THREADS", help="worker threads (0 = all cores)")
     r.add_argument("--sampler", choices=list(pellucid.SAMPLERS), default=None,
                    help="override the scene's sampler type (sobol: Owen-scrambled Sobol, lower error at equal spp)")
-    r.add_argument("--aov", choices=list(pellucid.AOVS), default=None,
+    r.add_argument("--aov", choices=list(pellucid.aov.SINGLE_AOVS), default=None,
                    help="render this AOV of the first hit instead of the scene's integrator (as pellucid-render --aov)")
+    r.add_argument("--aovs", type=_aov_list, default=None, metavar="AOVS",
+                   help=f"also render these AOVs (comma-separated: {', '.join(pellucid.AOVS)}), written as layers of "
+                        "every .exr OUTPUT (as pellucid-render --aovs)")
     r.add_argument("--time-budget", type=_seconds, default=None, metavar="TIME_BUDGET",
                    help="stop after about this many seconds")
     r.add_argument("-D", "--define", action="append", default=[], metavar="NAME=VALUE",
@@ -113,11 +128,13 @@ def _render(args: argparse.Namespace) -> int:
     # Everything that can fail before rendering does: outputs, the state file, the scene.
     for out in args.output:
         pellucid._core.check_image_output(os.fspath(out))
+    if args.aovs and not any(_is_exr(out) for out in args.output):
+        raise pellucid.Error("--aovs: AOVs are written as layers of a multi-layer EXR: give an .exr OUTPUT")
     resume = pellucid.load_film_state(args.resume) if args.resume else None
     scene = pellucid.load_file(args.scene, lenient=args.lenient, **params)
     kwargs = pellucid._render_kwargs(scene, args.spp, args.seed, args.threads, args.time_budget, None, args.sampler,
                                      resume)
-    kwargs.update(keep_state=True, aov=args.aov or "")
+    kwargs.update(keep_state=True, aov=args.aov or "", aovs=args.aovs or [])
     # As pellucid-render: SIGINT and SIGTERM stop the render even where the shell started us with
     # SIGINT ignored (a background job).
     signal.signal(signal.SIGINT, signal.default_int_handler)
@@ -136,9 +153,15 @@ def _render(args: argparse.Namespace) -> int:
     if stats["spp"] == 0:
         print("pellucid: interrupted before the first pass finished; nothing written", file=sys.stderr)
         return rc
+    aovs = stats.pop("aovs", None)
+    if aovs is not None and not args.quiet:
+        print(f"AOVs: {stats['aov_seconds']:.3f} s", file=sys.stderr)
     attributes = pellucid._render_attributes(stats)
     for out in args.output:
-        pellucid.write_image(out, image, attributes)
+        if aovs is not None and _is_exr(out):
+            pellucid.write_layers(out, image, aovs, attributes)
+        else:
+            pellucid.write_image(out, image, attributes)
         if not args.quiet:
             print(f"wrote {out}", file=sys.stderr)
     state_path = args.state or (args.output[0] + ".state" if interrupted is not None else None)

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BSDFProbe', 'BXDF_FLAGS', 'Error', 'FilmState', 'PhaseProbe', 'RenderProgress', 'Scene', 'cancel', 'check_image_output', 'check_parameter_path', 'load_dict', 'load_file', 'load_film_state', 'mitsuba_import_table', 'read_image', 'read_image_attributes', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'scene_parameters', 'set_log_sink', 'update_scene', 'write_image', 'write_image_with_attributes']
+__all__: list[str] = ['BSDFProbe', 'BXDF_FLAGS', 'Error', 'FilmState', 'PhaseProbe', 'RenderProgress', 'Scene', 'aov_channels', 'aov_names', 'cancel', 'check_image_output', 'check_parameter_path', 'load_dict', 'load_file', 'load_film_state', 'mitsuba_import_table', 'read_image', 'read_image_attributes', 'read_layers', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'scene_parameters', 'set_log_sink', 'update_scene', 'write_image', 'write_image_with_attributes', 'write_layers']
 class Error(RuntimeError):
     pass
 class PhaseProbe:
@@ -136,6 +136,14 @@ class FilmState:
     @property
     def width(self) -> int:
         ...
+def aov_channels(name: str) -> list[str]:
+    """
+    The channel names of an AOV's layer in a multi-layer EXR (['R', 'G', 'B'], ['Z'], ...).
+    """
+def aov_names() -> list[str]:
+    """
+    Every AOV name render_full(aovs=...) accepts.
+    """
 def cancel() -> None:
     """
     Ask the running render to stop (it returns its complete passes).
@@ -166,11 +174,15 @@ def mitsuba_import_table() -> list[dict[str, typing.Any]]:
     """
 def read_image(path: str) -> numpy.ndarray:
     """
-    Read an image as a linear float32 (H, W, 3) array.
+    Read every channel of an image as a linear float32 (H, W, C) array.
     """
 def read_image_attributes(path: str) -> dict:
     """
     The header attributes of an image file as a dict.
+    """
+def read_layers(path: str) -> list:
+    """
+    An image file's layers as [(name, channel names, array)]. Use pellucid.read_layers.
     """
 def record_parameters(d: dict, base_dir: str = '.') -> list[tuple]:
     """
@@ -184,9 +196,9 @@ def render_aov(scene: Scene, aov: str, spp: typing.SupportsInt | typing.Supports
     """
     Render one AOV; returns (image, variance). Use pellucid.aov.render_aov for the documented API.
     """
-def render_full(scene: Scene, spp: typing.SupportsInt | typing.SupportsIndex = -1, seed: typing.SupportsInt | typing.SupportsIndex = -1, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_budget: typing.SupportsFloat | typing.SupportsIndex = 0.0, target_rel_error: typing.SupportsFloat | typing.SupportsIndex = 0.0, progress: bool = False, monitor: RenderProgress = None, sampler: str = '', resume: typing.Any = None, keep_state: bool = False, aov: str = '') -> tuple:
+def render_full(scene: Scene, spp: typing.SupportsInt | typing.SupportsIndex = -1, seed: typing.SupportsInt | typing.SupportsIndex = -1, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_budget: typing.SupportsFloat | typing.SupportsIndex = 0.0, target_rel_error: typing.SupportsFloat | typing.SupportsIndex = 0.0, progress: bool = False, monitor: RenderProgress = None, sampler: str = '', resume: typing.Any = None, keep_state: bool = False, aov: str = '', aovs: collections.abc.Sequence[str] = []) -> tuple:
     """
-    Render; returns (image, variance, stats), stats['state'] the FilmState if keep_state. A Python signal handler that raises (Ctrl-C) stops it: the exception is raised with .partial = that tuple. Use pellucid.render for the documented API.
+    Render; returns (image, variance, stats), stats['state'] the FilmState if keep_state, stats['aovs'] {name: array} of the requested AOVs (integrator/aov.h) with stats['aov_seconds']. A Python signal handler that raises (Ctrl-C) stops it: the exception is raised with .partial = that tuple. Use pellucid.render for the documented API.
     """
 def scene_parameters(scene: Scene) -> dict:
     """
@@ -202,11 +214,15 @@ def update_scene(scene: Scene, edits: dict) -> dict:
     """
 def write_image(path: str, array: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> None:
     """
-    Write an (H, W, 3) float array (.exr linear, .png sRGB).
+    Write an (H, W) or (H, W, C) float array (.exr linear, any C; .png sRGB, C from 1 to 4).
     """
 def write_image_with_attributes(path: str, array: typing.Annotated[numpy.typing.ArrayLike, numpy.float32], attributes: dict) -> None:
     """
     write_image with header attributes (EXR attributes; formats without a header drop them).
+    """
+def write_layers(path: str, layers: list, attributes: dict) -> None:
+    """
+    Write [(name, channel names, array)] as one multi-layer EXR. Use pellucid.write_layers.
     """
 BXDF_FLAGS: dict = {'reflection': 1, 'transmission': 2, 'diffuse': 4, 'glossy': 8, 'specular': 16}
 __version__: str = '0.1.0'

@@ -56,6 +56,84 @@ inline float torrance_sparrow(float D, float G, float F, float cos_o, float cos_
     return D * G * F / (4.f * cos_o * cos_i);
 }
 
+/// Torrance–Sparrow without its cos θi factor, over a lane type F.
+template <class F>
+inline F torrance_sparrow_t(const F& D, const F& G, const F& cos_o, const F& cos_i) {
+    return D * G * F(1.f) / (F(4.f) * cos_o * cos_i);
+}
+
+/// The conductor models over a lane type F (simd/lane.h), with exact Fresnel (fresnel_conductor<F>):
+/// the packet forms of the path tracer. SmoothConductor<ConductorFresnel> and RoughConductor
+/// (GGX, without Kulla–Conty compensation) call their float instantiations, so each model is one
+/// source.
+template <class F>
+struct SmoothConductorT {
+    RGB<F> eta, k, scale;
+
+    RGB<F> fresnel(const F& cos_i) const {
+        const F c = lane::abs(cos_i);
+        return RGB<F>(fresnel_conductor<F>(c, eta.r, k.r), fresnel_conductor<F>(c, eta.g, k.g),
+                      fresnel_conductor<F>(c, eta.b, k.b));
+    }
+    /// Mirror reflection: weight = specular_reflectance · F(|cos θo|), discrete probability 1.
+    BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& /*u_lobe*/, const V2<F>& /*u*/) const {
+        BxDFSampleT<F> s;
+        s.valid = wo.z != F(0.f);
+        if (!has_flag(ctx.allowed, BxDFFlags::SpecularReflection)) s.valid = MaskT<F>(false);
+        s.wi = V3<F>(lane::neg(wo.x), lane::neg(wo.y), wo.z);
+        s.weight = scale * fresnel(wo.z);
+        s.pdf = F(1.f);
+        s.eta = F(1.f);
+        s.lobe = IntT<F>(int32_t(BxDFFlags::SpecularReflection));
+        return s;
+    }
+};
+
+template <class F>
+struct RoughConductorGGXT {
+    GGXT<F> d;
+    SmoothConductorT<F> fr;  ///< η, k and specular_reflectance
+
+    RGB<F> eval(const BxDFContext&, const V3<F>& wo, const V3<F>& wi) const {
+        const auto flip = wo.z < F(0.f);
+        const V3<F> o = lane::select(flip, -wo, wo), i = lane::select(flip, -wi, wi);
+        const V3<F> h = o + i;
+        const F l2 = length2(h);
+        const auto ok = wo.z * wi.z > F(0.f) && l2 != F(0.f);
+        const V3<F> wm = normalize(lane::select(ok, h, V3<F>(F(0.f), F(0.f), F(1.f))));
+        const F co = lane::max(o.z, F(kMinCos)), ci = lane::max(i.z, F(kMinCos));
+        const RGB<F> f = fr.scale * fr.fresnel(dot(o, wm)) * (torrance_sparrow_t<F>(d.D(wm), d.G(o, i), co, ci) * ci);
+        return lane::select(ok, f, RGB<F>(F(0.f)));
+    }
+    F pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi) const {
+        if (!has_flag(ctx.allowed, BxDFFlags::GlossyReflection)) return F(0.f);
+        const auto flip = wo.z < F(0.f);
+        const V3<F> o = lane::select(flip, -wo, wo), i = lane::select(flip, -wi, wi);
+        const V3<F> h = o + i;
+        const auto ok = wo.z * wi.z > F(0.f) && length2(h) != F(0.f);
+        const V3<F> wm = normalize(lane::select(ok, h, V3<F>(F(0.f), F(0.f), F(1.f))));
+        const F c = dot(o, wm);
+        const auto pos = ok && c > F(0.f);
+        // Walter et al. 2007, eq. 14: the visible-normal density over 4 (wo·wm).
+        return lane::select(pos, d.pdf_visible(o, wm) / (F(4.f) * lane::select(pos, c, F(1.f))), F(0.f));
+    }
+    BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& /*u_lobe*/, const V2<F>& u) const {
+        BxDFSampleT<F> s;
+        const auto flip = wo.z < F(0.f);
+        const V3<F> o = lane::select(flip, -wo, wo);
+        const V3<F> m = d.sample_visible(o, u);
+        const V3<F> i = -o + F(2.f) * dot(o, m) * m;  // reflect (math/spherical.h)
+        s.wi = lane::select(flip, -i, i);
+        s.pdf = pdf(ctx, wo, s.wi);
+        s.valid = wo.z != F(0.f) && i.z > F(0.f) && s.pdf > F(0.f);
+        if (!has_flag(ctx.allowed, BxDFFlags::GlossyReflection)) s.valid = MaskT<F>(false);
+        s.weight = eval(ctx, wo, s.wi) / lane::select(s.valid, s.pdf, F(1.f));
+        s.eta = F(1.f);
+        s.lobe = IntT<F>(int32_t(BxDFFlags::GlossyReflection));
+        return s;
+    }
+};
+
 /// Ideal mirror: weight = specular_reflectance · F(|cos θo|), discrete probability 1.
 template <class Fresnel>
 class SmoothConductor {
@@ -65,7 +143,11 @@ public:
 
     Spectrum eval(const BxDFContext&, const Vec3f&, const Vec3f&) const { return Spectrum(0.f); }
     float pdf(const BxDFContext&, const Vec3f&, const Vec3f&) const { return 0.f; }
-    std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float, const Vec2f&) const {
+    std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe, const Vec2f& u) const {
+        if constexpr (std::is_same_v<Fresnel, ConductorFresnel>) {
+            SmoothConductorT<float> l;
+            if (lanes(&l)) return to_optional(l.sample(ctx, wo, u_lobe, u));
+        }
         if (!has_flag(ctx.allowed, BxDFFlags::SpecularReflection) || wo.z == 0.f) return std::nullopt;
         BxDFSample s;
         s.wi = Vec3f(-wo.x, -wo.y, wo.z);
@@ -77,6 +159,15 @@ public:
     BxDFFlags flags() const { return m_scale.is_black() ? BxDFFlags::None : BxDFFlags::SpecularReflection; }
     std::string to_string() const {
         return "SmoothConductor[" + m_fr.to_string() + ", specular_reflectance=" + m_scale.to_string() + "]";
+    }
+    /// The packet form's parameters, when the model has one (exact Fresnel; Schlick's has none).
+    bool lanes(SmoothConductorT<float>* out) const {
+        if constexpr (std::is_same_v<Fresnel, ConductorFresnel>) {
+            if (m_fr.schlick) return false;
+            *out = SmoothConductorT<float>{m_fr.eta, m_fr.k, m_scale};
+            return true;
+        }
+        return false;
     }
 
 private:
@@ -96,7 +187,24 @@ public:
         }
     }
 
+    /// The packet form (RoughConductorGGXT): GGX with exact Fresnel, rough, without Kulla–Conty.
+    static constexpr bool kHasLanes = std::is_same_v<Distribution, GGX> && std::is_same_v<Fresnel, ConductorFresnel>;
+    bool lanes(RoughConductorGGXT<float>* out) const {
+        if constexpr (kHasLanes) {
+            if (m_ms || m_fr.schlick || m_d.effectively_smooth()) return false;
+            *out = RoughConductorGGXT<float>{m_d.lanes(), SmoothConductorT<float>{m_fr.eta, m_fr.k, m_scale}};
+            return true;
+        }
+        return false;
+    }
+    /// The mirror it collapses to when effectively smooth.
+    SmoothConductor<Fresnel> smooth() const { return SmoothConductor<Fresnel>(m_fr, m_scale); }
+
     Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
+        if constexpr (kHasLanes) {
+            RoughConductorGGXT<float> l;
+            if (lanes(&l)) return l.eval(ctx, wo, wi);
+        }
         if (m_d.effectively_smooth() || !same_hemisphere(wo, wi)) return Spectrum(0.f);
         Vec3f o = wo.z < 0.f ? -wo : wo, i = wo.z < 0.f ? -wi : wi;
         Vec3f h = o + i;
@@ -109,6 +217,10 @@ public:
         return f;
     }
     float pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
+        if constexpr (kHasLanes) {
+            RoughConductorGGXT<float> l;
+            if (lanes(&l)) return l.pdf(ctx, wo, wi);
+        }
         if (m_d.effectively_smooth() || !has_flag(ctx.allowed, BxDFFlags::GlossyReflection) ||
             !same_hemisphere(wo, wi))
             return 0.f;
@@ -126,6 +238,10 @@ public:
     }
     std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
                                      const Vec2f& u) const {
+        if constexpr (kHasLanes) {
+            RoughConductorGGXT<float> l;
+            if (lanes(&l)) return to_optional(l.sample(ctx, wo, u_lobe, u));
+        }
         if (wo.z == 0.f) return std::nullopt;
         if (m_d.effectively_smooth())
             return SmoothConductor<Fresnel>(m_fr, m_scale).sample(ctx, wo, u_lobe, u);

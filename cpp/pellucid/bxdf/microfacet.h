@@ -23,8 +23,10 @@
 #include <string>
 
 #include "pellucid/math/constants.h"
+#include "pellucid/math/lane_types.h"
 #include "pellucid/math/spherical.h"
 #include "pellucid/math/vec.h"
+#include "pellucid/sampling/warp.h"
 
 namespace pellucid {
 
@@ -98,39 +100,71 @@ private:
     const Derived& self() const { return static_cast<const Derived&>(*this); }
 };
 
+/// GGX over a lane type F (simd/lane.h): one αx, αy and shadowing choice per lane. GGX below (the
+/// distribution every GGX BxDF holds) is its float instantiation, so the two are one source.
+template <class F>
+struct GGXT {
+    F ax, ay;             ///< clamped to ≥ kMinAlpha by GGX's constructor
+    MaskT<F> separable;   ///< SmithShadowing::Separable
+
+    /// D(wm) = 1 / (π αx αy (x²/αx² + y²/αy² + z²)²) for unit wm, z > 0 (Heitz 2014, eq. 85
+    /// multiplied out so no tan θ or cos⁴ θ appears).
+    F D(const V3<F>& wm) const {
+        const F s = wm.x * wm.x / (ax * ax) + wm.y * wm.y / (ay * ay) + wm.z * wm.z;
+        return lane::select(wm.z <= F(0.f), F(0.f), F(1.f) / (F(kPi) * ax * ay * s * s));
+    }
+    /// Λ(w) = (−1 + sqrt(1 + α² tan² θ))/2 (Heitz 2014, eq. 86), with α² tan² θ =
+    /// (αx² x² + αy² y²)/z² (eq. 80); +∞ on the horizon.
+    F lambda(const V3<F>& w) const {
+        const auto horizon = w.z == F(0.f);
+        const F num = ax * ax * w.x * w.x + ay * ay * w.y * w.y;
+        const F a2t2 = num / lane::select(horizon, F(1.f), w.z * w.z);
+        return lane::select(horizon, F(kInfinity), F(0.5f) * (lane::sqrt(F(1.f) + a2t2) - F(1.f)));
+    }
+    /// Smith G1(w) = 1/(1 + Λ(w)) (Heitz 2014, eq. 43); 0 on the horizon.
+    F G1(const V3<F>& w) const { return F(1.f) / (F(1.f) + lambda(w)); }
+    /// G2: height-correlated 1/(1 + Λ(wo) + Λ(wi)) (eq. 99) or separable G1(wo)·G1(wi) (eq. 98).
+    F G(const V3<F>& wo, const V3<F>& wi) const {
+        const F lo = lambda(wo), li = lambda(wi);
+        return lane::select(separable, (F(1.f) / (F(1.f) + lo)) * (F(1.f) / (F(1.f) + li)), F(1.f) / (F(1.f) + lo + li));
+    }
+    /// D_wo(wm) = G1(wo)/|cos θo| · D(wm) · (wo·wm) (Heitz 2014, eq. 38), wo flipped into the upper
+    /// hemisphere; 0 for back-facing microfacets and on the horizon.
+    F pdf_visible(const V3<F>& wo, const V3<F>& wm) const {
+        const V3<F> w = lane::select(wo.z < F(0.f), -wo, wo);
+        const F c = dot(w, wm);
+        const auto ok = wo.z != F(0.f) && c > F(0.f);
+        return lane::select(ok, G1(w) / w.z * D(wm) * c, F(0.f));
+    }
+    /// Visible normal for wo (flipped into the upper hemisphere), by the spherical-cap method of
+    /// Dupuy & Benyoub 2023, "Sampling Visible GGX Normals with Spherical Caps", HPG, Listing 3,
+    /// inside the stretch/unstretch of Heitz 2018, JCGT 7(4), §3. cos/sin of φ = 2π u.x come from
+    /// detail::sincos_two_pi (warp.h), the same on every lane type.
+    V3<F> sample_visible(const V3<F>& wo, const V2<F>& u) const {
+        const V3<F> w = lane::select(wo.z < F(0.f), -wo, wo);
+        const V3<F> wh = normalize(V3<F>(ax * w.x, ay * w.y, w.z));
+        F cphi, sphi;
+        detail::sincos_two_pi<F>(u.x, &cphi, &sphi);
+        const F z = (F(1.f) - u.y) * (F(1.f) + wh.z) - wh.z;
+        const F st = lane::sqrt(lane::max(F(0.f), F(1.f) - z * z));
+        const V3<F> h = V3<F>(st * cphi, st * sphi, z) + wh;
+        return normalize(V3<F>(ax * h.x, ay * h.y, lane::max(F(0.f), h.z)));
+    }
+};
+
 /// Trowbridge–Reitz / GGX distribution (Walter et al. 2007, eq. 33; anisotropic form Heitz 2014,
-/// eq. 85).
+/// eq. 85): GGXT<float> behind the MicrofacetBase interface.
 class GGX : public MicrofacetBase<GGX> {
 public:
     explicit GGX(float alpha = 0.1f) : MicrofacetBase(alpha, alpha, SmithShadowing::HeightCorrelated) {}
     GGX(float alpha_x, float alpha_y, SmithShadowing s = SmithShadowing::HeightCorrelated)
         : MicrofacetBase(alpha_x, alpha_y, s) {}
 
-    /// D(wm) = 1 / (π αx αy (x²/αx² + y²/αy² + z²)²) for unit wm, z > 0 (Heitz 2014, eq. 85
-    /// multiplied out so no tan θ or cos⁴ θ appears).
-    float D(const Vec3f& wm) const {
-        if (wm.z <= 0.f) return 0.f;
-        float s = wm.x * wm.x / (m_ax * m_ax) + wm.y * wm.y / (m_ay * m_ay) + wm.z * wm.z;
-        return 1.f / (kPi * m_ax * m_ay * s * s);
-    }
-    /// Λ(w) = (−1 + sqrt(1 + α² tan² θ))/2 (Heitz 2014, eq. 86); +∞ on the horizon.
-    float lambda(const Vec3f& w) const {
-        if (w.z == 0.f) return kInfinity;
-        float a2t2 = microfacet_detail::alpha2_tan2(w, m_ax, m_ay);
-        return 0.5f * (std::sqrt(1.f + a2t2) - 1.f);
-    }
-    /// Visible normal for wo (flipped into the upper hemisphere), by the spherical-cap method of
-    /// Dupuy & Benyoub 2023, "Sampling Visible GGX Normals with Spherical Caps", HPG, Listing 3,
-    /// inside the stretch/unstretch of Heitz 2018, JCGT 7(4), §3.
-    Vec3f sample_visible(const Vec3f& wo, const Vec2f& u) const {
-        Vec3f w = wo.z < 0.f ? -wo : wo;
-        Vec3f wh = normalize(Vec3f(m_ax * w.x, m_ay * w.y, w.z));
-        float phi = 2.f * kPi * u.x;
-        float z = (1.f - u.y) * (1.f + wh.z) - wh.z;
-        float st = safe_sqrt(1.f - z * z);
-        Vec3f h = Vec3f(st * std::cos(phi), st * std::sin(phi), z) + wh;
-        return normalize(Vec3f(m_ax * h.x, m_ay * h.y, std::max(0.f, h.z)));
-    }
+    float D(const Vec3f& wm) const { return lanes().D(wm); }
+    float lambda(const Vec3f& w) const { return lanes().lambda(w); }
+    Vec3f sample_visible(const Vec3f& wo, const Vec2f& u) const { return lanes().sample_visible(wo, u); }
+    /// The parameters as the lane form takes them.
+    GGXT<float> lanes() const { return {m_ax, m_ay, m_shadowing == SmithShadowing::Separable}; }
     std::string to_string() const { return "GGX[" + params() + "]"; }
 };
 

@@ -7,6 +7,8 @@
 // | rr_depth  | int    | 5       | Russian roulette from this depth on                                  |
 // | strategy  | string | "mis"   | "mis": light + BSDF sampling, power heuristic; "nee": light sampling (BSDF sampling only through delta lobes); "bsdf": BSDF sampling only; "direct": one bounce (mis, max_depth 2) |
 // | light_selection | string | "balanced" | how NEE picks a light: "balanced" (each light at infinity as often as all finite lights together; finite lights ∝ power), "power" or "uniform" (light/light.h) |
+// | medium_nee | bool | true | next-event estimation at collisions in media (docs/media.md) |
+// | channel_sampling | string | "throughput" | which colour channel distance sampling in a medium follows: ∝ the path throughput, or "uniform" (1/3 each); either way with the one-sample MIS weight over channels |
 // JSON: "integrator": {"type": "path", "max_depth": 8}
 #pragma once
 #include "pellucid/integrator/integrator.h"

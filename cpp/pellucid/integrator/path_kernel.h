@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "pellucid/bxdf/conductor.h"
 #include "pellucid/bxdf/dielectric.h"
 #include "pellucid/bxdf/lambertian.h"
 #include "pellucid/integrator/path_services.h"
@@ -187,7 +188,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                             a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
                             a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
                             a.goes_on[i] = true;
-                            a.nee[i] = ps.use_nee;
+                            a.nee[i] = ps.use_nee && ps.medium_nee;
                             VertexRandoms r;
                             path_services::randoms(sampler[i], depth, a.nee[i], depth >= ps.rr_depth, &r);
                             for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
@@ -291,6 +292,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     }
                     BxDFSample s;
                     a.s_ok[i] = path_services::phase_sample(ps, medium[i], h.wo, Vec2f(a.u[4][i], a.u[5][i]), &s);
+                    // Without NEE here, light found by this direction is not MIS-weighted: the
+                    // vertex counts as a delta bounce for that.
+                    if (!a.nee[i]) s.lobe |= BxDFFlags::Specular;
                     if (a.s_ok[i]) {
                         a.swx[i] = s.wi.x, a.swy[i] = s.wi.y, a.swz[i] = s.wi.z;
                         a.swr[i] = s.weight.r, a.swg[i] = s.weight.g, a.swb[i] = s.weight.b;
@@ -339,7 +343,20 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const F kind = LD(a.kind);
                 const M is_lambert = fast && kind == F(float(kPacketLambertian));
                 const M is_dielectric = fast && kind == F(float(kPacketSmoothDielectric));
+                const M is_mirror = fast && kind == F(float(kPacketSmoothConductor));
+                const M is_rough = fast && kind == F(float(kPacketRoughConductor));
                 const LambertianT<F> lambert{RGB<F>(LD(a.q[0]), LD(a.q[1]), LD(a.q[2]))};
+                // The conductors' parameters (read only where such lanes exist).
+                const bool any_conductor = lane::any(is_mirror || is_rough);
+                const SmoothConductorT<F> metal =
+                    any_conductor ? SmoothConductorT<F>{RGB<F>(LD(a.q[0]), LD(a.q[1]), LD(a.q[2])),
+                                                        RGB<F>(LD(a.q[3]), LD(a.q[4]), LD(a.q[5])),
+                                                        RGB<F>(LD(a.q[6]), LD(a.q[7]), LD(a.q[8]))}
+                                  : SmoothConductorT<F>{RGB<F>(F(0.f)), RGB<F>(F(0.f)), RGB<F>(F(0.f))};
+                const RoughConductorGGXT<F> rough{
+                    GGXT<F>{lane::select(is_rough, LD(a.q[9]), F(1.f)), lane::select(is_rough, LD(a.q[10]), F(1.f)),
+                            LD(a.q[11]) != F(0.f)},
+                    metal};
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
 
@@ -350,10 +367,17 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const V3<F> wi_w(LD(a.lwx), LD(a.lwy), LD(a.lwz));
                     const V3<F> wi = frame.to_local(wi_w);
                     const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
-                    // (Of the packet forms only the Lambertian has a lobe NEE can reach.)
-                    const M off = leak || !is_lambert;
-                    const RGB<F> f_fast = lane::select(off, RGB<F>(F(0.f)), lambert.eval(ctx, wo, wi));
-                    const F pdf_fast = lane::select(off, F(0.f), lambert.pdf(ctx, wo, wi));
+                    // (Of the packet forms the Lambertian and the rough conductor have lobes NEE can
+                    // reach.)
+                    const M off = leak || !(is_lambert || is_rough);
+                    RGB<F> f_fast = lambert.eval(ctx, wo, wi);
+                    F pdf_fast = lambert.pdf(ctx, wo, wi);
+                    if (lane::any(is_rough && nee)) {
+                        f_fast = lane::select(is_rough, rough.eval(ctx, wo, wi), f_fast);
+                        pdf_fast = lane::select(is_rough, rough.pdf(ctx, wo, wi), pdf_fast);
+                    }
+                    f_fast = lane::select(off, RGB<F>(F(0.f)), f_fast);
+                    pdf_fast = lane::select(off, F(0.f), pdf_fast);
                     const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
                     const F bsdf_pdf = lane::select(fast, pdf_fast, LD(a.gpdf));
                     const F light_pdf = lane::select(nee, LD(a.lpdf), F(1.f));
@@ -372,17 +396,21 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const F u_lobe = LD(a.u[3]);
                     const V2<F> u2{LD(a.u[4]), LD(a.u[5])};
                     BxDFSampleT<F> s = lambert.sample(ctx, wo, u_lobe, u2);
+                    auto merge = [&](const M& where, const BxDFSampleT<F>& d) {
+                        const auto di = lane::int_mask(where);
+                        s.valid = lane::select(where, d.valid, s.valid);
+                        s.wi = lane::select(where, d.wi, s.wi);
+                        s.weight = lane::select(where, d.weight, s.weight);
+                        s.pdf = lane::select(where, d.pdf, s.pdf);
+                        s.eta = lane::select(where, d.eta, s.eta);
+                        s.lobe = lane::select(di, d.lobe, s.lobe);
+                    };
+                    if (lane::any(is_mirror)) merge(is_mirror, metal.sample(ctx, wo, u_lobe, u2));
+                    if (lane::any(is_rough)) merge(is_rough, rough.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_dielectric)) {
                         const SmoothDielectricT<F> diel{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
                                                         RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};
-                        const BxDFSampleT<F> d = diel.sample(ctx, wo, u_lobe, u2);
-                        const auto di = lane::int_mask(is_dielectric);
-                        s.valid = lane::select(is_dielectric, d.valid, s.valid);
-                        s.wi = lane::select(is_dielectric, d.wi, s.wi);
-                        s.weight = lane::select(is_dielectric, d.weight, s.weight);
-                        s.pdf = lane::select(is_dielectric, d.pdf, s.pdf);
-                        s.eta = lane::select(is_dielectric, d.eta, s.eta);
-                        s.lobe = lane::select(di, d.lobe, s.lobe);
+                        merge(is_dielectric, diel.sample(ctx, wo, u_lobe, u2));
                     }
                     const V3<F> wi_w = frame.to_world(s.wi);
                     const M ok_fast = s.valid && s.pdf > F(0.f) && !is_black(s.weight) && s.wi.z != F(0.f) &&
@@ -431,7 +459,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (!a.alive[i] || a.crossing[i]) continue;
                     const Vec3f wi(a.nwx[i], a.nwy[i], a.nwz[i]);
                     if (ps.media && !a.in_medium[i]) medium[i] = path_services::medium_after(ps, si[i], wi, medium[i]);
-                    if (scene.has_textures && spec_b[i] && ray[i].has_differentials)
+                    if (scene.has_textures && spec_b[i] && !a.in_medium[i] && ray[i].has_differentials)
                         ray[i] = path_services::next_ray(ps, si[i], ray[i], wi, true, trans_b[i], eta_b[i]);
                     else
                         ray[i] = RayDifferential(Ray{Vec3f(ob[0][i], ob[1][i], ob[2][i]), wi, kInfinity});

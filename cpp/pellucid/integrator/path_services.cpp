@@ -9,6 +9,36 @@
 
 namespace pellucid {
 
+namespace {
+/// A conductor's packet form and parameters (PathSetup::packet_params), if it has one.
+bool packet_conductor(const BxDF& b, int32_t* kind, float* q) {
+    SmoothConductorT<float> smooth;
+    RoughConductorGGXT<float> rough;
+    auto put = [&](const SmoothConductorT<float>& c) {
+        for (int ch = 0; ch < 3; ++ch) q[ch] = c.eta[ch], q[3 + ch] = c.k[ch], q[6 + ch] = c.scale[ch];
+    };
+    if (const auto* c = std::get_if<SmoothConductor<ConductorFresnel>>(&b); c && c->lanes(&smooth)) {
+        *kind = kPacketSmoothConductor;
+        put(smooth);
+        return true;
+    }
+    if (const auto* c = std::get_if<RoughConductor>(&b)) {
+        if (c->lanes(&rough)) {
+            *kind = kPacketRoughConductor;
+            put(rough.fr);
+            q[9] = rough.d.ax, q[10] = rough.d.ay, q[11] = rough.d.separable ? 1.f : 0.f;
+            return true;
+        }
+        if (c->distribution().effectively_smooth() && c->smooth().lanes(&smooth)) {
+            *kind = kPacketSmoothConductor;
+            put(smooth);
+            return true;
+        }
+    }
+    return false;
+}
+}  // namespace
+
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type) {
     PathSetup ps;
     ps.scene = &scene;
@@ -34,7 +64,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
             const SmoothDielectricT<float> p = d->lanes();
             q[0] = p.eta;
             for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
-        } else {
+        } else if (!packet_conductor(b, &ps.packet_kind[m], q)) {
             continue;
         }
         ps.packet_flags[m] = uint32_t(flags(b));
@@ -44,6 +74,8 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.emitters = make_emitter_table(scene.lights, pmf);
     ps.media = scene.has_media();
     ps.camera_medium = scene.camera_medium;
+    ps.medium_nee = scene.integrator.medium_nee;
+    ps.uniform_channels = scene.integrator.channel_sampling == "uniform";
     return ps;
 }
 
@@ -175,7 +207,7 @@ int32_t medium_after(const PathSetup& ps, const SurfaceInteraction& si, const Ve
 
 MediumEvent medium_sample(const PathSetup& ps, int32_t m, const Ray& ray, const Spectrum& beta, PCG32& rng) {
     auto u = [&] { return rng.next_float(); };
-    return sample_distance(ps.scene->media[size_t(m)], ray, beta, u);
+    return sample_distance(ps.scene->media[size_t(m)], ray, ps.uniform_channels ? Spectrum(1.f) : beta, u);
 }
 
 void medium_vertex(const Point3f& p, const Vec3f& d, SurfaceInteraction* out) {
@@ -220,7 +252,7 @@ Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow,
         if (m >= 0) {
             Ray seg = r;
             seg.tmax = hit ? si.t : r.tmax;
-            tr *= transmittance(scene.media[size_t(m)], seg, beta, u);
+            tr *= transmittance(scene.media[size_t(m)], seg, ps.uniform_channels ? Spectrum(1.f) : beta, u);
             if (tr.is_black()) return tr;
         }
         if (!hit) return tr;

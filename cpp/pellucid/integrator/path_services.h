@@ -23,8 +23,14 @@ class Scene;
 
 /// What the path tracer reads of a scene and its settings, prepared once per render.
 /// The models the path tracer shades as packets (their templates XT<F>), and kBSDFLane.
-enum PacketKind : int32_t { kBSDFLane = 0, kPacketLambertian = 1, kPacketSmoothDielectric = 2 };
-constexpr int kPacketParams = 8;
+enum PacketKind : int32_t {
+    kBSDFLane = 0,
+    kPacketLambertian = 1,
+    kPacketSmoothDielectric = 2,
+    kPacketSmoothConductor = 3,
+    kPacketRoughConductor = 4,
+};
+constexpr int kPacketParams = 12;
 
 struct PathSetup {
     const Scene* scene = nullptr;
@@ -37,7 +43,8 @@ struct PathSetup {
     /// kBSDFLane (the lane goes through BSDF, one at a time).
     std::vector<int32_t> packet_kind;
     /// Per material, kPacketParams floats: the packet form's parameters (Lambertian: reflectance;
-    /// smooth dielectric: η, reflectance, transmittance), and its BxDFFlags.
+    /// smooth dielectric: η, reflectance, transmittance; conductors: η, k, specular_reflectance,
+    /// then for the rough one αx, αy and 1 for separable shadowing), and its BxDFFlags.
     std::vector<float> packet_params;
     std::vector<uint32_t> packet_flags;
     /// NEE's triangles when every light is an area light on a mesh (light/area.h), else empty:
@@ -47,6 +54,8 @@ struct PathSetup {
     /// in, which starts as camera_medium (-1: none).
     bool media = false;
     int32_t camera_medium = -1;
+    bool medium_nee = true;        ///< NEE at medium collisions (integrator.medium_nee)
+    bool uniform_channels = false; ///< channel_sampling "uniform": each colour channel 1/3, else ∝ throughput
 };
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type);
 

@@ -19,6 +19,25 @@ inline void sincos_quarter_pi(const F& x, F* s, F* c) {
     *s = x * (F(1.f) + x2 * (F(-1.f / 6.f) + x2 * (F(1.f / 120.f) + x2 * (F(-1.f / 5040.f) + x2 * F(1.f / 362880.f)))));
     *c = F(1.f) + x2 * (F(-0.5f) + x2 * (F(1.f / 24.f) + x2 * (F(-1.f / 720.f) + x2 * (F(1.f / 40320.f) - x2 * F(1.f / 3628800.f)))));
 }
+/// cos and sin of φ = 2π u for u ∈ [0, 1), without libm: φ's octant k = ⌊8u⌋ is chosen per lane,
+/// and within it sincos_quarter_pi gives the angle to the nearer axis (f = 8u − k: fπ/4 past an
+/// even octant's axis, (1 − f)π/4 before an odd one's), rotated by the quadrant ⌊k/2⌋.
+template <class F>
+inline void sincos_two_pi(const F& u, F* c_out, F* s_out) {
+    using I = IntT<F>;
+    const F t = F(8.f) * u;
+    const F k = lane::floor(t);
+    const F f = t - k;
+    const I ki = lane::as_int(k + F(8388608.f)) - lane::as_int(F(8388608.f));  // k as an integer, k < 2²³
+    const auto odd = lane::float_mask((ki & I(1)) != I(0));
+    F s, c;
+    sincos_quarter_pi<F>(lane::select(odd, F(1.f) - f, f) * F(kPiOver4), &s, &c);
+    const F cp = lane::select(odd, s, c), sp = lane::select(odd, c, s);  // cos, sin of φ within its quadrant
+    const I q = (ki >> 1) & I(3);
+    const auto q1 = lane::float_mask(q == I(1)), q2 = lane::float_mask(q == I(2)), q3 = lane::float_mask(q == I(3));
+    *c_out = lane::select(q1, lane::neg(sp), lane::select(q2, lane::neg(cp), lane::select(q3, sp, cp)));
+    *s_out = lane::select(q1, cp, lane::select(q2, lane::neg(sp), lane::select(q3, lane::neg(cp), sp)));
+}
 }  // namespace detail
 
 // The warps on every path vertex are templates over the lane type F (math/lane_types.h), called

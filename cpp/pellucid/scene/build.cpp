@@ -122,6 +122,11 @@ private:
         if (s.light_selection != "balanced" && s.light_selection != "power" && s.light_selection != "uniform")
             p.fail("light_selection",
                    "unknown light selection '" + s.light_selection + "' (known: balanced, power, uniform)");
+        s.medium_nee = p.get_bool("medium_nee", true);
+        s.channel_sampling = p.get_string("channel_sampling", "throughput");
+        if (s.channel_sampling != "throughput" && s.channel_sampling != "uniform")
+            p.fail("channel_sampling",
+                   "unknown channel sampling '" + s.channel_sampling + "' (known: throughput, uniform)");
         p.check_unqueried();
     }
 

@@ -53,6 +53,8 @@ struct IntegratorSettings {
     std::string strategy = "mis";  ///< "mis", "nee", "bsdf", "direct"
     std::string light_selection = "balanced";  ///< "balanced", "power" or "uniform" (light/light.h)
     std::string aov;  ///< type "aov": "albedo", "normal" or "depth" (integrator/aov.h)
+    bool medium_nee = true;  ///< next-event estimation at medium collisions (docs/media.md)
+    std::string channel_sampling = "throughput";  ///< which colour channel tracks a medium: "throughput" or "uniform"
 };
 
 class Scene {

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "pellucid/bxdf/bsdf.h"
+#include "pellucid/bxdf/conductor.h"
 #include "pellucid/bxdf/fresnel.h"
 #include "pellucid/bxdf/lambertian.h"
 #include "pellucid/light/area.h"
@@ -28,7 +29,7 @@ struct In {
     const EmitterTable* emitters = nullptr;
 };
 /// Outputs, one array of n floats per quantity (masks as 0/1), zeroed by the caller.
-constexpr int kOutputs = 40;
+constexpr int kOutputs = 64;
 struct Out {
     float* v[kOutputs];
 };
@@ -68,6 +69,23 @@ void run(const In& in, Out& out) {
         // seen from both sides.
         put(fresnel_conductor<F>(lane::abs(wo.z), F(4.f) * L(in.albedo[0]), F(5.f) * L(in.albedo[1])));
         put(fresnel_dielectric<F>(wo.z, F(1.f) + L(in.albedo[2])));
+        // Conductors: the mirror, and GGX rough reflection with anisotropic α from the inputs
+        // (clamped as GGX's constructor does), separable shadowing on half of the cases.
+        const SmoothConductorT<F> metal{RGB<F>(F(0.2f), F(0.9f), F(1.1f)), RGB<F>(F(3.9f), F(2.4f), F(2.1f)),
+                                        RGB<F>(L(in.albedo[0]), F(1.f), L(in.albedo[2]))};
+        const BxDFSampleT<F> ms = metal.sample(ctx, wo, L(in.u[0]), V2<F>{L(in.u[1]), L(in.u[2])});
+        putm(ms.valid), put(ms.wi.x), put(ms.wi.z), put(ms.weight.r), put(ms.weight.g);
+        const F ax = lane::max(L(in.albedo[1]), F(1e-4f)), ay = lane::max(L(in.albedo[2]) * F(0.5f), F(1e-4f));
+        const RoughConductorGGXT<F> rough{GGXT<F>{ax, ay, L(in.u[2]) < F(0.5f)}, metal};
+        const RGB<F> rf = rough.eval(ctx, wo, wi);
+        put(rf.r), put(rf.g), put(rf.b), put(rough.pdf(ctx, wo, wi));
+        const BxDFSampleT<F> rs = rough.sample(ctx, wo, L(in.u[0]), V2<F>{L(in.u[1]), L(in.u[2])});
+        putm(rs.valid), put(rs.wi.x), put(rs.wi.y), put(rs.wi.z), put(rs.weight.r), put(rs.weight.b), put(rs.pdf);
+        const V3<F> vm = rough.d.sample_visible(wo, V2<F>{L(in.u[1]), L(in.u[0])});
+        put(vm.x), put(vm.y), put(vm.z), put(rough.d.G(wo, wi)), put(rough.d.D(normalize(nrm)));
+        F cphi, sphi;
+        detail::sincos_two_pi<F>(L(in.u[1]), &cphi, &sphi);
+        put(cphi), put(sphi);
         if (in.emitters) {
             const EmitterSample<F> es = sample_emitter<F>(*in.emitters, L(in.u[0]), V2<F>{L(in.u[1]), L(in.u[2])}, V(in.p));
             putm(es.valid), put(es.p.x), put(es.p.y), put(es.p.z), put(es.wi.x), put(es.pdf), put(es.L.r);
