@@ -8,6 +8,7 @@
 #include "pellucid/api.h"
 #include "pellucid/scene/mitsuba_table.h"
 #include "pellucid/scene/registry.h"
+#include "pellucid/scene/scene_update.h"
 #include "pellucid/util/error.h"
 #include "pellucid/util/limits.h"
 
@@ -68,12 +69,41 @@ Node to_node(const py::handle& obj, const std::string& path, int depth) {
     throw Error("<dict>: " + path + ": unsupported value of type " + std::string(py::str(obj.get_type().attr("__name__"))));
 }
 
+namespace {
+/// A description value as the dict that describes it holds it (numbers stay int or float).
+py::object from_node(const Node& n) {
+    switch (n.kind()) {
+        case Node::Kind::Null: return py::none();
+        case Node::Kind::Bool: return py::bool_(n.as_bool());
+        case Node::Kind::Number:
+            if (n.is_integer()) return py::int_(int64_t(n.as_number()));
+            return py::float_(n.as_number());
+        case Node::Kind::String: return py::str(n.as_string());
+        case Node::Kind::Array: {
+            py::list l;
+            for (const Node& v : n.items()) l.append(from_node(v));
+            return l;
+        }
+        case Node::Kind::Object: {
+            py::dict d;
+            for (const auto& [k, v] : n.members()) d[py::str(k)] = from_node(v);
+            return d;
+        }
+    }
+    return py::none();
+}
+}  // namespace
+
 void bind_scene(py::module_& m) {
-    py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A built, immutable scene.")
+    py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A built scene. Rendering reads it; pellucid.parameters(scene).update() changes it in place.")
         .def_property_readonly("width", [](const Scene& s) { return s.width; })
         .def_property_readonly("height", [](const Scene& s) { return s.height; })
         .def_property_readonly("spp", [](const Scene& s) { return s.spp; })
         .def_property_readonly("source", [](const Scene& s) { return s.source; })
+        .def_property_readonly("updates", [](const Scene& s) { return s.updates; },
+                               "Parameter updates applied (pellucid.parameters).")
+        .def_property_readonly("bvh_builds", [](const Scene& s) { return s.bvh_builds; },
+                               "Times the BVH was built: 1 when loaded, +1 per parameter update that moved geometry.")
         .def("__repr__", &Scene::to_string);
     m.def("load_file", [](const std::string& path, bool lenient, const std::map<std::string, std::string>& params) {
         return std::const_pointer_cast<Scene>(load_file(path, lenient, params));
@@ -98,10 +128,41 @@ void bind_scene(py::module_& m) {
             out.push_back(py::make_tuple(r.path, r.type, r.keys));
         return out;
     }, py::arg("d"), py::arg("base_dir") = ".", "Build d; return (path, type, keys looked up) per object.");
+    m.def("scene_parameters", [](const Scene& s) {
+        if (!s.desc) throw Error(s.source + ": the scene keeps no description");
+        py::dict out;
+        for (const SceneParameter& p : scene_parameters(*s.desc)) out[py::str(p.path)] = from_node(*p.value);
+        return out;
+    }, py::arg("scene"), "Every parameter of the scene's description: key path -> value (pellucid.parameters).");
+    m.def("check_parameter_path", [](const Scene& s, const std::string& path, bool allow_new) {
+        if (!s.desc) throw Error(s.source + ": the scene keeps no description");
+        check_parameter_path(*s.desc, path, allow_new);
+    }, py::arg("scene"), py::arg("path"), py::arg("allow_new") = true,
+       "Raise pellucid.Error unless path names a parameter of the scene (allow_new: or a key it may add).");
+    m.def("update_scene", [](Scene& s, const py::dict& edits) {
+        std::vector<std::pair<std::string, Node>> e;
+        for (auto item : edits) {
+            const std::string path = py::str(item.first);
+            e.emplace_back(path, to_node(item.second, path, 1));
+        }
+        UpdateReport r;
+        {
+            py::gil_scoped_release nogil;
+            r = update_scene(s, e);
+        }
+        py::dict out;
+        out["geometry"] = r.geometry;
+        out["full"] = r.full;
+        out["shapes_rebuilt"] = r.shapes_rebuilt;
+        out["seconds"] = r.seconds;
+        return out;
+    }, py::arg("scene"), py::arg("edits"),
+       "Set key path -> value in the scene's description and rebuild what depends on them, in place; returns "
+       "{geometry, full, shapes_rebuilt, seconds}. On error the scene is unchanged.");
     m.def("load_dict", [](const py::dict& d, const std::string& base_dir) {
         SceneDesc desc{to_node(d, ""), "<dict>", base_dir};
         py::gil_scoped_release nogil;
-        return std::const_pointer_cast<Scene>(load_desc(desc));
+        return std::const_pointer_cast<Scene>(load_desc(std::move(desc)));
     }, py::arg("d"), py::arg("base_dir") = ".", "Build a scene from a dict with the JSON format's structure.");
 }
 }  // namespace pellucid::bind

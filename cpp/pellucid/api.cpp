@@ -33,6 +33,7 @@ std::shared_ptr<const Scene> load_file(const std::string& path, bool lenient,
 }
 
 std::shared_ptr<const Scene> load_desc(const SceneDesc& desc) { return build_scene(desc); }
+std::shared_ptr<const Scene> load_desc(SceneDesc&& desc) { return build_scene(std::move(desc)); }
 
 std::vector<ParameterRecord> record_parameters(const SceneDesc& desc) {
     std::vector<ParameterRecord> records;

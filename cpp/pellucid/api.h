@@ -26,6 +26,8 @@ std::shared_ptr<const Scene> load_file(const std::string& path, bool lenient = f
                                        const std::map<std::string, std::string>& params = {});
 /// Build a scene from an already parsed description (e.g. a Python dict).
 std::shared_ptr<const Scene> load_desc(const SceneDesc& desc);
+/// load_desc that moves `desc` into the scene (Scene::desc) instead of copying it.
+std::shared_ptr<const Scene> load_desc(SceneDesc&& desc);
 /// Build `desc` (errors as load_desc) and return, for every object built, the keys its builder
 /// looked up (see ParameterRecord): what the documentation check compares with the docs.
 std::vector<ParameterRecord> record_parameters(const SceneDesc& desc);

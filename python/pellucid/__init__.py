@@ -36,6 +36,7 @@ from .denoise import denoise
 from .bsdf import bsdf
 from .phase import phase
 from .image import Comparison, Image
+from .parameters import SceneParameters, parameters
 
 __version__: str = _core.__version__
 __all__ = [
@@ -48,6 +49,7 @@ __all__ = [
     "RenderOutput",
     "SAMPLERS",
     "Scene",
+    "SceneParameters",
     "bsdf",
     "cancel",
     "denoise",
@@ -56,6 +58,7 @@ __all__ = [
     "load_file",
     "load_film_state",
     "materials",
+    "parameters",
     "phase",
     "read_image",
     "read_image_attributes",

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BSDFProbe', 'BXDF_FLAGS', 'Error', 'FilmState', 'PhaseProbe', 'RenderProgress', 'Scene', 'aov_channels', 'aov_names', 'cancel', 'check_image_output', 'load_dict', 'load_file', 'load_film_state', 'mitsuba_import_table', 'read_image', 'read_image_attributes', 'read_layers', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'set_log_sink', 'write_image', 'write_image_with_attributes', 'write_layers']
+__all__: list[str] = ['BSDFProbe', 'BXDF_FLAGS', 'Error', 'FilmState', 'PhaseProbe', 'RenderProgress', 'Scene', 'aov_channels', 'aov_names', 'cancel', 'check_image_output', 'check_parameter_path', 'load_dict', 'load_file', 'load_film_state', 'mitsuba_import_table', 'read_image', 'read_image_attributes', 'read_layers', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'scene_parameters', 'set_log_sink', 'update_scene', 'write_image', 'write_image_with_attributes', 'write_layers']
 class Error(RuntimeError):
     pass
 class PhaseProbe:
@@ -62,10 +62,15 @@ class BSDFProbe:
         ...
 class Scene:
     """
-    A built, immutable scene.
+    A built scene. Rendering reads it; pellucid.parameters(scene).update() changes it in place.
     """
     def __repr__(self) -> str:
         ...
+    @property
+    def bvh_builds(self) -> int:
+        """
+        Times the BVH was built: 1 when loaded, +1 per parameter update that moved geometry.
+        """
     @property
     def height(self) -> int:
         ...
@@ -75,6 +80,11 @@ class Scene:
     @property
     def spp(self) -> int:
         ...
+    @property
+    def updates(self) -> int:
+        """
+        Parameter updates applied (pellucid.parameters).
+        """
     @property
     def width(self) -> int:
         ...
@@ -142,6 +152,10 @@ def check_image_output(path: str) -> None:
     """
     Check an output image path before rendering: a writable format, missing folders created.
     """
+def check_parameter_path(scene: Scene, path: str, allow_new: bool = True) -> None:
+    """
+    Raise pellucid.Error unless path names a parameter of the scene (allow_new: or a key it may add).
+    """
 def load_dict(d: dict, base_dir: str = '.') -> Scene:
     """
     Build a scene from a dict with the JSON format's structure.
@@ -186,9 +200,17 @@ def render_full(scene: Scene, spp: typing.SupportsInt | typing.SupportsIndex = -
     """
     Render; returns (image, variance, stats), stats['state'] the FilmState if keep_state, stats['aovs'] {name: array} of the requested AOVs (integrator/aov.h) with stats['aov_seconds']. A Python signal handler that raises (Ctrl-C) stops it: the exception is raised with .partial = that tuple. Use pellucid.render for the documented API.
     """
+def scene_parameters(scene: Scene) -> dict:
+    """
+    Every parameter of the scene's description: key path -> value (pellucid.parameters).
+    """
 def set_log_sink(fn: typing.Any) -> None:
     """
     Route log messages to fn(level: int, message: str); None restores stderr.
+    """
+def update_scene(scene: Scene, edits: dict) -> dict:
+    """
+    Set key path -> value in the scene's description and rebuild what depends on them, in place; returns {geometry, full, shapes_rebuilt, seconds}. On error the scene is unchanged.
     """
 def write_image(path: str, array: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> None:
     """

@@ -26,6 +26,8 @@ public:
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
+    /// Exchange the built scenes (a parameter update that moved geometry, scene/scene_update.cpp).
+    void swap(EmbreeScene& other) noexcept { m_impl.swap(other.m_impl); }
 
     /// Add a mesh (its buffers are copied into Embree). Returns the geometry id, dense from 0.
     uint32_t add_mesh(const TriangleMesh& mesh);

@@ -24,9 +24,11 @@ constexpr int kMaxResolution = 16384;
 
 class Builder {
 public:
-    Builder(const SceneDesc& d, Scene& s)
-        : m_desc(d), m_scene(s), m_ctx{d.source, d.base_dir}, m_textures(s.textures, m_ctx) {
+    Builder(const SceneDesc& d, Scene& s, const GeometryReuse& reuse)
+        : m_desc(d), m_scene(s), m_ctx{d.source, d.base_dir}, m_textures(s.textures, m_ctx), m_reuse(reuse) {
         m_ctx.textures = &m_textures;
+        if (reuse.prior)
+            for (const ShapeRecord& r : reuse.prior->shapes) m_prior_shapes[r.name] = &r;
     }
 
     void build() {
@@ -48,7 +50,9 @@ public:
         for (const auto& mt : m_scene.material_textures) m_scene.has_one_sided = m_scene.has_one_sided || !mt.two_sided;
         if (m_scene.shapes.empty() && m_scene.lights.empty())
             log_warning(m_desc.source + ": the scene has no shapes and no lights; it renders black");
+        if (keeps_prior_accel()) return;
         m_scene.accel.commit();
+        ++m_scene.bvh_builds;
     }
 
 private:
@@ -220,6 +224,7 @@ private:
             for (const auto& [k, v] : shape_registry()) names.push_back(k);
             p.fail("type", unknown_type_message("shape", type, names));
         }
+        if (const ShapeRecord* old = reusable_shape(path)) return reuse_shape(p, path, type, *old);
         ShapeGeometry g = it->second(p, m_ctx);
         Transform to_world = p.get_transform("to_world");
         ShapeRecord rec;
@@ -265,6 +270,52 @@ private:
             g.mesh.precompute_flat();
             m_scene.triangle_count += g.mesh.triangle_count();
             m_scene.meshes.push_back(std::move(g.mesh));
+        }
+        m_scene.has_null_surfaces = m_scene.has_null_surfaces || rec.null_surface;
+        m_scene.shapes.push_back(std::move(rec));
+    }
+
+    // Parameter updates (scene_update.cpp): the prior scene's record of an unchanged shape, or null.
+    bool keeps_prior_accel() const { return m_reuse.prior && m_reuse.changed.empty(); }
+    const ShapeRecord* reusable_shape(const std::string& path) const {
+        if (!m_reuse.prior || m_reuse.changed.count(path)) return nullptr;
+        auto it = m_prior_shapes.find(path);
+        return it == m_prior_shapes.end() ? nullptr : it->second;
+    }
+
+    // An unchanged shape in a parameter update: geometry from the prior scene; material, media and
+    // emitter built anew. Material ids equal the prior build's (scene_update.cpp builds from scratch
+    // when they could move, and builds an OBJ anew when its material changes), so per-face ids stay valid.
+    void reuse_shape(Properties& p, const std::string& path, const std::string& type, const ShapeRecord& old) {
+        ShapeRecord rec = old;
+        rec.light = -1;
+        const uint32_t material = resolve_material(p, path, &rec.null_surface);
+        if (type != "obj") rec.material = material;
+        rec.interior_medium = resolve_medium(p, "interior", m_scene.media);
+        rec.exterior_medium = resolve_medium(p, "exterior", m_scene.media);
+        const TriangleMesh* mesh =
+            old.kind == ShapeRecord::Kind::Mesh ? &m_reuse.prior->meshes[old.mesh_index] : nullptr;
+        if (mesh && rec.interior_medium >= 0 && old.interior_medium < 0)
+            if (size_t open = open_edge_count(*mesh))
+                log_warning(format_error(m_desc.source, path, "the mesh has an interior medium but is not closed (" +
+                                                                  std::to_string(open) + " open edges)"));
+        if (const Node* emitter = p.get_node("emitter")) {
+            ShapeGeometry g;
+            g.is_sphere = !mesh;
+            if (mesh) g.mesh = *mesh;
+            g.center = old.center;
+            g.radius = old.radius;
+            g.flip_normals = old.flip_normals;
+            rec.light = build_area_light(*emitter, path_join(path, "emitter"), g);
+        }
+        if (!keeps_prior_accel()) {  // the BVH is built anew: the prior geometry goes into it
+            uint32_t id = mesh ? m_scene.accel.add_mesh(*mesh) : m_scene.accel.add_sphere(old.center, old.radius);
+            PELLUCID_CHECK(id == m_scene.shapes.size(), "geometry ids must be dense");
+            if (mesh) {
+                rec.mesh_index = uint32_t(m_scene.meshes.size());
+                m_scene.triangle_count += mesh->triangle_count();
+                m_scene.meshes.push_back(*mesh);
+            }
         }
         m_scene.has_null_surfaces = m_scene.has_null_surfaces || rec.null_surface;
         m_scene.shapes.push_back(std::move(rec));
@@ -352,7 +403,7 @@ private:
     // Bounding sphere of all geometry, for the power of lights at infinity.
     float scene_radius() const {
         Vec3f lo(kInfinity), hi(-kInfinity);
-        for (const auto& m : m_scene.meshes)
+        for (const auto& m : keeps_prior_accel() ? m_reuse.prior->meshes : m_scene.meshes)
             for (const auto& p : m.positions) {
                 lo = glm::min(lo, p);
                 hi = glm::max(hi, p);
@@ -470,13 +521,27 @@ private:
     std::map<std::string, uint32_t> m_materials;
     std::set<std::string> m_null_materials;  ///< named `null` materials
     int m_default_material = -1;
+    const GeometryReuse& m_reuse;
+    std::map<std::string, const ShapeRecord*> m_prior_shapes;
 };
 }  // namespace
 
 std::unique_ptr<Scene> build_scene(const SceneDesc& desc) {
+    auto scene = build_scene(desc, GeometryReuse{});
+    scene->desc = std::make_shared<SceneDesc>(desc);
+    return scene;
+}
+
+std::unique_ptr<Scene> build_scene(SceneDesc&& desc) {
+    auto scene = build_scene(desc, GeometryReuse{});
+    scene->desc = std::make_shared<SceneDesc>(std::move(desc));
+    return scene;
+}
+
+std::unique_ptr<Scene> build_scene(const SceneDesc& desc, const GeometryReuse& reuse) {
     auto scene = std::make_unique<Scene>();
     scene->source = desc.source;
-    Builder(desc, *scene).build();
+    Builder(desc, *scene, reuse).build();
     return scene;
 }
 }  // namespace pellucid

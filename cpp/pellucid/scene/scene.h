@@ -1,4 +1,5 @@
-// Scene: the immutable, built scene that rendering reads (const Scene&).
+// Scene: the built scene that rendering reads (const Scene&); only parameter updates
+// (scene/scene_update.h) change it, in place.
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include "pellucid/texture/texture.h"
 #include "pellucid/sampling/distribution_1d.h"
 #include "pellucid/sampling/sampler.h"
+#include "pellucid/scene/scene_desc.h"
 
 namespace pellucid {
 
@@ -135,6 +137,11 @@ public:
     bool has_media() const { return !media.empty() || has_null_surfaces || camera_medium >= 0; }
     std::string source;
     uint64_t triangle_count = 0;
+    /// The description it was built from, which parameter updates edit (scene/scene_update.h; a new
+    /// field that depends on the description is carried over in scene_update.cpp's adopt()).
+    std::shared_ptr<SceneDesc> desc;
+    uint32_t updates = 0;     ///< parameter updates applied
+    uint32_t bvh_builds = 0;  ///< times `accel` was built: 1 when loaded, +1 per update that moved geometry
 
 private:
     BSDF textured_bsdf(const SurfaceInteraction& si) const;

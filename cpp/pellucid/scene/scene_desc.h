@@ -43,6 +43,9 @@ public:
     void set(const std::string& key, Node v);
     /// Member lookup; nullptr when absent.
     const Node* find(const std::string& key) const;
+    /// Mutable access, for parameter updates (scene/scene_update.cpp).
+    Node* find(const std::string& key) { return const_cast<Node*>(std::as_const(*this).find(key)); }
+    Node& item(size_t i) { return m_items.at(i); }
     size_t size() const { return m_kind == Kind::Array ? m_items.size() : m_members.size(); }
 
     /// Source line (1-based) when known (XML import), else 0.
