@@ -31,8 +31,7 @@ version = release = _version()
 extensions = ["myst_nb", "autoapi.extension", "sphinx.ext.napoleon"]
 
 # Sources: the Markdown pages, the tutorials, and the generated reference (api/).
-exclude_patterns = ["_build", "gallery/*.md", "**/.ipynb_checkpoints"]
-suppress_warnings: list = []
+exclude_patterns = ["_build", "**/.ipynb_checkpoints"]
 myst_heading_anchors = 3
 myst_enable_extensions = ["dollarmath"]
 
@@ -62,7 +61,8 @@ nitpick_ignore_regex = [
               r"Tuple|Sequence|Callable|NamedTuple|Iterable|Iterator|Mapping|RuntimeError|Exception|"
               r"BaseException|KeyboardInterrupt|ValueError|TypeError)"),
 ]
-
+# Resolved type names are shown without their module path (Scene, not _core.Scene).
+python_use_unqualified_type_names = True
 
 
 def _module_sources() -> Dict[str, ast.Module]:
@@ -94,7 +94,8 @@ def _type_aliases() -> Set[str]:
     return names
 
 
-nitpick_ignore_regex.append(("py:.*", "(" + "|".join(sorted(_type_aliases())) + ")"))
+if _type_aliases():
+    nitpick_ignore_regex.append(("py:.*", "(" + "|".join(sorted(_type_aliases())) + ")"))
 
 PACKAGE_ALL = _exported(_module_sources()["__init__"])
 # Submodules whose name the package rebinds to something imported from inside them
@@ -210,9 +211,6 @@ def setup(app: Any) -> None:
     app.connect("source-read", _source_read)
     app.connect("missing-reference", _missing_reference)
 
-
-# Resolved type names are shown without their module path (Scene, not _core.Scene).
-python_use_unqualified_type_names = True
 
 html_theme = "alabaster"
 html_title = f"pellucid {release}"
