@@ -28,7 +28,9 @@ author = "the pellucid authors"
 copyright = "the pellucid authors"
 version = release = _version()
 
-extensions = ["myst_nb", "autoapi.extension", "sphinx.ext.napoleon"]
+# autodoc only for its autodoc-process-docstring event, which sphinx-autoapi emits. No napoleon: the
+# docstrings are prose with reST roles, and napoleon would read a property's "Text: more" as a type.
+extensions = ["myst_nb", "autoapi.extension", "sphinx.ext.autodoc"]
 
 # Sources: the Markdown pages, the tutorials, and the generated reference (api/).
 exclude_patterns = ["_build", "**/.ipynb_checkpoints"]
@@ -195,14 +197,25 @@ def _source_read(app: Any, docname: str, source: List[str]) -> None:
 
 
 def _missing_reference(app: Any, env: Any, node: Any, contnode: Any) -> Any:
-    # Annotations name the compiled module's classes as _core.Scene; they are documented where
-    # users see them, as pellucid.Scene.
-    target = node.get("reftarget", "")
-    m = re.fullmatch(r"(?:pellucid\.)?_core\.(\w+)", target)
-    if node.get("refdomain") != "py" or not m or m.group(1) not in PACKAGE_ALL:
+    if node.get("refdomain") != "py":
         return None
-    return env.get_domain("py").resolve_xref(env, node["refdoc"], app.builder, node["reftype"],
-                                             "pellucid." + m.group(1), node, contnode)
+    py = env.get_domain("py")
+    target, kind = node.get("reftarget", ""), node["reftype"]
+    # A name of pellucid.__all__ written as the module it comes from sees it (_core.Scene, or Image
+    # in pellucid.aov): it is documented where users see it, as pellucid.Scene, pellucid.Image.
+    m = re.fullmatch(r"(?:pellucid\.)?(?:_core\.)?(\w+)", target)
+    if m and m.group(1) in PACKAGE_ALL:
+        return py.resolve_xref(env, node["refdoc"], app.builder, kind, "pellucid." + m.group(1), node, contnode)
+    # A bare method or attribute name (:meth:`update` in a class docstring) shown in a module's
+    # summary table, away from its class: the object of that name in this module, the package's
+    # re-export (the shortest name) when there are two.
+    if "." not in target and kind in ("meth", "attr"):
+        found = [name for name, _ in py.find_obj(env, node.get("py:module"), None, target, kind, 1)]
+        here = [n for n in found if n.startswith(f"{node.get('py:module')}.")] or found
+        if here:
+            best = min(here, key=len)
+            return py.resolve_xref(env, node["refdoc"], app.builder, kind, best, node, contnode)
+    return None
 
 
 def setup(app: Any) -> None:
