@@ -16,10 +16,14 @@ BIN := $(BUILD)/cpp/pellucid-render
 DEB_PACKAGES := g++ python3-venv python3-dev ca-certificates \
                 libembree-dev libopenimageio-dev openimageio-tools libglm-dev libtbb-dev \
                 nlohmann-json3-dev libpugixml-dev libtinyobjloader-dev libgtest-dev libxsimd-dev libcli11-dev
-PY_DEPS := "pybind11>=2.12" "pybind11-stubgen" "scikit-build-core>=0.10" "numpy" "pytest" "cmake>=3.18" "ninja" "matplotlib" "tqdm"
+PY_DEPS := "pybind11>=2.12" "pybind11-stubgen" "scikit-build-core>=0.10" "numpy" "pytest" "cmake>=3.18" "ninja" "matplotlib" "tqdm" \
+           "nbclient" "nbformat" "ipykernel"
+# The `docs` extra of pyproject.toml, read from there: `make docs` needs it, and the tests build the
+# API reference with it (tests/python/test_api_docs.py).
+DOCS_DEPS = $(shell $(PYTHON) -c 'import tomllib; print(" ".join(repr(d) for d in tomllib.load(open("pyproject.toml", "rb"))["project"]["optional-dependencies"]["docs"]))')
 SOURCES := $(shell find cpp bindings python tests/cpp cmake -type f \( -name '*.cpp' -o -name '*.h' -o -name '*.py' -o -name '*.txt' -o -name '*.cmake' -o -name '*.pyi' \) 2>/dev/null) CMakeLists.txt pyproject.toml
 
-.PHONY: render test deps clean sanitize
+.PHONY: render test deps docs clean sanitize
 .DEFAULT_GOAL := render
 
 # Debian packages: installed only when one is missing (needs root or sudo).
@@ -32,10 +36,10 @@ $(VENV)/.deb-stamp: Makefile
 	fi
 	@mkdir -p $(VENV) && touch $@
 
-$(VENV)/.py-stamp: $(VENV)/.deb-stamp
+$(VENV)/.py-stamp: $(VENV)/.deb-stamp pyproject.toml
 	@test -x $(VPY) || $(PYTHON) -m venv $(VENV)
 	$(VPY) -m pip install -q --upgrade pip
-	$(VPY) -m pip install -q $(PY_DEPS)
+	$(VPY) -m pip install -q $(PY_DEPS) $(DOCS_DEPS)
 	@touch $@
 
 # Editable, incremental install: the CMake build in build/py also builds pellucid-render and the
@@ -55,6 +59,13 @@ render: deps
 test: deps
 	cd $(BUILD) && $(CTEST) --output-on-failure -j2
 	$(VPY) -m pytest -q
+
+# The documentation site in build/docs: the Markdown pages of docs/, the tutorial notebooks (shown with
+# their stored outputs, not run) and the API reference, which is read from the Python sources and
+# python/pellucid/_core.pyi, so nothing is compiled for it.
+docs: $(VENV)/.py-stamp
+	$(VPY) -m sphinx -b html -q --keep-going docs build/docs
+	@echo "documentation: $(CURDIR)/build/docs/index.html"
 
 # The core and the C++ tests built with AddressSanitizer + UndefinedBehaviorSanitizer in their own
 # build directory (-O1, no Python module, no executable), then the C++ tests there. Any finding

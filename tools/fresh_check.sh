@@ -28,34 +28,12 @@ while [ $# -gt 0 ]; do
     shift
 done
 
-if [ "$(id -u)" != 0 ]; then
-    echo "fresh_check: needs root (debootstrap and chroot)" >&2
-    exit 2
-fi
-
-t_start=$(date +%s)
-step_start=$t_start
-step() {  # step NAME: print the time of the step that just ended, then start NAME
-    local now; now=$(date +%s)
-    [ -n "${step_name:-}" ] && printf 'fresh_check: %-28s %5d s\n' "$step_name" $((now - step_start))
-    step_name="$1"; step_start=$now
-}
-
-# The mirror: one line and exit 0 when it cannot be reached.
-if ! python3 - "$mirror" <<'EOF' >/dev/null 2>&1
-import sys, urllib.request
-urllib.request.urlopen(sys.argv[1].rstrip("/") + "/dists/bookworm/Release", timeout=20).read(64)
-EOF
-then
-    echo "fresh_check: SKIPPED: the Debian mirror $mirror cannot be reached"
-    exit 0
-fi
-
-if ! command -v debootstrap >/dev/null 2>&1; then
-    step "install debootstrap (host)"
-    apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends debootstrap >/dev/null
-fi
+LDR_NAME=fresh_check
+# shellcheck source=tools/lib_debian_root.sh
+source "$repo/tools/lib_debian_root.sh"
+ldr_require_root
+ldr_mirror_or_skip
+ldr_ensure_debootstrap
 
 if [ -z "$root" ]; then
     root="$(mktemp -d /var/tmp/pellucid-fresh.XXXXXX)"
@@ -66,68 +44,16 @@ else
         exit 2
     fi
 fi
+ldr_trap_cleanup
 
-mounted=()
-cleanup() {
-    local rc=$?
-    for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
-        umount "${mounted[$i]}" 2>/dev/null || umount -l "${mounted[$i]}" 2>/dev/null || true
-    done
-    # Never delete through a mount that is still there.
-    if [ "$keep" = 0 ] && ! grep -q " $root/" /proc/mounts; then
-        rm -rf --one-file-system "$root"
-    elif [ "$keep" = 1 ]; then
-        echo "fresh_check: root kept at $root"
-    fi
-    exit $rc
-}
-trap cleanup EXIT
-trap 'exit 130' INT TERM
-
-step "debootstrap minbase"
-if ! debootstrap --variant=minbase --include=make,git,python3,ca-certificates bookworm "$root" "$mirror" \
-        > "$root.debootstrap.log" 2>&1; then
-    if grep -qiE "Failed getting release file|Couldn't download|Temporary failure resolving|Connection (refused|timed out)" "$root.debootstrap.log"; then
-        echo "fresh_check: SKIPPED: the Debian mirror $mirror could not be reached during debootstrap"
-        rm -f "$root.debootstrap.log"
-        exit 0
-    fi
-    tail -20 "$root.debootstrap.log" >&2
-    echo "fresh_check: FAILED: debootstrap (log above)" >&2
-    rm -f "$root.debootstrap.log"
-    exit 1
-fi
-rm -f "$root.debootstrap.log"
+ldr_debootstrap make,git,python3,ca-certificates
 
 step "network settings + source"
-# Network settings only: name resolution, the CA bundle and pip's configuration.
-cp -L /etc/resolv.conf "$root/etc/resolv.conf"
-if [ -f /etc/ssl/certs/ca-certificates.crt ]; then
-    mkdir -p "$root/etc/ssl/certs"
-    cp -L /etc/ssl/certs/ca-certificates.crt "$root/etc/ssl/certs/ca-certificates.crt"
-fi
-for f in /etc/pip.conf /etc/xdg/pip/pip.conf "${HOME:-/root}/.config/pip/pip.conf" "${HOME:-/root}/.pip/pip.conf" \
-         "${PIP_CONFIG_FILE:-}"; do
-    [ -n "$f" ] && [ -f "$f" ] || continue
-    case "$f" in
-        "${HOME:-/root}"/*) dest="$root/root/${f#"${HOME:-/root}"/}" ;;
-        *) dest="$root$f" ;;
-    esac
-    mkdir -p "$(dirname "$dest")"
-    cp -L "$f" "$dest"
-done
+ldr_copy_network_settings
 # The committed HEAD, as a new user would clone it.
 git clone -q --no-hardlinks "$repo" "$root/src/pellucid"
-
-mount -t proc proc "$root/proc"
-mounted+=("$root/proc")
-
-# A clean environment: nothing of the host's but the proxy settings.
-envs=(HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8 TERM=dumb)
-for v in http_proxy https_proxy no_proxy HTTP_PROXY HTTPS_PROXY NO_PROXY; do
-    [ -n "${!v:-}" ] && envs+=("$v=${!v}")
-done
-in_root() { chroot "$root" /usr/bin/env -i "${envs[@]}" /bin/bash -c "cd /src/pellucid && $1"; }
+ldr_mount_proc
+ldr_enter /src/pellucid
 
 step "make render (first)"
 in_root "make render" > "$root.render.log" 2>&1 || {

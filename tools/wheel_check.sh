@@ -31,47 +31,16 @@ while [ $# -gt 0 ]; do
     esac
     shift
 done
-if [ "$(id -u)" != 0 ]; then
-    echo "wheel_check: needs root (debootstrap and chroot)" >&2
-    exit 2
-fi
-
-t_start=$(date +%s)
-step_start=$t_start
-step() {  # step NAME: print the time of the step that just ended, then start NAME
-    local now; now=$(date +%s)
-    [ -n "${step_name:-}" ] && printf 'wheel_check: %-28s %5d s\n' "$step_name" $((now - step_start))
-    step_name="$1"; step_start=$now
-}
-
-if ! python3 - "$mirror" <<'EOF' >/dev/null 2>&1
-import sys, urllib.request
-urllib.request.urlopen(sys.argv[1].rstrip("/") + "/dists/bookworm/Release", timeout=20).read(64)
-EOF
-then
-    echo "wheel_check: SKIPPED: the Debian mirror $mirror cannot be reached"
-    exit 0
-fi
+LDR_NAME=wheel_check
+# shellcheck source=tools/lib_debian_root.sh
+source "$repo/tools/lib_debian_root.sh"
+ldr_require_root
+ldr_mirror_or_skip
 
 root="$(mktemp -d /var/tmp/pellucid-wheel-root.XXXXXX)"
 dist="$(mktemp -d /var/tmp/pellucid-wheel-dist.XXXXXX)"
-mounted=()
-cleanup() {
-    local rc=$?
-    for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
-        umount "${mounted[$i]}" 2>/dev/null || umount -l "${mounted[$i]}" 2>/dev/null || true
-    done
-    rm -rf "$dist"
-    # Never delete through a mount that is still there.
-    if [ "$keep" = 0 ] && ! grep -q " $root/" /proc/mounts; then
-        rm -rf --one-file-system "$root"
-    elif [ "$keep" = 1 ]; then
-        echo "wheel_check: root kept at $root"
-    fi
-    exit $rc
-}
-trap cleanup EXIT
-trap 'exit 130' INT TERM
+ldr_cleanup_extra() { rm -rf "$dist"; }
+ldr_trap_cleanup
 
 if [ -z "$wheel" ]; then
     step "build the wheel"
@@ -85,56 +54,19 @@ if [ -z "$wheel" ]; then
     wheel="$(ls "$dist"/pellucid-*.whl)"
 fi
 
-if ! command -v debootstrap >/dev/null 2>&1; then
-    step "install debootstrap (host)"
-    apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends debootstrap >/dev/null
-fi
+ldr_ensure_debootstrap
 
-step "debootstrap minbase"
 # The manylinux-assumed libraries the wheel needs (see the list that `auditwheel show` prints).
 manylinux_libs=libglib2.0-0,libx11-6,libxext6,libxrender1
-if ! debootstrap --variant=minbase --include=python3,python3-venv,ca-certificates,$manylinux_libs bookworm "$root" "$mirror" \
-        > "$root.debootstrap.log" 2>&1; then
-    if grep -qiE "Failed getting release file|Couldn't download|Temporary failure resolving|Connection (refused|timed out)" "$root.debootstrap.log"; then
-        echo "wheel_check: SKIPPED: the Debian mirror $mirror could not be reached during debootstrap"
-        rm -f "$root.debootstrap.log"
-        exit 0
-    fi
-    tail -20 "$root.debootstrap.log" >&2
-    echo "wheel_check: FAILED: debootstrap (log above)" >&2
-    rm -f "$root.debootstrap.log"
-    exit 1
-fi
-rm -f "$root.debootstrap.log"
+ldr_debootstrap python3,python3-venv,ca-certificates,$manylinux_libs
 
 step "network settings + files"
-cp -L /etc/resolv.conf "$root/etc/resolv.conf"
-if [ -f /etc/ssl/certs/ca-certificates.crt ]; then
-    mkdir -p "$root/etc/ssl/certs"
-    cp -L /etc/ssl/certs/ca-certificates.crt "$root/etc/ssl/certs/ca-certificates.crt"
-fi
-for f in /etc/pip.conf /etc/xdg/pip/pip.conf "${HOME:-/root}/.config/pip/pip.conf" "${HOME:-/root}/.pip/pip.conf" \
-         "${PIP_CONFIG_FILE:-}"; do
-    [ -n "$f" ] && [ -f "$f" ] || continue
-    case "$f" in
-        "${HOME:-/root}"/*) dest="$root/root/${f#"${HOME:-/root}"/}" ;;
-        *) dest="$root$f" ;;
-    esac
-    mkdir -p "$(dirname "$dest")"
-    cp -L "$f" "$dest"
-done
+ldr_copy_network_settings
 mkdir -p "$root/check"
 cp "$wheel" "$root/check/"
 cp "$repo/scenes/cornell_box.json" "$root/check/"
-mount -t proc proc "$root/proc"
-mounted+=("$root/proc")
-
-envs=(HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8 TERM=dumb)
-for v in http_proxy https_proxy no_proxy HTTP_PROXY HTTPS_PROXY NO_PROXY; do
-    [ -n "${!v:-}" ] && envs+=("$v=${!v}")
-done
-in_root() { chroot "$root" /usr/bin/env -i "${envs[@]}" /bin/bash -c "cd /check && $1"; }
+ldr_mount_proc
+ldr_enter /check
 
 # The root really has none of what a source build needs.
 devs="$(in_root "dpkg-query -W -f='\${Package}\n' | grep -E -- '-dev\$|^(gcc|g\+\+|cpp)(-[0-9]+)?\$|^libembree|^libopenimageio|^libtbb' || true")"
@@ -146,13 +78,6 @@ fi
 step "pip install the wheel"
 in_root "python3 -m venv venv && venv/bin/python -m pip install -q $(basename "$wheel")" > "$root.pip.log" 2>&1 || {
     tail -30 "$root.pip.log" >&2; rm -f "$root.pip.log"
-# Every library the extension and the executable load is in the wheel or in the root.
-missing="$(in_root "ldd venv/lib/python3*/site-packages/pellucid/_core*.so venv/lib/python3*/site-packages/pellucid/bin/pellucid-render | grep 'not found' | sort -u || true")"
-if [ -n "$missing" ]; then
-    echo "wheel_check: FAILED: libraries neither bundled nor in the root:" >&2
-    echo "$missing" >&2
-    exit 1
-fi
     echo "wheel_check: FAILED: pip install of the wheel in the bare root (log tail above)" >&2
     exit 1
 }
