@@ -3,13 +3,16 @@ values where methods fail, and counts the numbers that would spoil an image.
 
 For each model and parameter point the sweep
 
-- evaluates ``eval``, ``pdf`` and ``sample`` through :func:`pellucid.bsdf` (both transport modes)
-  at random directions and at the hard ones: the normal, grazing angles (cos θ = 1e-6, 1e-3 and 0),
-  the lower hemisphere, and directions within 1e-6 and 1e-4 (relative) of the critical angle of
-  total internal reflection for each η of the point; ``sample`` also gets the edge values 0, ½ and
-  1 − 2⁻²⁴ of its random numbers;
-- renders a tiny scene (a sphere of the material on a floor, an area light and a constant
-  environment; a few samples per pixel) and reads the dropped-sample count of the render.
+- evaluates ``eval``, ``pdf`` and ``sample`` (BxDFs through :func:`pellucid.bsdf` in both transport
+  modes, phase functions through ``_core.PhaseProbe``) at random directions and at the hard ones:
+  the normal, grazing angles (cos θ = 1e-6, 1e-3 and 0), the lower hemisphere, and directions
+  within 1e-6 and 1e-4 (relative) of the critical angle of total internal reflection for each η
+  of the point; ``sample`` also gets the edge values 0, ½ and 1 − 2⁻²⁴ of its random numbers;
+- renders a tiny scene, a few samples per pixel, and reads the render's dropped-sample count: for
+  a material, a sphere of it on a floor under an area light and a constant environment (also with
+  a normal map whose normals lie in the tangent plane, so that shading normals face away from the
+  viewer, under each ``invalid_normals`` treatment); for a phase function, a cube of homogeneous
+  medium of albedo 1 with it, behind a null boundary, at σt = 1e-6, 1 and 1000.
 
 It counts per point: **NaN**, **Inf** and **negative** values (rows of ``eval``/``pdf``/``sample``
 output, and image values), and **invalid** results: for ``sample``, a sample that claims a lobe but
@@ -17,18 +20,17 @@ has a pdf ≤ 0 or a direction that is not a unit vector, or that fails (lobe 0)
 weight; for renders, the samples the renderer dropped as NaN, infinite or negative
 (``invalid_samples``). Every count must be zero.
 
-The models come from the registry (``_core.registry_types()``): :data:`FAMILIES` maps a registry
-family to its probe and :data:`GRIDS` gives each model's parameter points. A registered model with
-no grid is swept at its defaults and reported as missing a grid (a failure), so a new model shows
-up here as soon as it is registered. Phase functions and BSSRDFs join through the two hooks marked
+The models come from the registry (``_core.registry_types()``): :data:`FAMILIES` maps a family to
+its probe, scene and render variants, and :data:`GRIDS` gives each model's parameter points. A
+registered model with no grid is swept at its defaults and reported as missing a grid (a failure),
+so a new model shows up here as soon as it is registered. BSSRDFs join through the hook marked
 ``HOOK`` below.
 
-The parameter grid is REFERENCE §7.2's: α ∈ {0, 1e-4, 1e-3, 1e-2} (and 0.5, 1), η ∈ {1, 1 ± 1e-4}
-besides ordinary and inverted IORs, conductors with k = 0 and k at its upper limit, reflectances
-0 and 1, back-facing shading normals (renders with a normal map whose normals lie in the tangent
-plane, under each ``invalid_normals`` treatment), HG g ∈ {±0.999, ±1} for phase functions, and
-the mean free path far below a pixel and far above the object for BSSRDFs. ``quick=True`` keeps a
-subset of each grid (the CI test, tests/python/test_stability.py).
+The parameter grid is REFERENCE §7.2's: α ∈ {0, 1e-4, 1e-3, 1e-2} (and 9.99e-4, 0.5, 1),
+η ∈ {1, 1 ± 1e-4} besides ordinary and inverted IORs, conductors with k = 0 and k at its upper
+limit, reflectances 0 and 1, back-facing shading normals, HG g ∈ {±1, ±0.999, ±1e-7, 0}, albedo 1
+with σt → 0 and σt large. ``quick=True`` keeps a subset of each grid (the CI test,
+tests/python/test_stability.py).
 """
 from __future__ import annotations
 
@@ -163,6 +165,11 @@ def _grid_principled(quick: bool) -> List[Params]:
     return out
 
 
+def _grid_hg(quick: bool) -> List[Params]:
+    gs = (-1.0, -0.999, 0.0, 0.999, 1.0) if quick else (-1.0, -0.999, -0.5, -1e-7, 0.0, 1e-7, 0.5, 0.999, 1.0)
+    return [{"g": g} for g in gs]
+
+
 #: THE table of parameter grids: one entry per registered model type. A model added to the registry
 #: needs an entry here (until then it is swept at its defaults and reported as missing a grid).
 GRIDS: Dict[str, Callable[[bool], List[Params]]] = {
@@ -176,9 +183,9 @@ GRIDS: Dict[str, Callable[[bool], List[Params]]] = {
     "plastic": _grid_plastic,
     "rough_plastic": _grid_rough_plastic,
     "principled": _grid_principled,
-    # HOOK (phase functions): add "hg" and "isotropic" here once they are registered, e.g.
-    #   "hg": lambda quick: [{"g": g} for g in (-1.0, -0.999, -1e-7, 0.0, 1e-7, 0.999, 1.0)],
-    #   "isotropic": lambda quick: [{}],
+    # Phase functions: g at and next to the delta (±1, ±0.999) and next to isotropic (±1e-7).
+    "hg": _grid_hg,
+    "isotropic": lambda quick: [{}],
     # HOOK (BSSRDFs): mean free paths far below a pixel footprint and far above the object size, e.g.
     #   "<bssrdf type>": lambda quick: [{"mfp": m} for m in (1e-6, 1e-3, 1.0, 1e3)],
 }
@@ -206,30 +213,87 @@ def _material_scene(desc: Params, variant: str, spp: int) -> Dict[str, Any]:
     return scenes.material_ball(mat, width=16, height=12, spp=spp)
 
 
+def _material_variants(quick: bool) -> List[str]:
+    return ["plain"] if quick else ["plain", "normal_map:bend", "normal_map:mirror", "normal_map:keep"]
+
+
+class _PhaseProbe:
+    """A phase function (``_core.PhaseProbe``) behind the BSDF probe's interface: ``eval`` and
+    ``pdf`` as they are, ``sample(wo, u)`` with u (N, 3) of which (u1, u2) are used, returning
+    ``(wi, weight (N, 1), pdf, lobe)`` with lobe 1 for every sample (phase sampling cannot fail)."""
+
+    def __init__(self, desc: Params) -> None:
+        self._p = _core.PhaseProbe(desc)  # type: ignore[attr-defined]
+
+    def eval(self, wo: np.ndarray, wi: np.ndarray) -> np.ndarray:
+        return self._p.eval(wo, wi)
+
+    def pdf(self, wo: np.ndarray, wi: np.ndarray) -> np.ndarray:
+        return self._p.pdf(wo, wi)
+
+    def sample(self, wo: np.ndarray, u: np.ndarray) -> Tuple[np.ndarray, ...]:
+        wi, weight, pdf, _delta = self._p.sample(wo, np.ascontiguousarray(u[:, 1:3]))
+        return wi, weight.reshape(-1, 1), pdf, np.ones(len(wo), dtype=np.uint32)
+
+
+def _phase_probe(desc: Params, mode: str) -> Any:
+    return _PhaseProbe(desc)
+
+
+def _medium_scene(desc: Params, variant: str, spp: int) -> Dict[str, Any]:
+    """A cube of homogeneous medium with the phase function, inside a null boundary, on a floor
+    under an area light. ``variant`` "sigma_t=<value>": the extinction, with albedo 1 (no
+    absorption: every path ends by leaving the medium or at max_depth 32)."""
+    sigma_t = float(variant.split("=", 1)[1])
+    return {
+        "camera": {"type": "perspective", "fov": 40,
+                   "to_world": [{"look_at": {"origin": [0, 0.5, 4], "target": [0, 0, 0], "up": [0, 1, 0]}}]},
+        "film": {"width": 16, "height": 12},
+        "sampler": {"sample_count": spp},
+        "integrator": {"type": "path", "max_depth": 32},
+        "media": {"m": {"type": "homogeneous", "sigma_t": sigma_t, "albedo": 1.0, "phase": dict(desc)}},
+        "materials": {"boundary": {"type": "null"}},
+        "shapes": [
+            {"type": "cube", "material": "boundary", "interior": "m", "to_world": [{"scale": 0.7}]},
+            {"type": "rectangle", "material": {"type": "lambertian", "reflectance": 0.5},
+             "to_world": [{"scale": 4}, {"rotate": {"axis": [1, 0, 0], "angle": -90}}, {"translate": [0, -0.7, 0]}]},
+            {"type": "rectangle", "material": {"type": "lambertian", "reflectance": 0.0},
+             "to_world": [{"rotate": {"axis": [1, 0, 0], "angle": 90}}, {"translate": [0, 2.5, 0]}],
+             "emitter": {"type": "area", "radiance": 5.0}},
+        ],
+        "lights": [{"type": "constant", "radiance": 0.2}],
+    }
+
+
+def _medium_variants(quick: bool) -> List[str]:
+    """σt → 0, ordinary, and optically thick (REFERENCE §7.2: σt → 0 and ∞, albedo 1)."""
+    return ["sigma_t=1"] if quick else ["sigma_t=1e-06", "sigma_t=1", "sigma_t=1000"]
+
+
+def _phase_names() -> List[str]:
+    """Phase-function types: the registry's "phase_functions" family where it lists one, else the
+    types this build's ``_core.PhaseProbe`` knows (none without it)."""
+    return ["hg", "isotropic"] if hasattr(_core, "PhaseProbe") else []
+
+
 @dataclass(frozen=True)
 class Family:
-    """One registry family that the sweep covers."""
+    """One family of scattering models that the sweep covers."""
 
     registry_key: str                                     #: key of _core.registry_types()
     probe: Optional[Callable[[Params, str], Any]]         #: (desc, mode) -> probe; None: no evaluation
     scene: Optional[Callable[[Params, str, int], Dict[str, Any]]]  #: (desc, variant, spp) -> scene dict
     modes: Tuple[str, ...] = ("radiance", "importance")   #: transport modes evaluated
+    variants: Callable[[bool], List[str]] = _material_variants  #: (quick) -> render variants
+    #: model names when the registry has no such family (None: the registry's list only)
+    fallback_names: Optional[Callable[[], List[str]]] = None
 
 
-def _phase_probe(desc: Params, mode: str) -> Any:
-    """HOOK (phase functions): return a probe with the BSDF probe's ``eval``/``pdf``/``sample``
-    (directions in the local frame of the incoming direction; ``sample`` returning ``(wi, weight,
-    pdf, lobe)`` with lobe ≠ 0 on success) once the phase functions have Python bindings, e.g.
-    ``return pellucid.phase_function(desc)``. Rendering them needs a medium scene (``scene`` below)."""
-    raise NotImplementedError("phase functions have no Python probe yet (stability.py, _phase_probe)")
-
-
-#: THE families swept, by registry key. HOOK: phase functions and BSSRDFs are added here (with
-#: their registry key as the media and subsurface code register them), e.g.
-#:   Family("phase_functions", _phase_probe, None, ("radiance",)),
-#:   Family("bssrdfs", None, _bssrdf_scene),
+#: THE families swept, by registry key. HOOK (BSSRDFs): add the subsurface family here with its
+#: registry key, a probe (or None) and a scene builder, e.g. Family("bssrdfs", None, _bssrdf_scene).
 FAMILIES: Tuple[Family, ...] = (
     Family("materials", _bsdf_probe, _material_scene),
+    Family("phase_functions", _phase_probe, _medium_scene, ("radiance",), _medium_variants, _phase_names),
 )
 
 # ---------------------------------------------------------------------------------------------
@@ -447,7 +511,13 @@ class Report:
 def registered_models() -> Dict[str, List[str]]:
     """The model names of each swept family, as the registry lists them."""
     types = _core.registry_types()
-    return {f.registry_key: list(types.get(f.registry_key, [])) for f in FAMILIES}
+    out = {}
+    for f in FAMILIES:
+        names = list(types.get(f.registry_key, []))
+        if not names and f.fallback_names is not None:
+            names = f.fallback_names()
+        out[f.registry_key] = names
+    return out
 
 
 def sweep(quick: bool = False, models: Optional[Sequence[str]] = None, render: bool = True, spp: Optional[int] = None,
@@ -456,7 +526,6 @@ def sweep(quick: bool = False, models: Optional[Sequence[str]] = None, render: b
     t0 = time.perf_counter()
     rng = np.random.default_rng(seed)
     spp = spp or (2 if quick else 8)
-    variants = ["plain"] if quick else ["plain", "normal_map:bend", "normal_map:mirror", "normal_map:keep"]
     results: List[PointResult] = []
     missing: List[str] = []
     skipped: List[str] = []
@@ -494,7 +563,7 @@ def sweep(quick: bool = False, models: Optional[Sequence[str]] = None, render: b
                 if fam.scene is not None and render:
                     # Quick grids render every other point; the full grid renders every point in
                     # every variant.
-                    for variant in variants if not quick or i % 2 == 0 else []:
+                    for variant in fam.variants(quick) if not quick or i % 2 == 0 else []:
                         res = PointResult(fam.registry_key, name, params, f"render:{variant}")
                         t = time.perf_counter()
                         try:

@@ -23,8 +23,9 @@ CLI = ROOT / "build" / "py" / "cpp" / "pellucid-render"
 
 
 def test_every_registered_model_has_a_grid() -> None:
-    for family, names in stability.registered_models().items():
-        assert names, family
+    models = stability.registered_models()
+    assert models["materials"] == _core.registry_types()["materials"]
+    for family, names in models.items():
         missing = [n for n in names if n not in stability.GRIDS]
         assert not missing, f"add a parameter grid for {missing} to GRIDS in pellucid/stability.py"
 
@@ -36,8 +37,11 @@ def test_quick_sweep_is_clean() -> None:
     seconds = time.perf_counter() - t0
     table = stability.format_table(report)
     assert report.failures == 0, table
-    assert {r.model for r in report.results} == set(_core.registry_types()["materials"])
-    assert {r.kind for r in report.results} == {"eval", "render:plain"}
+    models = stability.registered_models()
+    assert {r.model for r in report.results} == {n for names in models.values() for n in names}
+    assert {r.kind for r in report.results if r.family == "materials"} == {"eval", "render:plain"}
+    if models["phase_functions"]:
+        assert {r.kind for r in report.results if r.family == "phase_functions"} == {"eval", "render:sigma_t=1"}
     assert sum(r.evaluations for r in report.results) > 10**6
     assert seconds < 60, f"the quick grid took {seconds:.1f} s"
 
