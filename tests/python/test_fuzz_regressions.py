@@ -130,16 +130,19 @@ def _cpu_flags() -> set:
     return set(line.split(":", 1)[-1].split())
 
 
-# Found by the Mitsuba XML harness: the Cornell-like test box at 3 x 3 pixels, 1 spp, one thread.
-# With the 16-wide (AVX-512) packet kernel, pellucid-render hands rtcIntersect16 a valid lane whose
-# ray Embree rejects, and Embree's assertion `all(valid, ray.valid())` aborts the process. The SSE4
-# and AVX2 kernels and the same render in-process from Python do not abort: the bad lane looks like
-# an uninitialised value. Strict xfail until the packet path is fixed: remove the marker then.
+# Found by the Mitsuba XML harness: tiny films through the packet kernels. The Cornell-like test
+# box at 3 x 3 pixels with the AVX-512 kernel, and the spheres scene at 1 x 4 pixels with the AVX2
+# kernel (1 spp, one thread): pellucid-render hands rtcIntersect16 a valid lane whose ray Embree
+# rejects, and Embree's assertion `all(valid, ray.valid())` aborts the process. Other kernels and
+# the same renders in-process from Python do not abort: the bad lane looks like an uninitialised
+# value. Strict xfail until the packet path is fixed: remove the marker then.
 @pytest.mark.skipif(not CLI.exists(), reason="pellucid-render is built by `make`")
-@pytest.mark.skipif("avx512bw" not in _cpu_flags(), reason="reproduces with the AVX-512 kernel only")
-@pytest.mark.xfail(strict=True, reason="Embree assertion from the AVX-512 packet kernel (an invalid ray in a valid lane)")
-def test_avx512_packet_kernel_passes_only_valid_rays(tmp_path) -> None:
-    r = subprocess.run([str(CLI), str(DATA / "packet_invalid_ray.xml"), "-o", str(tmp_path / "out.exr"), "--spp", "1",
-                        "--threads", "1", "-q"], capture_output=True, text=True, timeout=120,
-                       env={**os.environ, "PELLUCID_SIMD": "avx512"})
+@pytest.mark.xfail(strict=True, reason="Embree assertion from the packet kernel (an invalid ray in a valid lane)")
+@pytest.mark.parametrize("scene, simd, flag", [("packet_invalid_ray.xml", "avx512", "avx512bw"),
+                                               ("packet_invalid_ray_1x4.xml", "avx2", "avx2")])
+def test_packet_kernel_passes_only_valid_rays(tmp_path, scene, simd, flag) -> None:
+    if flag not in _cpu_flags():
+        pytest.skip(f"reproduces with the {simd} kernel only")
+    r = subprocess.run([str(CLI), str(DATA / scene), "-o", str(tmp_path / "out.exr"), "--spp", "1", "--threads", "1",
+                        "-q"], capture_output=True, text=True, timeout=120, env={**os.environ, "PELLUCID_SIMD": simd})
     assert r.returncode == 0, r.stderr[-2000:]
