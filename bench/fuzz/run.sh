@@ -2,6 +2,8 @@
 # Build the libFuzzer harnesses (clang, ASan + UBSan) and run each for a bounded time.
 #   bench/fuzz/run.sh [SECONDS_PER_HARNESS] [HARNESS...]     (default: 300 s; all harnesses)
 #   FUZZ_RUNS=1000000 bench/fuzz/run.sh 0 image                (stop after 10^6 executions; 0 s: no time limit)
+# The environment passes through: PELLUCID_SIMD=scalar picks the scalar path kernel for the scene
+# harnesses' renders (see bench/fuzz/README.md, "Results").
 # Harnesses: json mitsuba_xml obj ply image, and load_dict (a Python mutation loop over
 # pellucid.load_dict, bench/fuzz/fuzz_load_dict.py, run with the venv's Python if it exists).
 # Installs clang and libFuzzer (Debian: clang, libclang-rt-14-dev) when missing. Builds in
@@ -56,14 +58,17 @@ for h in "${HARNESSES[@]}"; do
     continue
   fi
   # -rss_limit_mb: an input that needs more memory is a finding (the limits keep every input far
-  # below it). -timeout: an input that takes longer is one too.
+  # below it). -timeout: an input that takes longer is one too; 60 s for images, whose readers
+  # (OpenImageIO's Exif parser, OpenEXR) take up to 10 s under the sanitizers for some inputs.
   # -max_len: the image harness's seeds are under 1.5 KB, and a longer input mostly costs decoding
-  # time in the image reader; the scene seeds are up to 5.5 KB.
-  maxlen=16384; [ "$h" = image ] && maxlen=4096
+  # time in the image reader; the scene seeds are up to 5.5 KB. -detect_leaks=0: leaks are not
+  # looked for (ASAN_OPTIONS below), so libFuzzer need not run an input twice to check for them.
+  maxlen=16384 timeout=20
+  [ "$h" = image ] && maxlen=4096 timeout=60
   limits=(); [ "$SECONDS_EACH" = 0 ] || limits+=(-max_total_time="$SECONDS_EACH")
   [ "$RUNS" = 0 ] || limits+=(-runs="$RUNS")
   "$BUILD/fuzz_$h" "$BUILD/corpus/$h" "bench/fuzz/corpus/$h" "${limits[@]}" \
-    -rss_limit_mb=4096 -timeout=20 -max_len=$maxlen -print_final_stats=1 \
+    -rss_limit_mb=4096 -timeout=$timeout -max_len=$maxlen -detect_leaks=0 -print_final_stats=1 \
     -artifact_prefix="$BUILD/crashes/$h/" >"$log" 2>&1 || status=1
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
   rate=$(grep -o 'exec/s: *[0-9]*' "$log" | tail -n 1 | grep -o '[0-9]*$' || echo 0)
