@@ -5,17 +5,21 @@ per run (values replaced by numbers at and past the float and integer limits, Na
 wrong types, non-UTF-8 text, deep nesting, a reference to the dict itself; keys added or
 deleted) and calls load_dict, then renders 1 spp when the film is small. The only acceptable
 failure is pellucid.Error: any other exception is a crash, written to the crashes directory with
-its traceback. The input of each run is written to <crashes>/last-input.txt first, so a run that
-takes the process down leaves it behind.
+its traceback. Run i's input is a function of (--seed, i) alone; the number of the run in progress
+is kept in <crashes>/last-run.txt (rewritten in place, no new file per run), so a run that takes the
+process down can be rebuilt with --replay.
 
     python bench/fuzz/fuzz_load_dict.py --seconds 60 --crashes build/fuzz/crashes/load_dict
+    python bench/fuzz/fuzz_load_dict.py --seconds 0 --runs 1000000 --crashes build/fuzz/crashes/load_dict
+    python bench/fuzz/fuzz_load_dict.py --replay 123456     # print run 123456's input, then run it
 """
 from __future__ import annotations
 
 import argparse
 import copy
 import json
-import math
+import logging
+import os
 import random
 import sys
 import time
@@ -102,46 +106,74 @@ def short_repr(d) -> str:
     return text if len(text) < 100_000 else text[:100_000] + "..."
 
 
+def make_input(seeds: list, seed: int, run: int):
+    """Run ``run``'s input: a mutated copy of a seed scene, or None when mutating it failed in Python
+    itself (copying a deep list, scaling a huge int: not pellucid's)."""
+    rng = random.Random(f"{seed}:{run}")
+    d = copy.deepcopy(rng.choice(seeds))
+    try:
+        for _ in range(rng.randint(1, 3)):
+            mutate(d, rng)
+    except (RecursionError, OverflowError):
+        return None
+    return d
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--seconds", type=float, default=60)
+    ap.add_argument("--seconds", type=float, default=60, help="stop after this long (default 60; 0: no limit)")
+    ap.add_argument("--runs", type=int, default=0, help="stop after this many executions (0: no limit)")
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--first-run", type=int, default=0, help="number of the first run (to continue a campaign)")
     ap.add_argument("--crashes", type=Path, default=Path("fuzz-crashes"))
+    ap.add_argument("--replay", type=int, default=None, metavar="RUN", help="print run RUN's input and run it")
     args = ap.parse_args()
-    args.crashes.mkdir(parents=True, exist_ok=True)
+    # Warnings (of the renderer and of dropped samples) are expected for most inputs; printing them
+    # would dominate the run time.
+    logging.getLogger("pellucid").setLevel(logging.ERROR)
     seeds = [json.loads(p.read_text()) for p in sorted((HERE / "corpus" / "json").glob("*.json"))]
     assets = str(HERE / "assets")
-    rng = random.Random(args.seed)
-    last = args.crashes / "last-input.txt"
-    pellucid_errors = 0
-    runs = 0
-    crashes = 0
-    t0 = time.monotonic()
-    while time.monotonic() - t0 < args.seconds:
-        d = copy.deepcopy(rng.choice(seeds))
+    if args.replay is not None:
+        d = make_input(seeds, args.seed, args.replay)
+        print(short_repr(d))
         try:
-            for _ in range(rng.randint(1, 3)):
-                mutate(d, rng)
-        except (RecursionError, OverflowError):  # copying a deep list, scaling a huge int: not pellucid's
+            if d is not None:
+                scene = pellucid.load_dict(d, base_dir=assets)
+                pellucid.render(scene, spp=1, threads=1)
+        except pellucid.Error as e:
+            print(f"pellucid.Error: {e}")
+        return 0
+    args.crashes.mkdir(parents=True, exist_ok=True)
+    last = os.open(args.crashes / "last-run.txt", os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    pellucid_errors = renders = dropped = crashes = 0
+    runs = 0
+    run = args.first_run - 1
+    t0 = time.monotonic()
+    while (not args.runs or runs < args.runs) and (args.seconds <= 0 or time.monotonic() - t0 < args.seconds):
+        run += 1
+        d = make_input(seeds, args.seed, run)
+        if d is None:
             continue
-        text = short_repr(d)
-        last.write_text(text, errors="backslashreplace")
+        os.pwrite(last, b"%-20d\n" % run, 0)  # survives a crash of the process
         runs += 1
         try:
             scene = pellucid.load_dict(d, base_dir=assets)
             if scene.width * scene.height <= 16 * 16:
-                pellucid.render(scene, spp=1, threads=1)
+                _, _, stats = pellucid.render_with_stats(scene, spp=1, threads=1)
+                renders += 1
+                dropped += stats["invalid_samples"]
         except pellucid.Error:
             pellucid_errors += 1
         except Exception:  # noqa: BLE001 - every other exception is what we look for
             crashes += 1
-            out = args.crashes / f"crash-{runs}.txt"
-            out.write_text(text + "\n\n" + traceback.format_exc(), errors="backslashreplace")
-            print(f"crash: {out}", file=sys.stderr)
-    last.unlink(missing_ok=True)
+            out = args.crashes / f"crash-{run}.txt"
+            out.write_text(short_repr(d) + "\n\n" + traceback.format_exc(), errors="backslashreplace")
+            print(f"crash: {out} (--seed {args.seed} --replay {run})", file=sys.stderr)
+    os.close(last)
+    (args.crashes / "last-run.txt").unlink(missing_ok=True)
     dt = time.monotonic() - t0
     print(f"{runs} executions in {dt:.0f} s ({runs / dt:.0f} exec/s), {pellucid_errors} pellucid.Error, "
-          f"{crashes} crashes")
+          f"{renders} renders ({dropped} dropped samples), {crashes} crashes")
     return 1 if crashes else 0
 
 

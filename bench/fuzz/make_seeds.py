@@ -141,6 +141,12 @@ def regressions() -> None:
     # A float image with a NaN texel (PFM: 2x2 RGB, little-endian), and a scene using it.
     vals = [0.5, 0.5, 0.5, 0.25, float("nan"), 0.25, 0.1, 0.2, 0.3, 1.0, 1.0, 1.0]
     write(out / "nan_texel.pfm", b"PF\n2 2\n-1.0\n" + struct.pack("<12f", *vals))
+    # Found by the image harness: a BMP header alone (no pixel data) claiming 4 x 1023410179 pixels of
+    # 24 bits with RLE8 compression. OpenImageIO's reader decodes RLE images in ImageInput::open and
+    # sizes its buffer in 32-bit arithmetic, which overflows: std::length_error, before the header's
+    # size can be checked ("vector::_M_default_append", without the file's name).
+    write(out / "rle_huge_height.bmp", struct.pack("<2sIHHI", b"BM", 90, 0, 0, 54)
+          + struct.pack("<IiiHHIIiiII", 40, 4, 1023410179, 1, 24, 1, 0, 0, 0, 0, 0))
 
 
 def main() -> None:

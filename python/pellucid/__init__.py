@@ -305,8 +305,9 @@ def render_with_stats(
     ``image`` is the per-pixel mean radiance, ``variance`` the variance of that mean (both
     :class:`Image`, float32 (H, W, 3), viewing C++ memory), ``stats`` a dict with the spp reached
     (every pixel has that many samples), wall seconds, camera samples, ``invalid_samples`` (the
-    NaN/Inf/negative samples kept out of the film), ``cancelled``, and the ``seed`` and ``sampler``
-    used. With ``keep_state=True``, ``stats["state"]`` is the :class:`FilmState` to continue from.
+    NaN/Inf/negative samples kept out of the film; a non-zero count is also logged as a warning on
+    the ``"pellucid"`` logger), ``cancelled``, and the ``seed`` and ``sampler`` used. With
+    ``keep_state=True``, ``stats["state"]`` is the :class:`FilmState` to continue from.
 
     ``progress=True`` shows a tqdm bar (a widget in Jupyter) when tqdm is installed, else the
     renderer's own text bar on a terminal's stderr.
@@ -325,6 +326,9 @@ def render_with_stats(
     kwargs = _render_kwargs(scene, spp, seed, threads, time_budget, target_rel_error, sampler, resume)
     kwargs["keep_state"] = bool(keep_state)
     image, variance, stats = _render_full(kwargs, progress)
+    if stats["invalid_samples"]:
+        # The warning both command lines print.
+        _log.warning("%d NaN/Inf/negative samples were discarded", stats["invalid_samples"])
     return image.view(Image), variance.view(Image), stats
 
 
@@ -347,7 +351,9 @@ def render(
     ``spp`` and ``seed`` default to the scene's sampler; ``threads=0`` uses every core. The same
     scene and seed give the same image at any thread count. ``progress=True`` shows a tqdm bar.
     ``sampler`` (``"independent"`` or ``"sobol"``) overrides the scene's ``sampler.type``.
-    ``resume`` continues a :class:`FilmState` (or state file) up to ``spp``.
+    ``resume`` continues a :class:`FilmState` (or state file) up to ``spp``. Samples dropped as
+    NaN, infinite or negative are logged as a warning with their count (``render_with_stats``
+    returns it).
 
     ``aovs`` (names from :data:`AOVS`, as a list or a comma-separated string) also renders those
     AOVs and returns a :class:`RenderLayers` instead of the image: ``.image`` is the beauty,

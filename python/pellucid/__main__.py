@@ -1,6 +1,7 @@
 """Command line: ``python -m pellucid render SCENE -o OUT [--spp N] [--seed S] [--threads T] [--sampler S]
-[--aovs albedo,normal,...] [-D NAME=VALUE] [--resume STATE] [--state STATE] ...`` and ``python -m pellucid bench ...`` (the
-benchmarks of ``pellucid.bench``).
+[--aovs albedo,normal,...] [-D NAME=VALUE] [--resume STATE] [--state STATE] ...``, ``python -m pellucid bench ...``
+(the benchmarks of ``pellucid.bench``) and ``python -m pellucid stability [--quick] [--json FILE]`` (the
+NaN/Inf/negative sweep of ``pellucid.stability``).
 
 ``render`` takes the same flags as the C++ ``pellucid-render``, prints the same help and errors, and
 gives the same image for the same seed. SIGINT (Ctrl-C) or SIGTERM stops it within about a second:
@@ -88,6 +89,8 @@ def _build_parser() -> argparse.ArgumentParser:
                    help="Mitsuba XML: unsupported elements are warnings (skipped), not errors")
     r.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
     sub.add_parser("bench", add_help=False, help="benchmarks (pellucid.bench); `bench --help` for its options")
+    sub.add_parser("stability", add_help=False,
+                   help="NaN/Inf/negative/dropped-sample sweep of every model (pellucid.stability); `stability --help`")
     return p
 
 
@@ -121,6 +124,15 @@ def _bench(argv: List[str]) -> int:
         return 2
     rc = bench.main(argv)
     return int(rc) if rc is not None else 0
+
+
+def _stability(argv: List[str]) -> int:
+    """``stability [--quick] [--json FILE] ...``: the sweep of pellucid.stability; exit status 1 when
+    it counts any NaN, Inf, negative or dropped value."""
+    stability = importlib.import_module("pellucid.stability")
+    args = stability.build_parser(argparse.ArgumentParser(
+        prog="pellucid stability", description=stability.__doc__.splitlines()[0])).parse_args(argv)
+    return int(stability.main(args))
 
 
 def _render(args: argparse.Namespace) -> int:
@@ -204,6 +216,12 @@ def main(argv: Optional[List[str]] = None) -> int:
     _setup_logging()
     if argv[:1] == ["bench"]:
         return _bench(argv[1:])
+    if argv[:1] == ["stability"]:
+        try:
+            return _stability(argv[1:])
+        except pellucid.Error as e:
+            print(f"pellucid: error: {e}", file=sys.stderr)
+            return 2
     args = _build_parser().parse_args(argv)
     try:
         if args.command == "render":
