@@ -90,11 +90,8 @@ def test_bad_limit_value_is_an_error() -> None:
 
 
 # OpenImageIO's BMP reader throws std::length_error from ImageInput::open for this header (see
-# tests/data/fuzz/README.md); pellucid must turn that into a pellucid.Error naming the file, in the
-# image reader and in the texture path. Strict xfail until the catch is in image_io.cpp and
-# texture_system.cpp: remove the marker then.
-@pytest.mark.xfail(strict=True, raises=ValueError,
-                   reason="std::length_error from OpenImageIO reaches Python as ValueError without the file name")
+# tests/data/fuzz/README.md); pellucid turns that into a pellucid.Error naming the file, in the
+# image reader and in the texture path.
 @pytest.mark.parametrize("path", ["read_image", "texture"])
 def test_bmp_reader_exception_is_a_pellucid_error(path) -> None:
     bmp = DATA / "rle_huge_height.bmp"
@@ -108,9 +105,7 @@ def test_bmp_reader_exception_is_a_pellucid_error(path) -> None:
 
 # A 1.4 KB EXR of 8 x 8 pixels whose header claims tiles of 2162883 x 64 pixels: the texture path
 # makes OpenImageIO allocate and clear whole tiles (1.8 GB, 13 s) before the data fails to
-# decompress. The header's tile size must be limited like its image size. Strict xfail until
-# texture_system.cpp checks it: remove the marker then.
-@pytest.mark.xfail(strict=True, reason="the tile size of a texture's header is not checked yet")
+# decompress. The header's tile size is limited like its image size.
 def test_texture_with_huge_tiles_is_rejected_from_its_header() -> None:
     exr = DATA / "huge_tile.exr"
     e = _error_with_env({"PELLUCID_MAX_TEXTURE_PIXELS": "1048576"}, "pellucid.load_dict({'materials': {'m': {"
@@ -134,10 +129,9 @@ def _cpu_flags() -> set:
 # box at 3 x 3 pixels with the AVX-512 kernel, and the spheres scene at 1 x 4 pixels with the AVX2
 # kernel (1 spp, one thread): pellucid-render hands rtcIntersect16 a valid lane whose ray Embree
 # rejects, and Embree's assertion `all(valid, ray.valid())` aborts the process. Other kernels and
-# the same renders in-process from Python do not abort: the bad lane looks like an uninitialised
-# value. Strict xfail until the packet path is fixed: remove the marker then.
+# the same renders in-process from Python did not abort: the bad lane was an idle lane's
+# uninitialised ray. Idle lanes now pass no ray (path_services::trace).
 @pytest.mark.skipif(not CLI.exists(), reason="pellucid-render is built by `make`")
-@pytest.mark.xfail(strict=True, reason="Embree assertion from the packet kernel (an invalid ray in a valid lane)")
 @pytest.mark.parametrize("scene, simd, flag", [("packet_invalid_ray.xml", "avx512", "avx512bw"),
                                                ("packet_invalid_ray_1x4.xml", "avx2", "avx2")])
 def test_packet_kernel_passes_only_valid_rays(tmp_path, scene, simd, flag) -> None:

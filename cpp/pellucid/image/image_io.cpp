@@ -108,6 +108,18 @@ void write_image_file(const std::string& path, const Image& img, const std::vect
 }
 
 namespace {
+/// OpenImageIO's readers can throw (a BMP whose RLE header claims 4 × 10⁹ pixels throws
+/// std::length_error from ImageInput::open): such an exception becomes an Error naming the file.
+template <class Fn>
+auto naming_the_file(const std::string& path, Fn&& fn) -> decltype(fn()) {
+    try {
+        return fn();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(path + ": cannot read image (corrupt file; the reader failed: " + e.what() + ")");
+    }
+}
 /// Every channel of the file, linear float (8-bit files decoded from sRGB, alpha excepted);
 /// `spec_out` receives the file's spec. With `as_stored`, colour channels are not multiplied by
 /// alpha (OpenImageIO's default for PNG and other unassociated-alpha formats does that).
@@ -151,7 +163,9 @@ int channel_rank(const std::string& name) {
 }
 }  // namespace
 
-Image read_image_channels(const std::string& path) { return decode_all(path); }
+Image read_image_channels(const std::string& path) {
+    return naming_the_file(path, [&] { return decode_all(path); });
+}
 
 void write_layers_file(const std::string& path, const std::vector<ImageLayer>& layers,
                        const std::vector<ImageAttribute>& attributes) {
@@ -207,96 +221,102 @@ void write_layers_file(const std::string& path, const std::vector<ImageLayer>& l
 }
 
 std::vector<ImageLayer> read_layers_file(const std::string& path) {
-    OIIO::ImageSpec spec;
-    const Image all = decode_all(path, &spec);
-    struct Entry {
-        std::string layer, channel;
-        int index;
-    };
-    // The channels in the order they were written (kChannelOrder), when the header has it and it
-    // names exactly the file's channels; else the file's order.
-    std::vector<int> file_order(size_t(all.channels));
-    for (int i = 0; i < all.channels; ++i) file_order[size_t(i)] = i;
-    const std::string written = spec.get_string_attribute(kChannelOrder, "");
-    bool known_order = false;
-    if (!written.empty()) {
-        std::vector<int> idx;
-        size_t start = 0;
-        while (start <= written.size()) {
-            size_t end = written.find(',', start);
-            if (end == std::string::npos) end = written.size();
-            const std::string c = written.substr(start, end - start);
-            auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), c);
-            if (it == spec.channelnames.end() || std::count(idx.begin(), idx.end(), int(it - spec.channelnames.begin())))
-                break;
-            idx.push_back(int(it - spec.channelnames.begin()));
-            start = end + 1;
+    return naming_the_file(path, [&] {
+        OIIO::ImageSpec spec;
+        const Image all = decode_all(path, &spec);
+        struct Entry {
+            std::string layer, channel;
+            int index;
+        };
+        // The channels in the order they were written (kChannelOrder), when the header has it and it
+        // names exactly the file's channels; else the file's order.
+        std::vector<int> file_order(size_t(all.channels));
+        for (int i = 0; i < all.channels; ++i) file_order[size_t(i)] = i;
+        const std::string written = spec.get_string_attribute(kChannelOrder, "");
+        bool known_order = false;
+        if (!written.empty()) {
+            std::vector<int> idx;
+            size_t start = 0;
+            while (start <= written.size()) {
+                size_t end = written.find(',', start);
+                if (end == std::string::npos) end = written.size();
+                const std::string c = written.substr(start, end - start);
+                auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), c);
+                if (it == spec.channelnames.end() || std::count(idx.begin(), idx.end(), int(it - spec.channelnames.begin())))
+                    break;
+                idx.push_back(int(it - spec.channelnames.begin()));
+                start = end + 1;
+            }
+            if (int(idx.size()) == all.channels) file_order = idx, known_order = true;
         }
-        if (int(idx.size()) == all.channels) file_order = idx, known_order = true;
-    }
-    std::vector<std::string> order;  // layer names, unnamed first, then as they appear
-    std::vector<Entry> entries;
-    for (int i : file_order) {
-        const std::string full = i < int(spec.channelnames.size()) ? spec.channelnames[size_t(i)] : "";
-        const size_t dot = full.rfind('.');
-        Entry e{dot == std::string::npos ? "" : full.substr(0, dot), dot == std::string::npos ? full : full.substr(dot + 1), i};
-        if (std::find(order.begin(), order.end(), e.layer) == order.end()) order.push_back(e.layer);
-        entries.push_back(e);
-    }
-    std::stable_partition(order.begin(), order.end(), [](const std::string& s) { return s.empty(); });
-    std::vector<ImageLayer> out;
-    const size_t n = size_t(all.width) * size_t(all.height), nc = size_t(all.channels);
-    for (const std::string& name : order) {
-        std::vector<Entry> mine;
-        for (const Entry& e : entries)
-            if (e.layer == name) mine.push_back(e);
-        if (!known_order)
-            std::stable_sort(mine.begin(), mine.end(), [](const Entry& a, const Entry& b) {
-                return channel_rank(a.channel) < channel_rank(b.channel);
-            });
-        ImageLayer l{name, {}, Image(all.width, all.height, int(mine.size()))};
-        for (size_t k = 0; k < mine.size(); ++k) {
-            l.channels.push_back(mine[k].channel);
-            for (size_t p = 0; p < n; ++p) l.image.data[p * mine.size() + k] = all.data[p * nc + size_t(mine[k].index)];
+        std::vector<std::string> order;  // layer names, unnamed first, then as they appear
+        std::vector<Entry> entries;
+        for (int i : file_order) {
+            const std::string full = i < int(spec.channelnames.size()) ? spec.channelnames[size_t(i)] : "";
+            const size_t dot = full.rfind('.');
+            Entry e{dot == std::string::npos ? "" : full.substr(0, dot), dot == std::string::npos ? full : full.substr(dot + 1), i};
+            if (std::find(order.begin(), order.end(), e.layer) == order.end()) order.push_back(e.layer);
+            entries.push_back(e);
         }
-        out.push_back(std::move(l));
-    }
-    return out;
+        std::stable_partition(order.begin(), order.end(), [](const std::string& s) { return s.empty(); });
+        std::vector<ImageLayer> out;
+        const size_t n = size_t(all.width) * size_t(all.height), nc = size_t(all.channels);
+        for (const std::string& name : order) {
+            std::vector<Entry> mine;
+            for (const Entry& e : entries)
+                if (e.layer == name) mine.push_back(e);
+            if (!known_order)
+                std::stable_sort(mine.begin(), mine.end(), [](const Entry& a, const Entry& b) {
+                    return channel_rank(a.channel) < channel_rank(b.channel);
+                });
+            ImageLayer l{name, {}, Image(all.width, all.height, int(mine.size()))};
+            for (size_t k = 0; k < mine.size(); ++k) {
+                l.channels.push_back(mine[k].channel);
+                for (size_t p = 0; p < n; ++p) l.image.data[p * mine.size() + k] = all.data[p * nc + size_t(mine[k].index)];
+            }
+            out.push_back(std::move(l));
+        }
+        return out;
+    });
 }
 
 Image read_image_file(const std::string& path) {
-    const Image all = decode_all(path, nullptr, false);
-    const int c = all.channels;
-    Image img(all.width, all.height, 3);
-    for (size_t p = 0; p < size_t(all.width) * size_t(all.height); ++p)
-        for (int k = 0; k < 3; ++k) img.data[p * 3 + size_t(k)] = all.data[p * size_t(c) + size_t(c >= 3 ? k : 0)];
-    return img;
+    return naming_the_file(path, [&] {
+        const Image all = decode_all(path, nullptr, false);
+        const int c = all.channels;
+        Image img(all.width, all.height, 3);
+        for (size_t p = 0; p < size_t(all.width) * size_t(all.height); ++p)
+            for (int k = 0; k < 3; ++k) img.data[p * 3 + size_t(k)] = all.data[p * size_t(c) + size_t(c >= 3 ? k : 0)];
+        return img;
+    });
 }
 
 std::vector<ImageAttribute> read_image_attributes(const std::string& path) {
-    if (!std::filesystem::exists(path)) throw Error(path + ": image file not found");
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw Error(path + ": cannot read image (unsupported or corrupt): " + OIIO::geterror());
-    std::vector<ImageAttribute> out;
-    for (const OIIO::ParamValue& p : in->spec().extra_attribs) {
-        const OIIO::TypeDesc t = p.type();
-        if (t.aggregate != OIIO::TypeDesc::SCALAR || t.arraylen != 0) {
-            out.push_back({p.name().string(), p.get_string()});
-        } else if (t.basetype == OIIO::TypeDesc::FLOAT || t.basetype == OIIO::TypeDesc::DOUBLE ||
-                   t.basetype == OIIO::TypeDesc::HALF) {
-            out.push_back({p.name().string(), double(p.get_float())});
-            if (t.basetype == OIIO::TypeDesc::DOUBLE) out.back().value = *static_cast<const double*>(p.data());
-        } else if (t.basetype == OIIO::TypeDesc::STRING) {
-            out.push_back({p.name().string(), p.get_string()});
-        } else if (t.basetype == OIIO::TypeDesc::UINT64) {
-            out.push_back({p.name().string(), int64_t(*static_cast<const uint64_t*>(p.data()))});
-        } else if (t.basetype == OIIO::TypeDesc::INT64) {
-            out.push_back({p.name().string(), *static_cast<const int64_t*>(p.data())});
-        } else {
-            out.push_back({p.name().string(), int64_t(p.get_int())});
+    return naming_the_file(path, [&] {
+        if (!std::filesystem::exists(path)) throw Error(path + ": image file not found");
+        auto in = OIIO::ImageInput::open(path);
+        if (!in) throw Error(path + ": cannot read image (unsupported or corrupt): " + OIIO::geterror());
+        std::vector<ImageAttribute> out;
+        for (const OIIO::ParamValue& p : in->spec().extra_attribs) {
+            const OIIO::TypeDesc t = p.type();
+            if (t.aggregate != OIIO::TypeDesc::SCALAR || t.arraylen != 0) {
+                out.push_back({p.name().string(), p.get_string()});
+            } else if (t.basetype == OIIO::TypeDesc::FLOAT || t.basetype == OIIO::TypeDesc::DOUBLE ||
+                       t.basetype == OIIO::TypeDesc::HALF) {
+                out.push_back({p.name().string(), double(p.get_float())});
+                if (t.basetype == OIIO::TypeDesc::DOUBLE) out.back().value = *static_cast<const double*>(p.data());
+            } else if (t.basetype == OIIO::TypeDesc::STRING) {
+                out.push_back({p.name().string(), p.get_string()});
+            } else if (t.basetype == OIIO::TypeDesc::UINT64) {
+                out.push_back({p.name().string(), int64_t(*static_cast<const uint64_t*>(p.data()))});
+            } else if (t.basetype == OIIO::TypeDesc::INT64) {
+                out.push_back({p.name().string(), *static_cast<const int64_t*>(p.data())});
+            } else {
+                out.push_back({p.name().string(), int64_t(p.get_int())});
+            }
         }
-    }
-    in->close();
-    return out;
+        in->close();
+        return out;
+    });
 }
 }  // namespace pellucid

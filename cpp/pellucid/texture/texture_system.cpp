@@ -178,7 +178,23 @@ OIIO::TextureOpt::Wrap to_oiio(TextureWrap w) {
 }
 }  // namespace
 
+static ImageTextureHandle open_image_texture_unchecked(const std::string& path, TextureColorSpace cs,
+                                                       ImageTextureInfo* info);
+
 ImageTextureHandle open_image_texture(const std::string& path, TextureColorSpace cs, ImageTextureInfo* info) {
+    // OpenImageIO's readers can throw (a BMP whose RLE header claims 4 x 10^9 pixels throws
+    // std::length_error from ImageInput::open): such an exception becomes an Error naming the file.
+    try {
+        return open_image_texture_unchecked(path, cs, info);
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(path + ": cannot read texture (corrupt file; the reader failed: " + e.what() + ")");
+    }
+}
+
+static ImageTextureHandle open_image_texture_unchecked(const std::string& path, TextureColorSpace cs,
+                                                       ImageTextureInfo* info) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) throw Error(path + ": texture file not found");
     ImageTextureInfo found;
@@ -197,6 +213,10 @@ ImageTextureHandle open_image_texture(const std::string& path, TextureColorSpace
             throw Error(path + ": " + (spec.deep ? "deep" : "volume (3D)") + " images are not textures");
         // From the header, before a pixel is decoded: a small file can claim a huge image.
         if (std::string e = texture_size_error(spec.width, spec.height); !e.empty()) throw Error(path + ": " + e);
+        // OpenImageIO reads whole tiles: a header may claim tiles far larger than the image.
+        if (spec.tile_width > 0 && int64_t(spec.tile_width) * std::max(1, spec.tile_height) > (int64_t(1) << 20))
+            throw Error(path + ": tiles of " + std::to_string(spec.tile_width) + "x" + std::to_string(spec.tile_height) +
+                        " pixels, more than the 1048576 pixels a tile may have");
         found.srgb = cs == TextureColorSpace::SRGB || (cs == TextureColorSpace::Auto && integer_format);
         scan_texels(path, *in, found.srgb, found);
         in->close();
