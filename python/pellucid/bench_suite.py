@@ -156,8 +156,10 @@ def run_ours(scene: dict, base_dir: pathlib.Path, seed: int, threads: int, workd
 
 
 def run_peer(py: pathlib.Path, scene: dict, base_dir: pathlib.Path, seed: int, threads: int, passes: int,
-             substitute: bool, workdir: pathlib.Path) -> Run:
-    """Mitsuba 3 llvm_ad_rgb through bench/peers/mitsuba_runner.py (the same converter as pellucid.bench)."""
+             substitute: bool, workdir: pathlib.Path, twin: Optional[pathlib.Path] = None) -> Run:
+    """Mitsuba 3 llvm_ad_rgb through bench/peers/mitsuba_runner.py (the same converter as pellucid.bench),
+    or, for a scene whose manifest entry names a Mitsuba XML `twin` (scenes with media), that XML through
+    bench/suite/mitsuba_twin.py at the scene's spp and film size."""
     import pellucid
 
     d = json.loads(json.dumps(scene))
@@ -171,7 +173,11 @@ def run_peer(py: pathlib.Path, scene: dict, base_dir: pathlib.Path, seed: int, t
         cmd = [str(py), str(_bench.mitsuba_runner()), str(tmp / "scene.json"), "--variant", "llvm_ad_rgb",
                "--spp", str(spp), "--seed", str(seed), "--out", str(out), "--passes", str(passes),
                "--json-report", str(rep), "--base-dir", str(base_dir), "--threads", str(threads), "--quiet"]
-        if substitute:
+        if twin is not None:
+            cmd = [str(py), str(suite_dir() / "mitsuba_twin.py"), str(twin), "--spp", str(spp),
+                   "--width", str(d["film"]["width"]), "--height", str(d["film"]["height"]), "--seed", str(seed),
+                   "--out", str(out), "--passes", str(passes), "--json-report", str(rep), "--threads", str(threads)]
+        elif substitute:
             cmd.append("--substitute")
         run_child(cmd, "Mitsuba llvm_ad_rgb")
         st = json.loads(rep.read_text())
@@ -251,12 +257,13 @@ def measure_scene(entry: Dict[str, Any], folder: pathlib.Path, args, mi_py: Opti
     scene = prepare(scene, args.spp, args.quick)
     W, H, spp = int(scene["film"]["width"]), int(scene["film"]["height"]), int(scene["sampler"]["sample_count"])
     substitute = entry["peer"] == "substitute"
+    twin = folder / entry["twin"] if entry.get("twin") else None
     ours_runs, mi_runs = [], []
     for r in range(args.repeats):  # alternate the renderers, so slow spells of the machine hit both
         ours_runs.append(run_ours(scene, folder, args.seed + 7919 * r, args.threads, workdir))
         if mi_py is not None:
             mi_runs.append(run_peer(mi_py, scene, folder, args.seed + 1 + 7919 * r, args.threads, 1, substitute,
-                                    workdir))
+                                    workdir, twin))
     ours = _median_run(ours_runs)
     mi = _median_run(mi_runs) if mi_runs else None
 
@@ -273,7 +280,8 @@ def measure_scene(entry: Dict[str, Any], folder: pathlib.Path, args, mi_py: Opti
     if mi_py is not None and entry["peer"] == "same" and not args.no_agreement:
         agree = json.loads(json.dumps(scene))
         agree["sampler"]["sample_count"] = -(-spp // AGREEMENT_PASSES) * AGREEMENT_PASSES
-        theirs = run_peer(mi_py, agree, folder, 30_000 + args.seed, args.threads, AGREEMENT_PASSES, False, workdir)
+        theirs = run_peer(mi_py, agree, folder, 30_000 + args.seed, args.threads, AGREEMENT_PASSES, False, workdir,
+                          twin)
         mine = ours
         if theirs.spp != spp:  # pellucid at the same spp as the 16-pass render
             mine = run_ours(agree, folder, 20_000 + args.seed, args.threads, workdir)
