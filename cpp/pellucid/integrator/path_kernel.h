@@ -175,7 +175,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         a.br[i] *= e.weight.r, a.bg[i] *= e.weight.g, a.bb[i] *= e.weight.b;
                         if (e.scattered) {
                             a.in_medium[i] = true;
-                            path_services::medium_vertex(ray[i].o + ray[i].d * e.t, ray[i].d, &si[i]);
+                            path_services::medium_vertex(ray[i], e.t, &si[i]);
                             const int depth = int(a.depth[i]);
                             if (ps.max_depth >= 0 && depth >= ps.max_depth) continue;
                             if (a.br[i] == 0.f && a.bg[i] == 0.f && a.bb[i] == 0.f) continue;
@@ -200,7 +200,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (hit[i] && path_services::is_null_surface(ps, si[i])) {
                         if (++crossings[i] > 1024) continue;
                         medium[i] = path_services::medium_after(ps, si[i], ray[i].d, medium[i]);
-                        ray[i] = RayDifferential(si[i].spawn_ray(ray[i].d));
+                        ray[i] = path_services::cross_boundary(si[i], ray[i].d);
                         a.crossing[i] = true;
                         continue;
                     }

@@ -210,14 +210,16 @@ MediumEvent medium_sample(const PathSetup& ps, int32_t m, const Ray& ray, const 
     return sample_distance(ps.scene->media[size_t(m)], ray, ps.uniform_channels ? Spectrum(1.f) : beta, u);
 }
 
-void medium_vertex(const Point3f& p, const Vec3f& d, SurfaceInteraction* out) {
+void medium_vertex(const Ray& ray, float t, SurfaceInteraction* out) {
     *out = SurfaceInteraction{};
-    out->p = p;
-    out->wo = -normalize(d);
+    out->p = ray.o + ray.d * t;
+    out->wo = -normalize(ray.d);
     out->ng = Normal3f(0.f);
     out->shading = Frame::from_z(out->wo);
     out->light_id = -1;
 }
+
+RayDifferential cross_boundary(const SurfaceInteraction& si, const Vec3f& d) { return RayDifferential(si.spawn_ray(d)); }
 
 Spectrum phase_eval(const PathSetup& ps, int32_t m, const Vec3f& wo, const Vec3f& wi, float* pdf_out) {
     const PhaseFunction& ph = phase_of(ps.scene->media[size_t(m)]);

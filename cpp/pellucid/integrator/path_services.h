@@ -105,9 +105,11 @@ bool is_null_surface(const PathSetup& ps, const SurfaceInteraction& si);
 int32_t medium_after(const PathSetup& ps, const SurfaceInteraction& si, const Vec3f& w, int32_t current);
 /// Distance sampling over the segment [0, ray.tmax) of medium m (sample_distance).
 MediumEvent medium_sample(const PathSetup& ps, int32_t m, const Ray& ray, const Spectrum& beta, PCG32& rng);
-/// The vertex of a collision at p, reached along direction d: an interaction with no surface
-/// (zero normal and error bound, so rays leave from p itself), wo = −d.
-void medium_vertex(const Point3f& p, const Vec3f& d, SurfaceInteraction* out);
+/// The vertex of a collision at ray.o + t·ray.d: an interaction with no surface (zero normal and
+/// error bound, so rays leave from the point itself), wo = −ray.d normalised.
+void medium_vertex(const Ray& ray, float t, SurfaceInteraction* out);
+/// The ray that goes on through a `null` boundary at si in direction d.
+RayDifferential cross_boundary(const SurfaceInteraction& si, const Vec3f& d);
 /// The phase function of medium m in place of a BSDF: its value (= its density, no cosine) and
 /// a sampled direction (lobe DiffuseReflection, or SpecularReflection for the delta of |g| = 1).
 Spectrum phase_eval(const PathSetup& ps, int32_t m, const Vec3f& wo, const Vec3f& wi, float* pdf);
