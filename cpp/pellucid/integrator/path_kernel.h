@@ -284,32 +284,25 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     }
                 }
                 if (a.fast[i]) continue;
+                BxDFSample s;
                 if (a.in_medium[i]) {  // the phase function in place of the BSDF
                     if (a.nee_ok[i]) {
                         const Spectrum f =
                             path_services::phase_eval(ps, medium[i], h.wo, Vec3f(a.lwx[i], a.lwy[i], a.lwz[i]), &a.gpdf[i]);
                         a.gfr[i] = f.r, a.gfg[i] = f.g, a.gfb[i] = f.b;
                     }
-                    BxDFSample s;
                     a.s_ok[i] = path_services::phase_sample(ps, medium[i], h.wo, Vec2f(a.u[4][i], a.u[5][i]), &s);
                     // Without NEE here, light found by this direction is not MIS-weighted: the
                     // vertex counts as a delta bounce for that.
                     if (!a.nee[i]) s.lobe |= BxDFFlags::Specular;
-                    if (a.s_ok[i]) {
-                        a.swx[i] = s.wi.x, a.swy[i] = s.wi.y, a.swz[i] = s.wi.z;
-                        a.swr[i] = s.weight.r, a.swg[i] = s.weight.g, a.swb[i] = s.weight.b;
-                        a.spdf[i] = s.pdf;
-                        a.seta[i] = s.eta;
-                        a.slobe[i] = int32_t(s.lobe);
+                } else {
+                    if (a.nee_ok[i]) {
+                        const Spectrum f =
+                            path_services::bsdf_eval(bsdf(i), h.wo, Vec3f(a.lwx[i], a.lwy[i], a.lwz[i]), &a.gpdf[i]);
+                        a.gfr[i] = f.r, a.gfg[i] = f.g, a.gfb[i] = f.b;
                     }
-                    continue;
+                    a.s_ok[i] = path_services::bsdf_sample(bsdf(i), h.wo, a.u[3][i], Vec2f(a.u[4][i], a.u[5][i]), &s);
                 }
-                if (a.nee_ok[i]) {
-                    const Spectrum f = path_services::bsdf_eval(bsdf(i), h.wo, Vec3f(a.lwx[i], a.lwy[i], a.lwz[i]), &a.gpdf[i]);
-                    a.gfr[i] = f.r, a.gfg[i] = f.g, a.gfb[i] = f.b;
-                }
-                BxDFSample s;
-                a.s_ok[i] = path_services::bsdf_sample(bsdf(i), h.wo, a.u[3][i], Vec2f(a.u[4][i], a.u[5][i]), &s);
                 if (a.s_ok[i]) {
                     a.swx[i] = s.wi.x, a.swy[i] = s.wi.y, a.swz[i] = s.wi.z;
                     a.swr[i] = s.weight.r, a.swg[i] = s.weight.g, a.swb[i] = s.weight.b;
