@@ -113,6 +113,16 @@ def test_texture_with_huge_tiles_is_rejected_from_its_header() -> None:
     assert "huge_tile.exr: tiles of 2162883x64 pixels" in e
 
 
+# A 631-byte EXR of 4 x 3 pixels whose header claims a display window of 1501953 x 37377: the texture
+# system sized its MIP levels by the display window and recursed through them for over 100 s (the
+# image harness's timeout). The display window is limited like the data window.
+def test_texture_with_huge_display_window_is_rejected_from_its_header() -> None:
+    exr = DATA / "huge_display_window.exr"
+    e = _error_with_env({}, "pellucid.load_dict({'materials': {'m': {"
+                        f"'type': 'lambertian', 'reflectance': {{'type': 'image', 'filename': {str(exr)!r}}}}}}}}})")
+    assert "huge_display_window.exr: display window: the image is 1501953x37377 pixels" in e
+
+
 CLI = DATA.parents[2] / "build" / "py" / "cpp" / "pellucid-render"
 
 
