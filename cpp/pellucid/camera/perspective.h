@@ -45,6 +45,9 @@ public:
     /// Approximate_dp_dxy). Stretching at grazing angles is capped at 64 pixel widths.
     void approximate_dp_dxy(const Point3f& p, const Normal3f& n, Vec3f* dpdx, Vec3f* dpdy) const;
     std::string to_string() const;
+    /// The camera's position, and the angle one pixel spans at the image centre (radians).
+    Point3f origin() const { return m_origin; }
+    float pixel_angle() const { return 2.f * m_tan_x * m_inv_w; }
 
 private:
     Transform m_to_world;

@@ -22,6 +22,12 @@
 // `null` boundary is crossed without a vertex, changing only the medium. Leaving a surface that
 // bounds media enters its interior or exterior by the side, and shadow rays carry the
 // transmittance of the media and null boundaries they cross (path_services::shadow_transmittance).
+//
+// Subsurface scattering (bssrdf/separable.h, docs/subsurface.md), when a shape renders with a
+// diffusion BSSRDF: a BSDF sample that refracts into it becomes a probe for an exit point, with the
+// weight Sp/pdf; the lane's next vertex is that exit, shaded by the BSSRDF's exit lobe with NEE and
+// MIS like any diffuse vertex, without a ray traced to it. The random walk needs nothing here: it is
+// a dielectric around an interior medium.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -70,9 +76,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     int shadow_lane[W];
     // Media (PathSetup::media): the medium each lane's ray runs through, the stream of its medium
     // events, and how many null boundaries its path has crossed.
-    int32_t medium[W];
+    int32_t medium[W]{};
     PCG32 medium_rng[W];
-    int crossings[W];
+    int crossings[W]{};
+    // Subsurface scattering (PathSetup::subsurface): a lane whose path refracted into a diffusion
+    // BSSRDF continues at the exit point the probe found, without tracing a ray: pending_exit marks
+    // it for the next vertex, exit_si holds the exit and exit_ss its BSSRDF.
+    bool pending_exit[W]{};
+    int32_t exit_ss[W]{};
+    SurfaceInteraction exit_si[W];
     bool hit[W], active[W], blocked[W];
     struct alignas(64) Arrays {
         float Lr[W], Lg[W], Lb[W], br[W], bg[W], bb[W];
@@ -89,6 +101,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         bool fast[W], goes_on[W], nee[W];
         bool in_medium[W];   // this vertex is a collision in a medium (the phase function scatters)
         bool crossing[W];    // the ray crossed a null boundary: the path goes on unchanged
+        bool at_exit[W];     // this vertex is a BSSRDF's exit point (its exit lobe scatters)
+        bool to_exit[W];     // this vertex's sample entered a BSSRDF: the next vertex is its exit
         float u[7][W];
         // NEE.
         bool nee_ok[W], delta[W];
@@ -137,11 +151,13 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             a.depth[i] = 1.f;
             a.ppx[i] = a.ppy[i] = a.ppz[i] = a.pnx[i] = a.pny[i] = a.pnz[i] = 0.f;
             a.specular[i] = true;  // the camera ray counts as a delta bounce
+            if (ps.media || ps.subsurface)
+                medium_rng[i] = path_services::medium_rng(ps, x, y, job.s0 + int(k % n_samples), job.seed);
             if (ps.media) {
                 medium[i] = ps.camera_medium;
-                medium_rng[i] = path_services::medium_rng(ps, x, y, job.s0 + int(k % n_samples), job.seed);
                 crossings[i] = 0;
             }
+            pending_exit[i] = false;
             active[i] = true;
         };
         for (int i = 0; i < W; ++i) start(i);
@@ -149,19 +165,43 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             bool any = false;
             for (int i = 0; i < W; ++i) {
                 any = any || active[i];
-                ray_ptr[i] = active[i] ? &ray[i] : nullptr;  // idle lanes hold no ray
+                ray_ptr[i] = active[i] && !pending_exit[i] ? &ray[i] : nullptr;  // idle lanes hold no ray
             }
             if (!any) break;
             path_services::trace(scene, W, ray_ptr, si, hit);
+            if (ps.subsurface)
+                for (int i = 0; i < W; ++i)
+                    if (active[i] && pending_exit[i]) si[i] = exit_si[i], hit[i] = true;
 
             // One lane at a time: what has no packet form yet.
             for (int i = 0; i < W; ++i) {
                 a.fast[i] = a.goes_on[i] = a.nee[i] = a.nee_ok[i] = a.s_ok[i] = a.delta[i] = false;
-                a.in_medium[i] = a.crossing[i] = false;
+                a.in_medium[i] = a.crossing[i] = a.at_exit[i] = a.to_exit[i] = false;
                 a.Ler[i] = a.Leg[i] = a.Leb[i] = a.le_pdf[i] = 0.f;
                 a.kind[i] = 0.f;
                 if (!active[i]) continue;
                 const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]), Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
+                if (pending_exit[i]) {
+                    // A BSSRDF's exit point: its exit lobe scatters, with NEE (no emission is
+                    // found here, and the entry already passed the depth check).
+                    pending_exit[i] = false;
+                    a.at_exit[i] = true;
+                    const SurfaceInteraction& h = si[i];
+                    a.px[i] = h.p.x, a.py[i] = h.p.y, a.pz[i] = h.p.z;
+                    a.pex[i] = h.p_error.x, a.pey[i] = h.p_error.y, a.pez[i] = h.p_error.z;
+                    a.ngx[i] = h.ng.x, a.ngy[i] = h.ng.y, a.ngz[i] = h.ng.z;
+                    a.wox[i] = h.wo.x, a.woy[i] = h.wo.y, a.woz[i] = h.wo.z;
+                    a.sx[i] = h.shading.s.x, a.sy[i] = h.shading.s.y, a.sz[i] = h.shading.s.z;
+                    a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
+                    a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
+                    a.goes_on[i] = true;
+                    a.nee[i] = ps.use_nee;
+                    const int depth = int(a.depth[i]);
+                    VertexRandoms r;
+                    path_services::randoms(sampler[i], depth, a.nee[i], depth >= ps.rr_depth, &r);
+                    for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
+                    continue;
+                }
                 if (ps.media) {
                     // The segment up to the surface (or to infinity) runs through the lane's medium:
                     // distance sampling either finds a collision there or passes, reweighting the
@@ -295,6 +335,14 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     // Without NEE here, light found by this direction is not MIS-weighted: the
                     // vertex counts as a delta bounce for that.
                     if (!a.nee[i]) s.lobe |= BxDFFlags::Specular;
+                } else if (a.at_exit[i]) {  // a BSSRDF's exit lobe
+                    if (a.nee_ok[i]) {
+                        const Spectrum f = path_services::subsurface_exit_eval(
+                            ps, exit_ss[i], h, Vec3f(a.lwx[i], a.lwy[i], a.lwz[i]), &a.gpdf[i]);
+                        a.gfr[i] = f.r, a.gfg[i] = f.g, a.gfb[i] = f.b;
+                    }
+                    a.s_ok[i] = path_services::subsurface_exit_sample(ps, exit_ss[i], h, Vec2f(a.u[4][i], a.u[5][i]), &s);
+                    if (!a.nee[i]) s.lobe |= BxDFFlags::Specular;
                 } else {
                     if (a.nee_ok[i]) {
                         const Spectrum f =
@@ -302,6 +350,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         a.gfr[i] = f.r, a.gfg[i] = f.g, a.gfb[i] = f.b;
                     }
                     a.s_ok[i] = path_services::bsdf_sample(bsdf(i), h.wo, a.u[3][i], Vec2f(a.u[4][i], a.u[5][i]), &s);
+                    // Refracting into an object rendered by a diffusion BSSRDF: the path goes on
+                    // from the exit point a probe finds (bssrdf/separable.h).
+                    if (ps.subsurface && a.s_ok[i]) {
+                        const int32_t ss = path_services::subsurface_entry(ps, h, s);
+                        if (ss >= 0) {
+                            exit_ss[i] = ss;
+                            a.s_ok[i] = a.to_exit[i] = path_services::subsurface_probe(ps, ss, h, medium_rng[i], &s, &exit_si[i]);
+                        }
+                    }
                 }
                 if (a.s_ok[i]) {
                     a.swx[i] = s.wi.x, a.swy[i] = s.wi.y, a.swz[i] = s.wi.z;
@@ -450,6 +507,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 ST(ob[0], o.x), ST(ob[1], o.y), ST(ob[2], o.z);
                 for (int i = 0; i < W; ++i) {
                     if (!a.alive[i] || a.crossing[i]) continue;
+                    if (a.to_exit[i]) {  // no ray: the next vertex is the exit point
+                        pending_exit[i] = true;
+                        continue;
+                    }
                     const Vec3f wi(a.nwx[i], a.nwy[i], a.nwz[i]);
                     if (ps.media && !a.in_medium[i]) medium[i] = path_services::medium_after(ps, si[i], wi, medium[i]);
                     if (scene.has_textures && spec_b[i] && !a.in_medium[i] && ray[i].has_differentials)

@@ -54,6 +54,8 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     for (size_t m = 0; m < n; ++m) {
         const MaterialTextures& mt = scene.material_textures[m];
         if (mt.has_bindings() || mt.perturbs_normal() || !mt.two_sided) continue;
+        // A subsurface boundary's transmission goes through the probe (subsurface_entry).
+        if (std::holds_alternative<SubsurfaceMaterial>(scene.materials[m])) continue;
         const BxDF& b = scene.material_bxdfs[m];
         float* q = &ps.packet_params[kPacketParams * m];
         if (const Lambertian* l = std::get_if<Lambertian>(&b)) {
@@ -76,6 +78,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.camera_medium = scene.camera_medium;
     ps.medium_nee = scene.integrator.medium_nee;
     ps.uniform_channels = scene.integrator.channel_sampling == "uniform";
+    ps.subsurface = !scene.subsurface.empty();
     return ps;
 }
 
@@ -262,6 +265,36 @@ Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow,
         r = finite ? si.spawn_ray_to(end, Normal3f(0.f), Vec3f(0.f)) : si.spawn_ray(r.d);
     }
     return Spectrum(0.f);  // a path through 256 null boundaries: treated as blocked
+}
+
+int32_t subsurface_entry(const PathSetup& ps, const SurfaceInteraction& si, const BxDFSample& s) {
+    const Scene& scene = *ps.scene;
+    const int32_t ss = si.shape_id < scene.shape_subsurface.size() ? scene.shape_subsurface[si.shape_id] : -1;
+    if (ss < 0 || !has_flag(s.lobe, BxDFFlags::Transmission)) return -1;
+    return dot(si.wo, si.ng) > 0.f && dot(s.wi, si.ng) < 0.f ? ss : -1;
+}
+
+bool subsurface_probe(const PathSetup& ps, int32_t ss, const SurfaceInteraction& si, PCG32& rng, BxDFSample* s,
+                      SurfaceInteraction* exit) {
+    const SeparableBSSRDF& b = ps.scene->subsurface[size_t(ss)];
+    const float u_axis = rng.next_float();
+    const Vec2f u(rng.next_float(), rng.next_float());
+    const float u_hit = rng.next_float();
+    Spectrum w;
+    if (!sample_probe(*ps.scene, b, si, u_axis, u, u_hit, exit, &w)) return false;
+    s->weight *= w * entry_weight_scale(b);
+    s->eta = 1.f;
+    return s->weight.is_finite() && !s->weight.is_black();
+}
+
+Spectrum subsurface_exit_eval(const PathSetup& ps, int32_t ss, const SurfaceInteraction& si, const Vec3f& wi, float* pdf) {
+    return ps.scene->subsurface[size_t(ss)].exit_eval(si.shading.to_local(wi), pdf);
+}
+
+bool subsurface_exit_sample(const PathSetup& ps, int32_t ss, const SurfaceInteraction& si, Vec2f u, BxDFSample* out) {
+    if (!ps.scene->subsurface[size_t(ss)].exit_sample(u, out)) return false;
+    out->wi = si.shading.to_world(out->wi);
+    return true;
 }
 
 bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L) {

@@ -56,6 +56,9 @@ struct PathSetup {
     int32_t camera_medium = -1;
     bool medium_nee = true;        ///< NEE at medium collisions (integrator.medium_nee)
     bool uniform_channels = false; ///< channel_sampling "uniform": each colour channel 1/3, else ∝ throughput
+    /// Some shape renders with a diffusion BSSRDF (Scene::subsurface): paths that refract into it
+    /// leave at an exit point found by probe rays (bssrdf/separable.h).
+    bool subsurface = false;
 };
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type);
 
@@ -117,6 +120,20 @@ bool phase_sample(const PathSetup& ps, int32_t m, const Vec3f& wo, Vec2f u, BxDF
 /// Transmittance of a shadow ray that starts in medium m (-1: none): through `null` boundaries,
 /// where the medium changes, and 0 at any other surface.
 Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow, const Spectrum& beta, PCG32& rng);
+
+// ---- subsurface scattering (bssrdf/separable.h, docs/subsurface.md) ---------------------------
+/// The diffusion BSSRDF (index into Scene::subsurface) that a BSDF sample s at si enters: s refracts
+/// from the outside (wo on the side of the geometric normal) into a shape rendered with one; else -1.
+int32_t subsurface_entry(const PathSetup& ps, const SurfaceInteraction& si, const BxDFSample& s);
+/// Probe for the exit point of BSSRDF ss from the entry si (random numbers from rng): *exit is the
+/// exit's vertex, and s's weight becomes the entry's (1 − F) times Sp/pdf (s.eta 1, as the exit
+/// undoes the refraction's radiance scaling). False: no exit (the path ends).
+bool subsurface_probe(const PathSetup& ps, int32_t ss, const SurfaceInteraction& si, PCG32& rng, BxDFSample* s,
+                      SurfaceInteraction* exit);
+/// The exit lobe Sw of BSSRDF ss at the exit vertex si, toward world direction wi (cosine
+/// included), with its density; and a sampled direction (world).
+Spectrum subsurface_exit_eval(const PathSetup& ps, int32_t ss, const SurfaceInteraction& si, const Vec3f& wi, float* pdf);
+bool subsurface_exit_sample(const PathSetup& ps, int32_t ss, const SurfaceInteraction& si, Vec2f u, BxDFSample* out);
 
 bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L);
 }  // namespace path_services

@@ -329,6 +329,40 @@ Material build_rough_dielectric(Properties& p, const BuildContext& ctx) {
     return RoughDielectricMaterial(q);
 }
 
+Material build_subsurface(Properties& p, const BuildContext& ctx) {
+    SubsurfaceParams q;
+    Binder b(p, ctx, q);
+    const std::string model =
+        p.get_choice("model", "auto", "model", {"auto", "dipole", "better_dipole", "random_walk"});
+    q.model = model == "dipole"          ? SubsurfaceModel::Dipole
+              : model == "better_dipole" ? SubsurfaceModel::BetterDipole
+              : model == "random_walk"   ? SubsurfaceModel::RandomWalk
+                                         : SubsurfaceModel::Auto;
+    read_ior(b, "int_ior", "water", q.boundary.int_ior);
+    read_ior(b, "ext_ior", "air", q.boundary.ext_ior);
+    q.rough = p.has("alpha") || p.has("alpha_u") || p.has("alpha_v") || p.has("roughness");
+    if (q.rough) read_microfacet(b, q.microfacet);
+    const bool coeffs = p.has("sigma_a") || p.has("sigma_s") || p.has("scale");
+    const bool diffuse = p.has("albedo") || p.has("mfp");
+    if (coeffs && diffuse)
+        p.fail(p.has("albedo") ? "albedo" : "mfp",
+               "give either sigma_a/sigma_s (with scale) or albedo/mfp, not both");
+    q.from_albedo = !coeffs;
+    constexpr float kBig = 3.0e38f;  // finite in float: a coefficient must stay finite once stored
+    if (q.from_albedo) {
+        b.colour("albedo", q.albedo, 0.f, 1.f);  // 1: a lossless interior (σa = 0)
+        b.colour("mfp", q.mfp, 1e-30f, kBig);
+    } else {
+        b.colour("sigma_a", q.sigma_a, 0.f, kBig);
+        b.colour("sigma_s", q.sigma_s, 0.f, kBig);
+        q.scale = p.get_float("scale", 1.f);
+        if (!(q.scale > 0.f) || !std::isfinite(q.scale))
+            p.fail("scale", "value " + format_float(q.scale) + " must be > 0 and finite");
+    }
+    b.range("g", q.g, -0.999f, 0.999f);
+    return SubsurfaceMaterial(q);
+}
+
 Material build_plastic(Properties& p, const BuildContext& ctx) {
     PlasticParams q;
     Binder b(p, ctx, q);

@@ -23,6 +23,7 @@ Material build_thin_dielectric(Properties& p, const BuildContext& ctx);
 Material build_plastic(Properties& p, const BuildContext& ctx);
 Material build_rough_plastic(Properties& p, const BuildContext& ctx);
 Material build_principled(Properties& p, const BuildContext& ctx);
+Material build_subsurface(Properties& p, const BuildContext& ctx);
 
 /// Build one material object (`{"type": ..., params}`) through the registry, with the same checks
 /// as a scene's `materials` entry (unknown type or key → Error "source: path.key: ...").

@@ -130,6 +130,37 @@ std::string RoughPlasticMaterial::to_string() const {
            ", coat_transmittance=" + pellucid::to_string(m_p.coat_transmittance) + "]";
 }
 
+std::string to_string(SubsurfaceModel m) {
+    switch (m) {
+        case SubsurfaceModel::Dipole: return "dipole";
+        case SubsurfaceModel::BetterDipole: return "better_dipole";
+        case SubsurfaceModel::RandomWalk: return "random_walk";
+        case SubsurfaceModel::Auto: return "auto";
+        case SubsurfaceModel::Coated: return "coated";
+    }
+    return "?";
+}
+std::string SubsurfaceParams::to_string() const {
+    std::string s = "model=" + pellucid::to_string(model) + ", int_ior=" + format_float(boundary.int_ior) +
+                    ", ext_ior=" + format_float(boundary.ext_ior);
+    s += from_albedo ? ", albedo=" + format_spectrum(albedo) + ", mfp=" + format_spectrum(mfp)
+                     : ", sigma_a=" + format_spectrum(sigma_a) + ", sigma_s=" + format_spectrum(sigma_s) +
+                           ", scale=" + format_float(scale);
+    s += ", g=" + format_float(g);
+    return rough ? s + ", " + microfacet.to_string() : s;
+}
+namespace {
+BxDF subsurface_boundary(const SubsurfaceParams& p) {
+    if (!p.rough) return SmoothDielectric(p.eta(), Spectrum(1.f), Spectrum(1.f));
+    RoughDielectricParams r;
+    r.microfacet = p.microfacet;
+    r.dielectric = p.boundary;
+    return make_rough_dielectric(r);
+}
+}  // namespace
+SubsurfaceMaterial::SubsurfaceMaterial(const SubsurfaceParams& p) : m_p(p), m_bxdf(subsurface_boundary(p)) {}
+BxDF SubsurfaceMaterial::get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+
 std::string PrincipledMaterial::to_string() const {
     const PrincipledParams& p = m_p;
     return "PrincipledMaterial[base_color=" + format_spectrum(p.base_color) + ", metallic=" + format_float(p.metallic) +

@@ -15,12 +15,13 @@
 #include "pellucid/material/diffuse.h"
 #include "pellucid/material/plastic.h"
 #include "pellucid/material/principled.h"
+#include "pellucid/material/subsurface.h"
 
 namespace pellucid {
 
 using Material = std::variant<DiffuseMaterial, OrenNayarMaterial, ConductorMaterial, RoughConductorMaterial,
                               DielectricMaterial, RoughDielectricMaterial, ThinDielectricMaterial,
-                              PlasticMaterial, RoughPlasticMaterial, PrincipledMaterial>;
+                              PlasticMaterial, RoughPlasticMaterial, PrincipledMaterial, SubsurfaceMaterial>;
 
 inline BxDF get_bxdf(const Material& m, const SurfaceInteraction& si) {
     return std::visit([&](const auto& x) { return x.get_bxdf(si); }, m);

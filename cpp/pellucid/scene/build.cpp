@@ -43,6 +43,7 @@ public:
         build_shapes(root.get_node("shapes"));
         build_lights(root.get_node("lights"));  // after shapes: needs the scene bounds and area lights
         root.check_unqueried();
+        resolve_subsurface(m_scene, m_desc.source);  // may add media and materials (docs/subsurface.md)
         m_scene.material_textures.resize(m_scene.materials.size());
         for (const Material& m : m_scene.materials) m_scene.material_bxdfs.push_back(get_bxdf(m, SurfaceInteraction{}));
         for (const auto& mt : m_scene.material_textures)

@@ -210,6 +210,7 @@ const std::map<std::string, MaterialBuilder>& material_registry() {
         {"plastic", build_plastic},
         {"rough_plastic", build_rough_plastic},
         {"principled", build_principled},
+        {"subsurface", build_subsurface},
     };
     return table;
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "pellucid/bssrdf/separable.h"
 #include "pellucid/bxdf/bsdf.h"
 #include "pellucid/camera/perspective.h"
 #include "pellucid/geometry/embree_scene.h"
@@ -20,6 +21,7 @@
 #include "pellucid/sampling/distribution_1d.h"
 #include "pellucid/sampling/sampler.h"
 #include "pellucid/scene/scene_desc.h"
+#include "pellucid/scene/subsurface_choice.h"
 
 namespace pellucid {
 
@@ -135,6 +137,12 @@ public:
     bool has_null_surfaces = false;   ///< any shape has the `null` material
     /// Does the scene use media or null boundaries (which the path tracer must handle)?
     bool has_media() const { return !media.empty() || has_null_surfaces || camera_medium >= 0; }
+    /// Subsurface scattering (docs/subsurface.md): the diffusion BSSRDFs, one per shape rendered
+    /// with one, which shape_subsurface (per shape, -1: none) indexes; and each subsurface object's
+    /// model choice with its reason (scene/subsurface_choice.h).
+    std::vector<SeparableBSSRDF> subsurface;
+    std::vector<int32_t> shape_subsurface;
+    std::vector<SubsurfaceChoice> subsurface_choices;
     std::string source;
     uint64_t triangle_count = 0;
     /// The description it was built from, which parameter updates edit (scene/scene_update.h; a new

@@ -266,6 +266,9 @@ void adopt(Scene& to, Scene& from, bool geometry) {
     to.media = std::move(from.media);
     to.camera_medium = from.camera_medium;
     to.has_null_surfaces = from.has_null_surfaces;
+    to.subsurface = std::move(from.subsurface);
+    to.shape_subsurface = std::move(from.shape_subsurface);
+    to.subsurface_choices = std::move(from.subsurface_choices);
 }
 }  // namespace
 

@@ -1,0 +1,194 @@
+// Subsurface scattering in the path tracer (docs/subsurface.md), on scenes with analytic answers,
+// and the auto model choice. Images are checked by expect_constant_image: a Šidák-corrected
+// two-sided per-pixel z-test at α = 0.01 against the film's variance, plus the image mean at
+// α = 1e-4; fixed seeds.
+// SPDX-License-Identifier: Apache-2.0
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "pellucid/bxdf/fresnel.h"
+#include "pellucid/integrator/integrator.h"
+#include "pellucid/scene/scene.h"
+#include "pellucid/util/error.h"
+#include "support/render_checks.h"
+#include "support/scene_util.h"
+
+using namespace pellucid;
+using pellucid::test::expect_constant_image;
+using pellucid::test::LogCapture;
+using pellucid::test::scene_from;
+
+namespace {
+RenderResult render(const Scene& scene, int threads = 0) {
+    RenderOptions o;
+    o.threads = threads;
+    return make_integrator(scene)->render(scene, o);
+}
+
+// A 20-unit cube whose front face is the plane z = 0, seen head-on from z = 3 through a 10° field
+// (rays meet the face within 7° of the normal, where F differs from F(0) by < 1e-5), under a
+// constant environment of radiance 1. Its interior is thousands of mean free paths deep and wide:
+// the semi-infinite half-space of the diffusion profiles.
+std::string slab_scene(const std::string& material, int spp = 64, const std::string& extra = "") {
+    return R"({"camera": {"type": "perspective", "fov": 10,
+            "to_world": [{"look_at": {"origin": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0]}}]},
+        "film": {"width": 16, "height": 16}, "sampler": {"sample_count": )" +
+           std::to_string(spp) + R"(, "seed": 7},)" + extra + R"(
+        "materials": {"m": )" + material + R"(},
+        "shapes": [{"type": "cube", "material": "m", "to_world": [{"scale": [10, 10, 10]}, {"translate": [0, 0, -10]}]}],
+        "lights": [{"type": "constant", "radiance": 1}]})";
+}
+}  // namespace
+
+TEST(SubsurfaceRender, HalfSpaceUnderUniformLightGivesFresnelPlusDiffuseAlbedo) {
+    // Under uniform radiance 1 the separable BSSRDF of a half-space returns
+    //   L(θo) = F(θo) + (1 − F(θo)) · Rd · ∫ Sw cos dω = F(θo) + (1 − F(θo)) · Rd,
+    // with Rd the profile's total reflectance, which albedo sets (the inversion of from_diffuse).
+    const double F0 = fresnel_dielectric(1.f, 1.33f);
+    for (const char* model : {"dipole", "better_dipole"})
+        for (double albedo : {0.3, 0.8, 1.0}) {
+            auto scene = scene_from(slab_scene(std::string(R"({"type": "subsurface", "model": ")") + model +
+                                               R"(", "albedo": )" + std::to_string(albedo) +
+                                               R"(, "mfp": 0.05, "int_ior": 1.33})"));
+            const std::string what = std::string(model) + " albedo " + std::to_string(albedo);
+            // A lossless interior (σa = 0) has no diffusion length: its profile falls off as r⁻³,
+            // and the rare far exits make per-pixel variances unreliable; its image mean is tested.
+            if (albedo == 1.0) pellucid::test::expect_image_mean(render(*scene), 1.0, what);
+            else expect_constant_image(render(*scene), F0 + (1 - F0) * albedo, what);
+        }
+}
+
+TEST(SubsurfaceRender, NearlySmoothRoughBoundaryOverALosslessHalfSpaceIsOne) {
+    // A lossless interior (albedo 1) behind a rough boundary of α = 0.01: what the boundary does not
+    // reflect enters and all of it leaves again, so under uniform radiance 1 the image is 1 (the
+    // single-scattering microfacet boundary loses far less than the noise at this roughness).
+    auto scene = scene_from(slab_scene(R"({"type": "subsurface", "model": "better_dipole", "albedo": 1,
+                                          "mfp": 0.05, "int_ior": 1.33, "alpha": 0.01})"));
+    expect_constant_image(render(*scene), 1.0, "rough boundary");
+}
+
+TEST(SubsurfaceRender, RandomWalkInALosslessSphereIsOneInAWhiteFurnace) {
+    // The random walk is a dielectric sphere around a medium of albedo 1: under uniform radiance 1
+    // every path leaves again, so every pixel is exactly 1. Total internal reflection makes the walks
+    // long and their estimates heavy-tailed: the image mean is tested.
+    auto scene = scene_from(R"({"camera": {"type": "perspective", "fov": 40,
+            "to_world": [{"look_at": {"origin": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0]}}]},
+        "film": {"width": 12, "height": 12}, "sampler": {"sample_count": 256, "seed": 9},
+        "materials": {"m": {"type": "subsurface", "model": "random_walk", "sigma_a": 0, "sigma_s": [2, 4, 8],
+                            "g": 0.5, "int_ior": 1.4}},
+        "shapes": [{"type": "sphere", "radius": 1.2, "material": "m"}],
+        "lights": [{"type": "constant", "radiance": 1}]})");
+    pellucid::test::expect_image_mean(render(*scene), 1.0, "random walk furnace");
+}
+
+TEST(SubsurfaceRender, ImagesAreTheSameAtOneAndTwoThreads) {
+    for (const char* model : {"better_dipole", "random_walk"}) {
+        auto scene = scene_from(std::string(R"({"camera": {"type": "perspective", "fov": 40,
+            "to_world": [{"look_at": {"origin": [0, 0, 4], "target": [0, 0, 0], "up": [0, 1, 0]}}]},
+            "film": {"width": 24, "height": 24}, "sampler": {"sample_count": 8, "seed": 2},
+            "materials": {"m": {"type": "subsurface", "model": ")") + model + R"(", "albedo": [0.9, 0.6, 0.4],
+                                "mfp": [0.2, 0.1, 0.05]}},
+            "shapes": [{"type": "sphere", "radius": 1, "material": "m"}],
+            "lights": [{"type": "point", "position": [2, 3, 4], "intensity": 20}, {"type": "constant", "radiance": 0.1}]})");
+        RenderResult a = render(*scene, 1), b = render(*scene, 2);
+        ASSERT_EQ(a.image.data.size(), b.image.data.size());
+        for (size_t k = 0; k < a.image.data.size(); ++k) ASSERT_EQ(a.image.data[k], b.image.data[k]) << model << " at " << k;
+    }
+}
+
+namespace {
+// One sphere of radius 1 (or a thin box) at distance `dist` in front of a 32-pixel, 30° camera.
+std::string choice_scene(const std::string& material, const std::string& shape, double dist) {
+    return R"({"camera": {"type": "perspective", "fov": 30,
+            "to_world": [{"look_at": {"origin": [0, 0, )" + std::to_string(dist) + R"(], "target": [0, 0, 0], "up": [0, 1, 0]}}]},
+        "film": {"width": 32, "height": 32},
+        "materials": {"m": )" + material + R"(},
+        "shapes": [)" + shape + R"(],
+        "lights": [{"type": "constant", "radiance": 1}]})";
+}
+const char* const kSphere = R"({"type": "sphere", "radius": 1, "material": "m"})";
+SubsurfaceModel chosen(const Scene& s) {
+    EXPECT_EQ(s.subsurface_choices.size(), 1u);
+    return s.subsurface_choices.empty() ? SubsurfaceModel::Auto : s.subsurface_choices[0].model;
+}
+}  // namespace
+
+TEST(SubsurfaceChoice, EachAutoRuleFiresOnTheSceneBuiltForIt) {
+    const std::string milk = R"({"type": "subsurface", "albedo": 0.8, "mfp": 0.01})";
+    // Thick and near: a sphere 4/3 thick (mean chord) and diffusion length ~0.03 → the better dipole.
+    {
+        auto s = scene_from(choice_scene(milk, kSphere, 4));
+        EXPECT_EQ(chosen(*s), SubsurfaceModel::BetterDipole) << s->subsurface_choices[0].reason;
+        EXPECT_EQ(s->subsurface.size(), 1u);
+        EXPECT_EQ(s->shape_subsurface[0], 0);
+    }
+    // Thin: a 0.02-thick sheet (mean chord ≈ 0.04 < 4 diffusion lengths) → the random walk, as an
+    // interior medium.
+    {
+        auto s = scene_from(choice_scene(milk, R"({"type": "cube", "material": "m", "to_world": [{"scale": [1, 1, 0.01]}]})", 4));
+        EXPECT_EQ(chosen(*s), SubsurfaceModel::RandomWalk) << s->subsurface_choices[0].reason;
+        EXPECT_NE(s->subsurface_choices[0].reason.find("thin"), std::string::npos);
+        EXPECT_EQ(s->shapes[0].interior_medium, 0);
+        EXPECT_EQ(s->media.size(), 1u);
+    }
+    // Low albedo: the diffusion approximation needs many scattering events.
+    {
+        auto s = scene_from(choice_scene(R"({"type": "subsurface", "albedo": 0.05, "mfp": 0.01})", kSphere, 4));
+        EXPECT_EQ(chosen(*s), SubsurfaceModel::RandomWalk);
+        EXPECT_NE(s->subsurface_choices[0].reason.find("low albedo"), std::string::npos);
+    }
+    // Far: 300 units away one pixel spans ~5 units, far above the diffusion length → the coated
+    // Lambertian with the profile's total reflectance (a plastic of the linear variant).
+    {
+        auto s = scene_from(choice_scene(milk, kSphere, 300));
+        EXPECT_EQ(chosen(*s), SubsurfaceModel::Coated) << s->subsurface_choices[0].reason;
+        EXPECT_TRUE(std::holds_alternative<PlasticMaterial>(s->materials[s->shapes[0].material]));
+        EXPECT_TRUE(s->subsurface.empty());
+    }
+    // An explicit model is kept.
+    {
+        auto s = scene_from(choice_scene(R"({"type": "subsurface", "model": "dipole", "albedo": 0.05, "mfp": 0.01})",
+                                         kSphere, 300));
+        EXPECT_EQ(chosen(*s), SubsurfaceModel::Dipole);
+    }
+}
+
+TEST(SubsurfaceChoice, TheCoatedStandInMatchesTheDiffusionRenderOfAFlatObject) {
+    // The far-field rule replaces the BSSRDF by its flat-surface limit: under uniform light both give
+    // F + (1 − F)·Rd (the half-space test above), so the coated material's image must match it.
+    const double F0 = fresnel_dielectric(1.f, 1.33f);
+    auto scene = scene_from(slab_scene(R"({"type": "subsurface", "albedo": 0.6, "mfp": 1e-4, "int_ior": 1.33})", 64));
+    ASSERT_EQ(chosen(*scene), SubsurfaceModel::Coated) << scene->subsurface_choices[0].reason;
+    expect_constant_image(render(*scene), F0 + (1 - F0) * 0.6, "coated stand-in");
+}
+
+TEST(SubsurfaceChoice, BadInputIsReportedWithItsNumbers) {
+    {  // both ways of giving the interior
+        try {
+            scene_from(choice_scene(R"({"type": "subsurface", "albedo": 0.5, "sigma_s": 1})", kSphere, 4));
+            FAIL() << "expected an error";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("materials.m.albedo"), std::string::npos) << e.what();
+        }
+    }
+    {  // an absurd mean free path for the object's size (a unit mistake)
+        LogCapture log;
+        scene_from(choice_scene(R"({"type": "subsurface", "albedo": 0.5, "mfp": 1000})", kSphere, 4));
+        EXPECT_TRUE(log.has("mean free path is 1000 scene units")) << (log.warnings.empty() ? "" : log.warnings[0]);
+    }
+    {  // an open mesh
+        LogCapture log;
+        scene_from(choice_scene(R"({"type": "subsurface", "albedo": 0.5, "mfp": 0.01})",
+                                R"({"type": "rectangle", "material": "m"})", 4));
+        EXPECT_TRUE(log.has("not closed")) << (log.warnings.empty() ? "" : log.warnings[0]);
+    }
+    {  // no scattering: an absorbing dielectric, and it says so
+        LogCapture log;
+        auto s = scene_from(choice_scene(R"({"type": "subsurface", "sigma_a": 2, "sigma_s": 0})", kSphere, 4));
+        EXPECT_TRUE(log.has("does not scatter"));
+        EXPECT_EQ(chosen(*s), SubsurfaceModel::RandomWalk);
+        EXPECT_EQ(s->shapes[0].interior_medium, 0);
+    }
+}
