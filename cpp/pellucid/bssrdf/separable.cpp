@@ -44,7 +44,24 @@ SeparableBSSRDF make_separable_bssrdf(const SubsurfaceParams& p, bssrdf::Diffusi
         b.r_max[c] = b.profile[c].r_max();
     }
     b.shape = shape;
+    b.model = model;
     return b;
+}
+
+SeparableBSSRDF bssrdf_at(const Scene& scene, const SeparableBSSRDF& b, const SurfaceInteraction& si) {
+    const MaterialTextures& mt = scene.material_textures[si.material_id];
+    const auto* m = std::get_if<SubsurfaceMaterial>(&scene.materials[si.material_id]);
+    if (!mt.has_bindings() || !m) return b;
+    TextureEvalContext ctx;
+    ctx.p = si.p;
+    ctx.dpdx = si.dpdx;
+    ctx.dpdy = si.dpdy;
+    ctx.uv = si.uv;
+    ctx.dudx = si.dudx;
+    ctx.dudy = si.dudy;
+    ctx.dvdx = si.dvdx;
+    ctx.dvdy = si.dvdy;
+    return make_separable_bssrdf(get_textured_subsurface_params(*m, mt, scene.textures, ctx), b.model, b.shape);
 }
 
 Spectrum SeparableBSSRDF::sp(float r) const {

@@ -43,6 +43,7 @@ struct SeparableBSSRDF {
     float exit_norm = 1.f;    ///< c of Sw
     float r_max[3] = {0.f, 0.f, 0.f};
     uint32_t shape = 0;       ///< exits count only on this shape
+    bssrdf::Diffusion model = bssrdf::Diffusion::BetterDipole;
 
     /// Sp per channel at distance r.
     Spectrum sp(float r) const;
@@ -56,6 +57,10 @@ struct SeparableBSSRDF {
 
 /// The BSSRDF of material parameters p under a diffusion model, for the given shape.
 SeparableBSSRDF make_separable_bssrdf(const SubsurfaceParams& p, bssrdf::Diffusion model, uint32_t shape);
+
+/// The BSSRDF at a hit of a material with textured parameters: b's model and shape with the
+/// material's parameters evaluated at si (its footprint set). b itself where nothing is textured.
+SeparableBSSRDF bssrdf_at(const Scene& scene, const SeparableBSSRDF& b, const SurfaceInteraction& si);
 
 /// The entry's sample weight made into the BSSRDF's: × η² (undoing the radiance scaling of the
 /// refraction, which the exit undoes in turn) — the boundary's (1 − F) stays in it.

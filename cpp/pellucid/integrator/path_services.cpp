@@ -276,7 +276,9 @@ int32_t subsurface_entry(const PathSetup& ps, const SurfaceInteraction& si, cons
 
 bool subsurface_probe(const PathSetup& ps, int32_t ss, const SurfaceInteraction& si, PCG32& rng, BxDFSample* s,
                       SurfaceInteraction* exit) {
-    const SeparableBSSRDF& b = ps.scene->subsurface[size_t(ss)];
+    // Textured parameters give the hit its own profiles (built here, on the stack).
+    const SeparableBSSRDF& shared = ps.scene->subsurface[size_t(ss)];
+    const SeparableBSSRDF b = ps.scene->has_textures ? bssrdf_at(*ps.scene, shared, si) : shared;
     const float u_axis = rng.next_float();
     const Vec2f u(rng.next_float(), rng.next_float());
     const float u_hit = rng.next_float();

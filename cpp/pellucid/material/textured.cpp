@@ -53,6 +53,13 @@ BxDF get_textured_bxdf(const Material& m, const MaterialTextures& mt, const Text
     }, m);
 }
 
+SubsurfaceParams get_textured_subsurface_params(const SubsurfaceMaterial& m, const MaterialTextures& mt,
+                                                const TextureList& textures, const TextureEvalContext& ctx) {
+    SubsurfaceParams p = m.params();
+    apply_bindings(p, mt, textures, ctx);
+    return p;
+}
+
 Vec2f bump_steps(const TextureEvalContext& ctx) {
     // One pixel footprint in u and in v: the mean extent of the footprint's two screen axes
     // (pbrt-v4 §10.5.1 uses the same measure). Without ray differentials there is no footprint,

@@ -77,6 +77,11 @@ struct MaterialTextures {
 BxDF get_textured_bxdf(const Material& m, const MaterialTextures& mt, const TextureList& textures,
                        const TextureEvalContext& ctx, const SurfaceInteraction& si);
 
+/// The parameters of a `subsurface` material at a hit whose parameters come from `mt`'s textures
+/// (the probe builds the hit's BSSRDF from them, bssrdf/separable.h).
+SubsurfaceParams get_textured_subsurface_params(const SubsurfaceMaterial& m, const MaterialTextures& mt,
+                                                const TextureList& textures, const TextureEvalContext& ctx);
+
 /// Shading frame with a bump map (by mt.bump_model, see the .cpp) or a tangent-space normal map
 /// applied, and invalid normals treated by mt.invalid_normals. Returns the new shading frame.
 Frame perturbed_shading_frame(const MaterialTextures& mt, const TextureList& textures, const TextureEvalContext& ctx,

@@ -192,3 +192,14 @@ TEST(SubsurfaceChoice, BadInputIsReportedWithItsNumbers) {
         EXPECT_EQ(s->shapes[0].interior_medium, 0);
     }
 }
+
+TEST(SubsurfaceRender, TexturedParametersReachTheProbe) {
+    // The albedo and mfp as textures (checkerboards of one value each, so the expected image stays
+    // F + (1 − F)·albedo) go through the texture bindings into the hit's own profiles.
+    const double F0 = fresnel_dielectric(1.f, 1.33f);
+    auto scene = scene_from(slab_scene(R"({"type": "subsurface", "model": "dipole", "int_ior": 1.33,
+        "albedo": {"type": "checkerboard", "color0": 0.45, "color1": 0.45},
+        "mfp": {"type": "checkerboard", "color0": 0.05, "color1": 0.05}})"));
+    ASSERT_TRUE(scene->has_textures);
+    expect_constant_image(render(*scene), F0 + (1 - F0) * 0.45, "textured albedo");
+}
