@@ -104,6 +104,19 @@ void bind_scene(py::module_& m) {
                                "Parameter updates applied (pellucid.parameters).")
         .def_property_readonly("bvh_builds", [](const Scene& s) { return s.bvh_builds; },
                                "Times the BVH was built: 1 when loaded, +1 per parameter update that moved geometry.")
+        .def_property_readonly(
+            "subsurface_choices",
+            [](const Scene& s) {
+                py::list out;
+                for (const SubsurfaceChoice& c : s.subsurface_choices)
+                    out.append(py::dict(py::arg("shape") = s.shapes[c.shape].name, py::arg("model") = to_string(c.model),
+                                        py::arg("reason") = c.reason, py::arg("thickness") = c.thickness,
+                                        py::arg("diffusion_length") = c.diffusion_length,
+                                        py::arg("mean_free_path") = c.mean_free_path, py::arg("footprint") = c.footprint,
+                                        py::arg("min_albedo") = c.min_albedo));
+                return out;
+            },
+            "Per object of a subsurface material: the model that renders it and why (docs/subsurface.md).")
         .def("__repr__", &Scene::to_string);
     m.def("load_file", [](const std::string& path, bool lenient, const std::map<std::string, std::string>& params) {
         return std::const_pointer_cast<Scene>(load_file(path, lenient, params));

@@ -81,6 +81,11 @@ class Scene:
     def spp(self) -> int:
         ...
     @property
+    def subsurface_choices(self) -> list:
+        """
+        Per object of a subsurface material: the model that renders it and why (docs/subsurface.md).
+        """
+    @property
     def updates(self) -> int:
         """
         Parameter updates applied (pellucid.parameters).
