@@ -333,10 +333,11 @@ Material build_subsurface(Properties& p, const BuildContext& ctx) {
     SubsurfaceParams q;
     Binder b(p, ctx, q);
     const std::string model =
-        p.get_choice("model", "auto", "model", {"auto", "dipole", "better_dipole", "random_walk"});
+        p.get_choice("model", "auto", "model", {"auto", "dipole", "better_dipole", "random_walk", "coated"});
     q.model = model == "dipole"          ? SubsurfaceModel::Dipole
               : model == "better_dipole" ? SubsurfaceModel::BetterDipole
               : model == "random_walk"   ? SubsurfaceModel::RandomWalk
+              : model == "coated"        ? SubsurfaceModel::Coated
                                          : SubsurfaceModel::Auto;
     read_ior(b, "int_ior", "water", q.boundary.int_ior);
     read_ior(b, "ext_ior", "air", q.boundary.ext_ior);

@@ -5,7 +5,7 @@
 //
 // | parameter          | type         | default      | meaning                                          |
 // |--------------------|--------------|--------------|--------------------------------------------------|
-// | model              | string       | "auto"       | "dipole" (Jensen et al. 2001), "better_dipole" (d'Eon 2012), "random_walk", or "auto" (chosen per object, docs/subsurface.md) |
+// | model              | string       | "auto"       | "dipole" (Jensen et al. 2001), "better_dipole" (d'Eon 2012), "random_walk", "coated" (the far-field limit: a coated Lambertian), or "auto" (chosen per object, docs/subsurface.md) |
 // | int_ior, ext_ior   | float/string | 1.33, "air"  | boundary IOR (η = int_ior/ext_ior), as for `dielectric` |
 // | sigma_a, sigma_s   | colour       | —            | absorption and scattering coefficients, per scene unit (≥ 0) |
 // | scale              | float        | 1            | multiplies sigma_a and sigma_s (unit conversion) |
@@ -27,8 +27,9 @@
 namespace pellucid {
 
 /// Which model renders a `subsurface` material. Auto is resolved per object at scene build
-/// (scene/subsurface_choice.h) into one of the others; Coated is auto's far-field choice: the
-/// coated Lambertian with the diffusion profile's total reflectance.
+/// (scene/subsurface_choice.h) into one of the others; Coated is the far-field limit (auto's choice
+/// where the diffusion length is below the pixel footprint): the coated Lambertian with the better
+/// dipole's total reflectance.
 enum class SubsurfaceModel : uint8_t { Dipole, BetterDipole, RandomWalk, Auto, Coated };
 std::string to_string(SubsurfaceModel m);
 

@@ -22,7 +22,7 @@ class Scene;
 struct SubsurfaceThresholds {
     static constexpr float kThinRatio = 4.f;
     static constexpr float kLowAlbedo = 0.6f;
-    static constexpr float kFootprintRatio = 0.25f;
+    static constexpr float kFootprintRatio = 1.f;
 };
 
 /// One object's choice, as the render log states it.
