@@ -24,6 +24,7 @@
 #include "pellucid/api.h"
 #include "pellucid/integrator/aov.h"
 #include "pellucid/util/error.h"
+#include "pellucid/util/log.h"
 
 namespace {
 constexpr const char* kProg = "pellucid-render";
@@ -307,6 +308,16 @@ int main(int argc, char** argv) {
     opts.progress = !a.quiet;
     opts.cancel = &g_cancel;
     install_signal_handlers();
+    // The scene's notes (which model renders each subsurface object, and why) as well as warnings
+    // and errors, unless --quiet.
+    if (!a.quiet)
+        pellucid::set_log_sink([](pellucid::LogLevel level, const std::string& msg) {
+            if (level < pellucid::LogLevel::Info) return;
+            const char* what = level >= pellucid::LogLevel::Error     ? "error"
+                               : level >= pellucid::LogLevel::Warning ? "warning"
+                                                                      : "info";
+            std::fprintf(stderr, "pellucid: %s: %s\n", what, msg.c_str());
+        });
     try {
         // Everything that can fail before rendering does: outputs, the state file, the scene.
         for (const auto& out : a.outputs) pellucid::check_image_output(out);
