@@ -43,7 +43,10 @@ fi
 # Inputs are written to files for the readers: on a RAM file system where there is one.
 TMP_ROOT=$BUILD/tmp
 if [ -d /dev/shm ] && [ -w /dev/shm ]; then TMP_ROOT=$(mktemp -d /dev/shm/pellucid-fuzz-XXXXXX); fi
-export TMPDIR=$TMP_ROOT PELLUCID_TEXTURE_CACHE=$TMP_ROOT/texture-cache
+# The texture cache holds the tiles of every image the harness opened (a scene has a few; the
+# harness, thousands): at its default of 2 GB, plus ASan's own overhead, it alone would reach the
+# 4 GB memory limit below.
+export TMPDIR=$TMP_ROOT PELLUCID_TEXTURE_CACHE=$TMP_ROOT/texture-cache PELLUCID_TEXTURE_CACHE_MB=256
 export ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 mkdir -p "$TMPDIR"
 status=0

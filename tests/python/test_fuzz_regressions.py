@@ -8,6 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import pellucid
@@ -87,6 +88,17 @@ def test_texture_limit_can_be_raised() -> None:
 def test_bad_limit_value_is_an_error() -> None:
     e = _error_with_env({"PELLUCID_MAX_FILM_PIXELS": "lots"}, "pellucid.load_dict({'film': {'width': 8}})")
     assert e == "environment variable PELLUCID_MAX_FILM_PIXELS: expected an integer in [1, 268435456], got 'lots'"
+
+
+def test_texture_cache_size_is_read_from_its_variable(tmp_path) -> None:
+    png = tmp_path / "t.png"
+    pellucid.write_image(png, np.full((4, 4, 3), 0.5, np.float32))
+    load = ("pellucid.render(pellucid.load_dict({'film': {'width': 4, 'height': 4}, 'materials': {'m': {'type': 'lambertian', "
+            f"'reflectance': {{'type': 'image', 'filename': {str(png)!r}}}}}}}, 'shapes': [{{'type': 'sphere', 'material': 'm'}}]}}), spp=1)")
+    assert _error_with_env({"PELLUCID_TEXTURE_CACHE_MB": "10"}, load) == (
+        "<dict>: materials.m.reflectance.filename: "
+        "environment variable PELLUCID_TEXTURE_CACHE_MB: expected an integer in [64, 1048576], got '10'")
+    assert _error_with_env({"PELLUCID_TEXTURE_CACHE_MB": "64"}, load) == ""
 
 
 # OpenImageIO's BMP reader throws std::length_error from ImageInput::open for this header (see

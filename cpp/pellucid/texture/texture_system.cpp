@@ -30,7 +30,7 @@ OIIO::TextureSystem* texture_system() {
         OIIO::TextureSystem* t = OIIO::TextureSystem::create(/*shared=*/false);
         t->attribute("automip", 1);           // MIP-map untiled/unmipped files in memory
         t->attribute("autotile", 64);         // and read them in tiles
-        t->attribute("max_memory_MB", 2048.f);
+        t->attribute("max_memory_MB", float(texture_cache_mb()));  // util/limits.h
         t->attribute("accept_untiled", 1);
         t->attribute("accept_unmipped", 1);
         return t;

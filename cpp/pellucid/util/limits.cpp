@@ -43,6 +43,11 @@ std::string texture_size_error(int64_t width, int64_t height) {
            std::to_string(limit) + " pixels for images read by a scene (raise it with PELLUCID_MAX_TEXTURE_PIXELS)";
 }
 
+int64_t texture_cache_mb() {
+    static const int64_t n = env_limit("PELLUCID_TEXTURE_CACHE_MB", kDefaultTextureCacheMB, 64, int64_t(1) << 20);
+    return n;
+}
+
 int64_t max_mesh_elements() {
     static const int64_t n = env_limit("PELLUCID_MAX_MESH_ELEMENTS", kDefaultMaxMeshElements, 1, 0xffffffffll);
     return n;

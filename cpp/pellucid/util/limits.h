@@ -27,6 +27,12 @@ int64_t max_texture_pixels();
 /// and how to raise it) to report with the file's name.
 std::string texture_size_error(int64_t width, int64_t height);
 
+/// Memory the image-texture cache may hold for all textures together, in MB (tiles of decoded
+/// texels; least recently used tiles are dropped past it). Changed with the environment variable
+/// PELLUCID_TEXTURE_CACHE_MB (64 to 1048576).
+constexpr int64_t kDefaultTextureCacheMB = 2048;
+int64_t texture_cache_mb();
+
 /// Largest element count (vertices, faces) a mesh file may declare: PLY headers and OBJ files. The
 /// default, 2^28, keeps a mesh under about 11 GB (vertices with normals and uv: 32 bytes each;
 /// triangles: 12 bytes). Raised with PELLUCID_MAX_MESH_ELEMENTS (at most 2^32 - 1: indices are
