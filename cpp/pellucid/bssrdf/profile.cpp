@@ -59,6 +59,25 @@ double one_minus_exp_over(double s, double delta) {
 float to_float(double v) { return float(std::min(v, double(FLT_MAX))); }
 }  // namespace
 
+const char* to_string(Diffusion model) { return model == Diffusion::Dipole ? "dipole" : "better_dipole"; }
+
+bool parse_diffusion(const std::string& name, Diffusion* out) {
+    if (name == "dipole") *out = Diffusion::Dipole;
+    else if (name == "better_dipole") *out = Diffusion::BetterDipole;
+    else return false;
+    return true;
+}
+
+void eval_batch(const Profile& p, const float* r, size_t n, float* out) {
+    for (size_t i = 0; i < n; ++i) out[i] = p.eval(r[i]);
+}
+void pdf_batch(const Profile& p, const float* r, size_t n, float* out) {
+    for (size_t i = 0; i < n; ++i) out[i] = p.pdf(r[i]);
+}
+void sample_batch(const Profile& p, const float* u, size_t n, float* out) {
+    for (size_t i = 0; i < n; ++i) out[i] = p.sample(u[i]);
+}
+
 double fresnel_moment(int i, double eta, bool internal) {
     if (!valid_eta(eta) || i < 0) return 0.0;
     double r, t;

@@ -20,6 +20,8 @@
 //  * diffusion_length() is +∞ when σa = 0. Every other member is finite and ≥ 0 for finite, non-
 //    negative σa and σs, g ∈ [−1, 1) and eta > 0.
 #pragma once
+#include <cstddef>
+#include <string>
 
 namespace pellucid::bssrdf {
 
@@ -28,6 +30,11 @@ enum class Diffusion {
     Dipole,        ///< Jensen, Marschner, Levoy, Hanrahan 2001, "A Practical Model for Subsurface Light Transport"
     BetterDipole,  ///< d'Eon 2012, "A Better Dipole" (Grosjean's D, moment boundary condition, fluence + flux exitance)
 };
+
+/// The model's name in scenes and Python: "dipole", "better_dipole".
+const char* to_string(Diffusion model);
+/// The model of a name given by to_string; false (out untouched) for any other name.
+bool parse_diffusion(const std::string& name, Diffusion* out);
 
 /// Hemispherical Fresnel moment C_i = ∫0^1 F(μ) μ^i dμ (i ≥ 0) of a smooth dielectric boundary whose
 /// inside has index eta relative to the outside. internal: light arriving from the inside (total
@@ -95,6 +102,11 @@ private:
 /// mean free path 1/σ't == mfp. False (outputs untouched) when albedo is out of range, mfp is not finite
 /// and > 0, g is not in [−1, 1) or eta is not finite and > 0.
 bool from_diffuse(Diffusion model, float albedo, float mfp, float g, float eta, float* sigma_a, float* sigma_s);
+
+/// out[i] = p.eval(r[i]), p.pdf(r[i]), p.sample(u[i]) for i < n (the loops of the Python binding).
+void eval_batch(const Profile& p, const float* r, size_t n, float* out);
+void pdf_batch(const Profile& p, const float* r, size_t n, float* out);
+void sample_batch(const Profile& p, const float* u, size_t n, float* out);
 
 /// The total of the profile with reduced albedo alpha_p ∈ [0, 1] (independent of σ't), for charts and
 /// for from_diffuse.
