@@ -52,7 +52,7 @@ float exit_lobe_norm(float eta);
 /// One colour channel's radial profile R(r) of a semi-infinite medium (σa, σs, g, η) under the
 /// diffusion model: exitance per unit area at distance r from a unit flux that entered at r = 0.
 /// Trivially copyable and small (stored per material and channel); all members are const and cheap
-/// except sample(), which runs a safeguarded Newton iteration (typically 4 to 8 steps).
+/// except sample(), which runs a safeguarded Newton iteration (7 to 15 steps, about 0.5 µs).
 struct Profile {
     /// The profile of (σa, σs, g, η). Negative or non-finite inputs are clamped to the valid range
     /// (σ ≥ 0, g ∈ [−1, 1], eta > 0; NaN → 0, eta NaN → 1); g = 1 leaves σ's = 0.
