@@ -22,6 +22,7 @@
 #pragma once
 #include <cstddef>
 #include <string>
+#include <type_traits>
 
 namespace pellucid::bssrdf {
 
@@ -97,6 +98,8 @@ private:
     double m_tail0 = 0.0;      ///< shape_tail(0): the total of S
     double m_rho_max = 0.0;    ///< r_max·σ't
 };
+
+static_assert(std::is_trivially_copyable_v<Profile>, "Profile is stored per material and channel: no heap");
 
 /// Inversion: the σa, σs (given g, η, the model) whose profile has total() == albedo ∈ [0, 1) and whose
 /// mean free path 1/σ't == mfp. False (outputs untouched) when albedo is out of range, mfp is not finite
