@@ -13,6 +13,7 @@ namespace pellucid::bind {
 void bind_util(py::module_& m);
 void bind_image(py::module_& m);
 void bind_bxdf(py::module_& m);
+void bind_bssrdf(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_render(py::module_& m);
 

@@ -7,6 +7,7 @@ PYBIND11_MODULE(_core, m) {
     pellucid::bind::bind_util(m);
     pellucid::bind::bind_image(m);
     pellucid::bind::bind_bxdf(m);
+    pellucid::bind::bind_bssrdf(m);
     pellucid::bind::bind_scene(m);
     pellucid::bind::bind_render(m);
 }

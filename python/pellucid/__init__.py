@@ -30,6 +30,7 @@ import numpy as _np
 
 from . import _core
 from . import materials, scenes
+from . import bssrdf
 from ._core import Error, FilmState, Scene, cancel
 from .aov import AOVS, RenderLayers, read_layers, render_aov, write_layers
 from .denoise import denoise
@@ -51,6 +52,7 @@ __all__ = [
     "Scene",
     "SceneParameters",
     "bsdf",
+    "bssrdf",
     "cancel",
     "denoise",
     "last_interrupted",

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['BSDFProbe', 'BXDF_FLAGS', 'Error', 'FilmState', 'PhaseProbe', 'RenderProgress', 'Scene', 'aov_channels', 'aov_names', 'cancel', 'check_image_output', 'check_parameter_path', 'load_dict', 'load_file', 'load_film_state', 'mitsuba_import_table', 'read_image', 'read_image_attributes', 'read_layers', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'scene_parameters', 'set_log_sink', 'update_scene', 'write_image', 'write_image_with_attributes', 'write_layers']
+__all__: list[str] = ['BSDFProbe', 'BSSRDFProfile', 'BXDF_FLAGS', 'Error', 'FilmState', 'PhaseProbe', 'RenderProgress', 'Scene', 'aov_channels', 'aov_names', 'bssrdf_from_diffuse', 'bssrdf_searchlight', 'bssrdf_total', 'cancel', 'check_image_output', 'check_parameter_path', 'exit_lobe_norm', 'fresnel_moment', 'load_dict', 'load_file', 'load_film_state', 'mitsuba_import_table', 'read_image', 'read_image_attributes', 'read_layers', 'record_parameters', 'registry_types', 'render_aov', 'render_full', 'scene_parameters', 'set_log_sink', 'update_scene', 'write_image', 'write_image_with_attributes', 'write_layers']
 class Error(RuntimeError):
     pass
 class PhaseProbe:
@@ -59,6 +59,42 @@ class BSDFProbe:
         """
     @property
     def flags(self) -> int:
+        ...
+class BSSRDFProfile:
+    """
+    One colour channel's diffusion profile (see pellucid.bssrdf.profile).
+    """
+    def __init__(self, model: str, sigma_a: typing.SupportsFloat | typing.SupportsIndex, sigma_s: typing.SupportsFloat | typing.SupportsIndex, g: typing.SupportsFloat | typing.SupportsIndex, eta: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    def eval(self, r: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        R(r) in 1/length², elementwise.
+        """
+    def pdf(self, r: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        Density of sample() per unit area at radius r, elementwise.
+        """
+    def sample(self, u: typing.Annotated[numpy.typing.ArrayLike, numpy.float32]) -> numpy.typing.NDArray[numpy.float32]:
+        """
+        Radii for u in [0, 1), elementwise.
+        """
+    @property
+    def diffusion_length(self) -> float:
+        ...
+    @property
+    def mean_free_path(self) -> float:
+        ...
+    @property
+    def model(self) -> str:
+        ...
+    @property
+    def r_max(self) -> float:
+        ...
+    @property
+    def reduced_albedo(self) -> float:
+        ...
+    @property
+    def total(self) -> float:
         ...
 class Scene:
     """
@@ -149,6 +185,18 @@ def aov_names() -> list[str]:
     """
     Every AOV name render_full(aovs=...) accepts.
     """
+def bssrdf_from_diffuse(model: str, albedo: typing.SupportsFloat | typing.SupportsIndex, mfp: typing.SupportsFloat | typing.SupportsIndex, g: typing.SupportsFloat | typing.SupportsIndex, eta: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, float]:
+    """
+    (sigma_a, sigma_s) of a diffuse albedo and mean free path.
+    """
+def bssrdf_searchlight(sigma_a: typing.SupportsFloat | typing.SupportsIndex, sigma_s: typing.SupportsFloat | typing.SupportsIndex, g: typing.SupportsFloat | typing.SupportsIndex, eta: typing.SupportsFloat | typing.SupportsIndex, thickness: typing.SupportsFloat | typing.SupportsIndex, photons: typing.SupportsInt | typing.SupportsIndex, seed: typing.SupportsInt | typing.SupportsIndex, r_edges: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_collisions: typing.SupportsInt | typing.SupportsIndex, threads: typing.SupportsInt | typing.SupportsIndex) -> dict:
+    """
+    The searchlight random walk (see pellucid.bssrdf.searchlight).
+    """
+def bssrdf_total(model: str, reduced_albedo: typing.SupportsFloat | typing.SupportsIndex, eta: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    """
+    The profile's total for a reduced albedo.
+    """
 def cancel() -> None:
     """
     Ask the running render to stop (it returns its complete passes).
@@ -160,6 +208,14 @@ def check_image_output(path: str) -> None:
 def check_parameter_path(scene: Scene, path: str, allow_new: bool = True) -> None:
     """
     Raise pellucid.Error unless path names a parameter of the scene (allow_new: or a key it may add).
+    """
+def exit_lobe_norm(eta: typing.SupportsFloat | typing.SupportsIndex) -> float:
+    """
+    c = 1 − 2 C1(eta, external).
+    """
+def fresnel_moment(i: typing.SupportsInt | typing.SupportsIndex, eta: typing.SupportsFloat | typing.SupportsIndex, internal: bool) -> float:
+    """
+    C_i = ∫0^1 F(μ) μ^i dμ.
     """
 def load_dict(d: dict, base_dir: str = '.') -> Scene:
     """

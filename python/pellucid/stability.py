@@ -12,7 +12,10 @@ For each model and parameter point the sweep
   a material, a sphere of it on a floor under an area light and a constant environment (also with
   a normal map whose normals lie in the tangent plane, so that shading normals face away from the
   viewer, under each ``invalid_normals`` treatment); for a phase function, a cube of homogeneous
-  medium of albedo 1 with it, behind a null boundary, at σt = 1e-6, 1 and 1000.
+  medium of albedo 1 with it, behind a null boundary, at σt = 1e-6, 1 and 1000;
+- for a diffusion profile (``dipole``, ``better_dipole`` of :mod:`pellucid.bssrdf`), evaluates
+  ``eval`` and ``pdf`` at r = 0, tiny, r_max, far beyond and random radii, and ``sample`` at edge and
+  random u, with albedo 0 and 1, σt from 1e-3 to 1e6 per scene unit, g = ±0.99 and η = 1, 1 ± 1e-4.
 
 It counts per point: **NaN**, **Inf** and **negative** values (rows of ``eval``/``pdf``/``sample``
 output, and image values), and **invalid** results: for ``sample``, a sample that claims a lobe but
@@ -68,6 +71,14 @@ def _alphas(quick: bool) -> Sequence[float]:
 
 def _etas(quick: bool) -> Sequence[float]:
     return ETAS_QUICK if quick else ETAS_FULL
+
+
+def _grid_profile(quick: bool) -> List[Params]:
+    albedos = (0.0, 0.5, 1.0) if quick else (0.0, 1e-4, 0.5, 0.999, 1.0)
+    sigma_ts = (1e-3, 1e4) if quick else (1e-3, 1.0, 1e4, 1e6)
+    gs = (-0.99, 0.99) if quick else (-0.99, 0.0, 0.99)
+    etas = (1.0, 1.0001, 1.33) if quick else (1.0, 1.0001, 0.9999, 1.33, 10.0)
+    return [{"albedo": a, "sigma_t": t, "g": g, "eta": e} for a, t, g, e in product(albedos, sigma_ts, gs, etas)]
 
 
 def _grid_lambertian(quick: bool) -> List[Params]:
@@ -188,6 +199,10 @@ GRIDS: Dict[str, Callable[[bool], List[Params]]] = {
     "isotropic": lambda quick: [{}],
     # HOOK (BSSRDFs): mean free paths far below a pixel footprint and far above the object size, e.g.
     #   "<bssrdf type>": lambda quick: [{"mfp": m} for m in (1e-6, 1e-3, 1.0, 1e3)],
+    # Diffusion profiles (pellucid.bssrdf): albedo 0 and 1, σt from 1e-3 to 1e6 per scene unit
+    # (mean free paths far above an object's size and far below a pixel's), g = ±0.99, η = 1, 1 ± 1e-4.
+    "dipole": lambda quick: _grid_profile(quick),
+    "better_dipole": lambda quick: _grid_profile(quick),
 }
 
 # ---------------------------------------------------------------------------------------------
@@ -287,6 +302,33 @@ class Family:
     variants: Callable[[bool], List[str]] = _material_variants  #: (quick) -> render variants
     #: model names when the registry has no such family (None: the registry's list only)
     fallback_names: Optional[Callable[[], List[str]]] = None
+    #: (result, desc, quick, rng): evaluates one point in place of the direction probe (profiles)
+    sweep_point: Optional[Callable[..., None]] = None
+
+
+def _sweep_profile(res: Any, desc: Params, quick: bool, rng: np.random.Generator) -> None:
+    """A diffusion profile at one point: eval and pdf at r = 0, tiny, r_max, far beyond and random
+    radii; sample at edge and random u. Invalid: a sample beyond r_max, pdf ≤ 0 at a sample of a
+    profile with mass, a total outside [0, 1], r_max not finite."""
+    from . import bssrdf
+    a, st = float(desc["albedo"]), float(desc["sigma_t"])
+    p = bssrdf.profile(desc["type"], (1.0 - a) * st, a * st, float(desc["g"]), float(desc["eta"]))
+    rm = p.r_max
+    r = np.concatenate([[0.0, 1e-30, 1e-12 * rm, rm, 10.0 * rm, 1e30, np.inf],
+                        rng.random(256 if quick else 4096) * 2.0 * rm]).astype(np.float32)
+    _tally(res, p.eval(r), "eval", {"r": r})
+    _tally(res, p.pdf(r), "pdf", {"r": r})
+    u = np.concatenate([[0.0, 2.0 ** -32, 0.5, 1.0 - 2.0 ** -24], rng.random(256 if quick else 4096)]).astype(np.float32)
+    rs = p.sample(u)
+    _tally(res, rs, "sample", {"u": u})
+    bad = (rs > rm) | ((p.total > 0) & (u > 0) & ~(p.pdf(rs) > 0))
+    res.invalid += int(bad.sum()) + int(not 0.0 <= p.total <= 1.0) + int(not math.isfinite(rm))
+    _note_example(res, bad, "sample", {"u": u}, rs)
+
+
+def _profile_names() -> List[str]:
+    from . import bssrdf
+    return list(bssrdf.MODELS)
 
 
 #: THE families swept, by registry key. HOOK (BSSRDFs): add the subsurface family here with its
@@ -294,6 +336,7 @@ class Family:
 FAMILIES: Tuple[Family, ...] = (
     Family("materials", _bsdf_probe, _material_scene),
     Family("phase_functions", _phase_probe, _medium_scene, ("radiance",), _medium_variants, _phase_names),
+    Family("bssrdf_profiles", None, None, ("radiance",), fallback_names=_profile_names, sweep_point=_sweep_profile),
 )
 
 # ---------------------------------------------------------------------------------------------
@@ -550,6 +593,15 @@ def sweep(quick: bool = False, models: Optional[Sequence[str]] = None, render: b
                 progress(f"{name}: {len(points)} points")
             for i, params in enumerate(points):
                 desc = {"type": name, **params}
+                if fam.sweep_point is not None:
+                    res = PointResult(fam.registry_key, name, params, "eval")
+                    t = time.perf_counter()
+                    try:
+                        fam.sweep_point(res, desc, quick, rng)
+                    except Exception as e:  # noqa: BLE001 - any failure of a grid point is a finding
+                        res.error = f"{type(e).__name__}: {e}"
+                    res.seconds = time.perf_counter() - t
+                    results.append(res)
                 if fam.probe is not None:
                     res = PointResult(fam.registry_key, name, params, "eval")
                     t = time.perf_counter()

@@ -42,6 +42,7 @@ def test_quick_sweep_is_clean() -> None:
     assert {r.kind for r in report.results if r.family == "materials"} == {"eval", "render:plain"}
     if models["phase_functions"]:
         assert {r.kind for r in report.results if r.family == "phase_functions"} == {"eval", "render:sigma_t=1"}
+    assert {r.model for r in report.results if r.family == "bssrdf_profiles"} == {"dipole", "better_dipole"}
     assert sum(r.evaluations for r in report.results) > 10**6
     assert seconds < 60, f"the quick grid took {seconds:.1f} s"
 

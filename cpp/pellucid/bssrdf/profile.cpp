@@ -50,6 +50,23 @@ void fresnel_moments(int i, double n, double* reflected, double* transmitted) {
 
 bool valid_eta(double eta) { return std::isfinite(eta) && eta > 0.0; }
 
+/// 1 − 2C1 and 1 − 3C2 of the internal moments for index eta, as 2∫(1 − F)μ dμ and 3∫(1 − F)μ² dμ
+/// (no cancellation). The last eta's values are kept per thread: a material builds one profile per
+/// colour channel with the same η, and the quadrature is most of Profile::make's cost.
+void internal_transmission(double eta, double* t1, double* t2) {
+    thread_local double last_eta = -1.0, last_t1 = 0.0, last_t2 = 0.0;
+    if (eta != last_eta) {
+        double r;
+        fresnel_moments(1, 1.0 / eta, &r, &last_t1);
+        fresnel_moments(2, 1.0 / eta, &r, &last_t2);
+        last_t1 *= 2.0;
+        last_t2 *= 3.0;
+        last_eta = eta;
+    }
+    *t1 = last_t1;
+    *t2 = last_t2;
+}
+
 /// (1 − e^(−s Δ))/s, with the limit Δ as s → 0.
 double one_minus_exp_over(double s, double delta) {
     const double x = s * delta;
@@ -58,6 +75,25 @@ double one_minus_exp_over(double s, double delta) {
 }
 float to_float(double v) { return float(std::min(v, double(FLT_MAX))); }
 }  // namespace
+
+const char* to_string(Diffusion model) { return model == Diffusion::Dipole ? "dipole" : "better_dipole"; }
+
+bool parse_diffusion(const std::string& name, Diffusion* out) {
+    if (name == "dipole") *out = Diffusion::Dipole;
+    else if (name == "better_dipole") *out = Diffusion::BetterDipole;
+    else return false;
+    return true;
+}
+
+void eval_batch(const Profile& p, const float* r, size_t n, float* out) {
+    for (size_t i = 0; i < n; ++i) out[i] = p.eval(r[i]);
+}
+void pdf_batch(const Profile& p, const float* r, size_t n, float* out) {
+    for (size_t i = 0; i < n; ++i) out[i] = p.pdf(r[i]);
+}
+void sample_batch(const Profile& p, const float* u, size_t n, float* out) {
+    for (size_t i = 0; i < n; ++i) out[i] = p.sample(u[i]);
+}
 
 double fresnel_moment(int i, double eta, bool internal) {
     if (!valid_eta(eta) || i < 0) return 0.0;
@@ -137,8 +173,9 @@ double Profile::solve_tail(double target) const {
     // Near 0 the covered mass is π ρ² S(0) to first order: the answer when it is below 1e-6.
     const double small = std::sqrt(std::max(0.0, m_tail0 - target) / (kPiD * s0));
     if (small < 1e-6) return small;
-    double lo = std::log(1e-6), hi = std::log(1.0);
-    while (shape_tail(std::exp(hi)) > target && hi < 700.0) hi += 2.0;  // grow the bracket
+    // The bracket's top: r_max once known (sample), else grown from 1 mean free path (make).
+    double lo = std::log(1e-6), hi = m_rho_max > 0.0 ? std::log(m_rho_max) + 1e-9 : 0.0;
+    while (shape_tail(std::exp(hi)) > target && hi < 700.0) hi += 2.0;
     double t = std::min(hi, std::max(lo, std::log(small)));
     for (int it = 0; it < 200; ++it) {
         const double rho = std::exp(t);
@@ -161,10 +198,9 @@ Profile Profile::make(Diffusion model, float sigma_a, float sigma_s, float g, fl
     Profile p;
     const double ssp = ss * (1.0 - gg);
     const double stp = sa + ssp;
-    double r1, t1, r2, t2;
-    fresnel_moments(1, 1.0 / e, &r1, &t1);
-    fresnel_moments(2, 1.0 / e, &r2, &t2);
-    p.set_shape(model, stp > 0.0 ? ssp / stp : 0.0, 2.0 * t1, 3.0 * t2);
+    double t1, t2;
+    internal_transmission(e, &t1, &t2);
+    p.set_shape(model, stp > 0.0 ? ssp / stp : 0.0, t1, t2);
     if (!(stp > 0.0)) return p;  // the empty profile (m_sigma_tp = 0)
     p.m_sigma_tp = stp;
     p.m_rho_max = p.solve_tail((1.0 - kCovered) * p.m_tail0);
@@ -207,11 +243,10 @@ float Profile::mean_free_path() const {
 
 double total_of_reduced_albedo(Diffusion model, double alpha_p, double eta) {
     const double e = valid_eta(eta) ? eta : 1.0;
-    double r1, t1, r2, t2;
-    fresnel_moments(1, 1.0 / e, &r1, &t1);
-    fresnel_moments(2, 1.0 / e, &r2, &t2);
+    double t1, t2;
+    internal_transmission(e, &t1, &t2);
     Profile p;
-    p.set_shape(model, alpha_p, 2.0 * t1, 3.0 * t2);
+    p.set_shape(model, alpha_p, t1, t2);
     return p.m_alpha * p.m_tail0;
 }
 
@@ -219,16 +254,15 @@ bool from_diffuse(Diffusion model, float albedo, float mfp, float g, float eta, 
     if (!(albedo >= 0.f && albedo < 1.f) || !(std::isfinite(mfp) && mfp > 0.f) || !(g >= -1.f && g < 1.f) ||
         !valid_eta(eta))
         return false;
-    double r1, t1, r2, t2;
-    fresnel_moments(1, 1.0 / double(eta), &r1, &t1);
-    fresnel_moments(2, 1.0 / double(eta), &r2, &t2);
+    double t1, t2;
+    internal_transmission(double(eta), &t1, &t2);
     // total(α') rises monotonically from 0 at α' = 0 to 1 at α' = 1 (both models conserve energy
     // at α' = 1): bisection to double precision.
     double lo = 0.0, hi = 1.0;
     Profile p;
     for (int it = 0; it < 64 && hi - lo > 1e-16; ++it) {
         const double mid = 0.5 * (lo + hi);
-        p.set_shape(model, mid, 2.0 * t1, 3.0 * t2);
+        p.set_shape(model, mid, t1, t2);
         (p.m_alpha * p.m_tail0 < double(albedo) ? lo : hi) = mid;
     }
     const double alpha_p = 0.5 * (lo + hi);
