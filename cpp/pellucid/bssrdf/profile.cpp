@@ -50,21 +50,10 @@ void fresnel_moments(int i, double n, double* reflected, double* transmitted) {
 
 bool valid_eta(double eta) { return std::isfinite(eta) && eta > 0.0; }
 
-/// 1 − 2C1 and 1 − 3C2 of the internal moments for index eta, as 2∫(1 − F)μ dμ and 3∫(1 − F)μ² dμ
-/// (no cancellation). The last eta's values are kept per thread: a material builds one profile per
-/// colour channel with the same η, and the quadrature is most of Profile::make's cost.
 void internal_transmission(double eta, double* t1, double* t2) {
-    thread_local double last_eta = -1.0, last_t1 = 0.0, last_t2 = 0.0;
-    if (eta != last_eta) {
-        double r;
-        fresnel_moments(1, 1.0 / eta, &r, &last_t1);
-        fresnel_moments(2, 1.0 / eta, &r, &last_t2);
-        last_t1 *= 2.0;
-        last_t2 *= 3.0;
-        last_eta = eta;
-    }
-    *t1 = last_t1;
-    *t2 = last_t2;
+    const BoundaryMoments m = boundary_moments(float(eta));
+    *t1 = m.t1;
+    *t2 = m.t2;
 }
 
 /// (1 − e^(−s Δ))/s, with the limit Δ as s → 0.
@@ -190,17 +179,29 @@ double Profile::solve_tail(double target) const {
     return std::exp(t);
 }
 
+BoundaryMoments boundary_moments(float eta) {
+    BoundaryMoments m;
+    const double e = valid_eta(eta) ? double(eta) : 1.0;
+    double r;
+    fresnel_moments(1, 1.0 / e, &r, &m.t1);
+    fresnel_moments(2, 1.0 / e, &r, &m.t2);
+    m.t1 *= 2.0;
+    m.t2 *= 3.0;
+    return m;
+}
+
 Profile Profile::make(Diffusion model, float sigma_a, float sigma_s, float g, float eta) {
+    return make(model, sigma_a, sigma_s, g, boundary_moments(eta));
+}
+
+Profile Profile::make(Diffusion model, float sigma_a, float sigma_s, float g, const BoundaryMoments& moments) {
     auto clean = [](float v) { return std::isfinite(v) && v > 0.f ? double(v) : (v == INFINITY ? double(FLT_MAX) : 0.0); };
     const double sa = clean(sigma_a), ss = clean(sigma_s);
     const double gg = std::isnan(g) ? 0.0 : std::min(1.0, std::max(-1.0, double(g)));
-    const double e = valid_eta(eta) ? double(eta) : 1.0;
     Profile p;
     const double ssp = ss * (1.0 - gg);
     const double stp = sa + ssp;
-    double t1, t2;
-    internal_transmission(e, &t1, &t2);
-    p.set_shape(model, stp > 0.0 ? ssp / stp : 0.0, t1, t2);
+    p.set_shape(model, stp > 0.0 ? ssp / stp : 0.0, moments.t1, moments.t2);
     if (!(stp > 0.0)) return p;  // the empty profile (m_sigma_tp = 0)
     p.m_sigma_tp = stp;
     p.m_rho_max = p.solve_tail((1.0 - kCovered) * p.m_tail0);

@@ -50,6 +50,14 @@ double fresnel_moment(int i, double eta, bool internal);
 /// seen from the outside at angle θ). 1 for eta = 1.
 float exit_lobe_norm(float eta);
 
+/// The boundary condition both models take from the internal Fresnel moments of index eta:
+/// t1 = 1 − 2C1 and t2 = 1 − 3C2, computed as 2∫(1 − F)μ dμ and 3∫(1 − F)μ² dμ (no cancellation).
+/// The quadrature is most of Profile::make's cost: a material computes them once for its channels.
+struct BoundaryMoments {
+    double t1 = 1.0, t2 = 1.0;
+};
+BoundaryMoments boundary_moments(float eta);
+
 /// One colour channel's radial profile R(r) of a semi-infinite medium (σa, σs, g, η) under the
 /// diffusion model: exitance per unit area at distance r from a unit flux that entered at r = 0.
 /// Trivially copyable and small (stored per material and channel); all members are const and cheap
@@ -58,6 +66,8 @@ struct Profile {
     /// The profile of (σa, σs, g, η). Negative or non-finite inputs are clamped to the valid range
     /// (σ ≥ 0, g ∈ [−1, 1], eta > 0; NaN → 0, eta NaN → 1); g = 1 leaves σ's = 0.
     static Profile make(Diffusion model, float sigma_a, float sigma_s, float g, float eta);
+    /// The same with the boundary's moments already computed (boundary_moments(eta)).
+    static Profile make(Diffusion model, float sigma_a, float sigma_s, float g, const BoundaryMoments& moments);
 
     /// R(r) ≥ 0 in 1/length²; r < 0 is treated as |r|.
     float eval(float r) const;

@@ -39,8 +39,9 @@ SeparableBSSRDF make_separable_bssrdf(const SubsurfaceParams& p, bssrdf::Diffusi
     subsurface_coefficients(p, model, &sa, &ss);
     b.eta = p.eta();
     b.exit_norm = bssrdf::exit_lobe_norm(b.eta);
+    const bssrdf::BoundaryMoments moments = bssrdf::boundary_moments(b.eta);
     for (int c = 0; c < 3; ++c) {
-        b.profile[c] = bssrdf::Profile::make(model, sa[c], ss[c], p.g, b.eta);
+        b.profile[c] = bssrdf::Profile::make(model, sa[c], ss[c], p.g, moments);
         b.r_max[c] = b.profile[c].r_max();
     }
     b.shape = shape;
