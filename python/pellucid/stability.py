@@ -176,6 +176,22 @@ def _grid_principled(quick: bool) -> List[Params]:
     return out
 
 
+def _grid_subsurface(quick: bool) -> List[Params]:
+    """Every model at albedo 0 and 1 with mean free paths far below a pixel footprint and far above
+    the object's size (REFERENCE §7.2), g = ±0.99, η = 1 and 1 ± 1e-4, no scattering, a rough boundary."""
+    models = ("dipole", "better_dipole", "random_walk", "auto") if quick else (
+        "dipole", "better_dipole", "random_walk", "coated", "auto")
+    albedos = (0.0, 1.0) if quick else (0.0, 0.5, 1.0)
+    mfps = (1e-6, 1.0) if quick else (1e-6, 1e-3, 1.0, 1e3)
+    out: List[Params] = [{"model": m, "albedo": a, "mfp": f} for m, a, f in product(models, albedos, mfps)]
+    etas = (1.0, 1.0001) if quick else (1.0, 1.0001, 0.9999)
+    out += [{"model": "better_dipole", "albedo": 0.5, "mfp": 0.01, "int_ior": e, "ext_ior": 1.0} for e in etas]
+    out += [{"model": m, "albedo": 0.8, "mfp": 0.01, "g": g} for m, g in product(("dipole", "random_walk"), (-0.99, 0.99))]
+    out += [{"sigma_a": 1.0, "sigma_s": 0.0}, {"model": "dipole", "sigma_a": 0.0, "sigma_s": 1e4},
+            {"model": "better_dipole", "albedo": 0.8, "mfp": 0.01, "alpha": 0.3}]
+    return out
+
+
 def _grid_hg(quick: bool) -> List[Params]:
     gs = (-1.0, -0.999, 0.0, 0.999, 1.0) if quick else (-1.0, -0.999, -0.5, -1e-7, 0.0, 1e-7, 0.5, 0.999, 1.0)
     return [{"g": g} for g in gs]
@@ -194,11 +210,10 @@ GRIDS: Dict[str, Callable[[bool], List[Params]]] = {
     "plastic": _grid_plastic,
     "rough_plastic": _grid_rough_plastic,
     "principled": _grid_principled,
+    "subsurface": _grid_subsurface,
     # Phase functions: g at and next to the delta (±1, ±0.999) and next to isotropic (±1e-7).
     "hg": _grid_hg,
     "isotropic": lambda quick: [{}],
-    # HOOK (BSSRDFs): mean free paths far below a pixel footprint and far above the object size, e.g.
-    #   "<bssrdf type>": lambda quick: [{"mfp": m} for m in (1e-6, 1e-3, 1.0, 1e3)],
     # Diffusion profiles (pellucid.bssrdf): albedo 0 and 1, σt from 1e-3 to 1e6 per scene unit
     # (mean free paths far above an object's size and far below a pixel's), g = ±0.99, η = 1, 1 ± 1e-4.
     "dipole": lambda quick: _grid_profile(quick),
