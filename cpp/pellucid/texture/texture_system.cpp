@@ -213,10 +213,16 @@ static ImageTextureHandle open_image_texture_unchecked(const std::string& path, 
             throw Error(path + ": " + (spec.deep ? "deep" : "volume (3D)") + " images are not textures");
         // From the header, before a pixel is decoded: a small file can claim a huge image.
         if (std::string e = texture_size_error(spec.width, spec.height); !e.empty()) throw Error(path + ": " + e);
-        // The display window too: the texture system sizes its MIP levels by it (an EXR of 4x3
-        // pixels can claim a display window of 1501953x37377).
-        if (std::string e = texture_size_error(spec.full_width, spec.full_height); !e.empty())
-            throw Error(path + ": display window: " + e);
+        // The display window must be the data window: the texture system sizes its MIP levels by
+        // the display window and fills it from the data, so a 4x3 EXR claiming a display window of
+        // 1501953x37377 (or 1x7601509) ran for minutes.
+        if (spec.full_width != spec.width || spec.full_height != spec.height || spec.full_x != spec.x ||
+            spec.full_y != spec.y)
+            throw Error(path + ": the display window (" + std::to_string(spec.full_width) + "x" +
+                        std::to_string(spec.full_height) + " at " + std::to_string(spec.full_x) + "," +
+                        std::to_string(spec.full_y) + ") differs from the data window (" + std::to_string(spec.width) +
+                        "x" + std::to_string(spec.height) + " at " + std::to_string(spec.x) + "," +
+                        std::to_string(spec.y) + "); a texture must be a whole image: crop it to its data window");
         // OpenImageIO reads whole tiles: a header may claim tiles far larger than the image.
         if (spec.tile_width > 0 && int64_t(spec.tile_width) * std::max(1, spec.tile_height) > (int64_t(1) << 20))
             throw Error(path + ": tiles of " + std::to_string(spec.tile_width) + "x" + std::to_string(spec.tile_height) +
