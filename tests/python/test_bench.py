@@ -101,7 +101,10 @@ def test_time_budget_ladder(tmp_path: pathlib.Path) -> None:
     assert [r.budget_s for r in native] == [0.05, 0.2]
     assert native[1].spp > native[0].spp >= 1
     assert all(r.seconds >= r.budget_s for r in native)  # the loop stops after the pass that crosses the budget
-    calibrated = bench.run_ladder(FURNACE, tmp_path, "furnace", ["mis"], 0.5, None, budgets=[0.05, 0.2], threads=1,
+    # The second rung's spp comes from the first rung's measured speed, which a loaded machine can
+    # lower several-fold for a render this short: a 12x larger budget keeps "grows with the budget"
+    # true under such noise.
+    calibrated = bench.run_ladder(FURNACE, tmp_path, "furnace", ["mis"], 0.5, None, budgets=[0.05, 0.6], threads=1,
                                   seed=0, with_flip=False, log=lambda s: None)
     assert calibrated[1].spp > calibrated[0].spp >= 1  # spp from the measured speed, growing with the budget
     with pytest.raises(ValueError, match="budget_mode"):
