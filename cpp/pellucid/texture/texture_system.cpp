@@ -244,6 +244,10 @@ static ImageTextureHandle open_image_texture_unchecked(const std::string& path, 
     return ImageTextureHandle{h, channels};
 }
 
+void forget_image_texture(const std::string& path) {
+    texture_system()->invalidate(OIIO::ustring(path), /*force=*/true);
+}
+
 Spectrum lookup_image_texture(const ImageTextureHandle& h, TextureFilter filter, TextureWrap wrap, float s,
                               float t, float dsdx, float dtdx, float dsdy, float dtdy) {
     OIIO::TextureSystem* ts = texture_system();

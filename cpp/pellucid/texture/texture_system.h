@@ -48,6 +48,11 @@ struct ImageTextureHandle {
 /// (its position named). Every texel is read once here to find them and the value range.
 ImageTextureHandle open_image_texture(const std::string& path, TextureColorSpace cs, ImageTextureInfo* info);
 
+/// Forget what the texture cache holds of the file at path (its header and decoded tiles), so that
+/// the next open_image_texture of that path reads the file again; handles to it must not be used
+/// after this. For a file rewritten under the same name.
+void forget_image_texture(const std::string& path);
+
 /// Filtered lookup at texture coordinates (s, t) ∈ [0,1]² (t = 0 is the image's top row) with the
 /// screen-space derivatives of (s, t): the footprint. Zero derivatives give a point lookup at the
 /// finest level. One channel is replicated to RGB; alpha is ignored.

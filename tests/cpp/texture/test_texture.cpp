@@ -304,3 +304,23 @@ TEST(Footprint, SpecularDifferentialsOnFlatInterfaces) {
     EXPECT_LT(length(rt.rx_d - r.rx_d), 1e-4f);
     EXPECT_LT(length(rt.ry_d - r.ry_d), 1e-4f);
 }
+
+// A file rewritten under the same name reads back its new texels once the cache forgets it (and its
+// old ones until then: the cache keys files by name).
+TEST(ImageTexture, ForgetRereadsAFileRewrittenUnderItsName) {
+    const test::TempDir tmp("pellucid_texture_");
+    const std::string path = tmp.dir() + "/same.exr";
+    auto write = [&](float v) {
+        std::vector<float> px(4 * 4 * 3, v);
+        write_test_image(path, 4, 4, 3, 32, px.data());
+    };
+    auto read = [&] {
+        ImageTextureHandle h = open_image_texture(path, TextureColorSpace::Linear, nullptr);
+        return lookup_image_texture(h, TextureFilter::Bilinear, TextureWrap::Repeat, 0.5f, 0.5f, 0, 0, 0, 0).r;
+    };
+    write(0.25f);
+    EXPECT_NEAR(read(), 0.25f, 1e-3f);
+    write(0.75f);
+    forget_image_texture(path);
+    EXPECT_NEAR(read(), 0.75f, 1e-3f);
+}
