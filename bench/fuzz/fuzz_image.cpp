@@ -1,9 +1,10 @@
 // libFuzzer harness: the image-texture path. The first input byte picks the file extension (so
 // OpenImageIO picks the reader) and the colour space; the rest is the file. The image goes through
 // open_image_texture (size limit, texel scan, sRGB conversion into the texture cache) and filtered
-// lookups. OpenImageIO's cache keys files by name: each input is written under its extension's one
-// name, and the cache forgets that name (and the converted copy) before the next input, so the
-// cache's per-file records do not pile up over millions of inputs.
+// lookups. OpenImageIO's cache keys files by name: every input gets a file name of its own (reusing
+// one name with forget_image_texture in between made OpenEXR corrupt its heap under ASan on
+// malformed inputs), and the cache forgets the file and its converted copy once the input is done,
+// so its tiles and headers do not pile up over millions of inputs.
 // SPDX-License-Identifier: Apache-2.0
 #include <OpenImageIO/imageio.h>
 
@@ -45,9 +46,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     (void)once;
     const uint8_t sel = data[0];
     if (exr_attribute_past_end(data + 1, size - 1)) return -1;  // not kept in the corpus
-    const std::string name = std::string("img") + kExt[sel & 7];
+    static uint64_t counter = 0;
+    const std::string name = "img" + std::to_string(counter++) + kExt[sel & 7];
     const std::string path = fuzz::write_file(name, data + 1, size - 1);
-    pellucid::forget_image_texture(path);
     const pellucid::TextureColorSpace cs = (sel >> 3) % 3 == 0   ? pellucid::TextureColorSpace::Auto
                                            : (sel >> 3) % 3 == 1 ? pellucid::TextureColorSpace::SRGB
                                                                  : pellucid::TextureColorSpace::Linear;
@@ -68,6 +69,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         pellucid::lookup_image_texture_gradient(h, pellucid::TextureWrap::Clamp, 0.5f, 0.5f, &ds, &dt);
     });
     std::error_code ec;
+    pellucid::forget_image_texture(path);
     std::filesystem::remove(path, ec);
     if (!info.resolved.empty() && info.resolved != path) {
         pellucid::forget_image_texture(info.resolved);
