@@ -217,7 +217,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                             a.in_medium[i] = true;
                             path_services::medium_vertex(ray[i], e.t, &si[i]);
                             const int depth = int(a.depth[i]);
-                            if (ps.max_depth >= 0 && depth >= ps.max_depth) continue;
+                            if (depth >= ps.max_depth) continue;
                             if (a.br[i] == 0.f && a.bg[i] == 0.f && a.bb[i] == 0.f) continue;
                             const SurfaceInteraction& h = si[i];
                             a.px[i] = h.p.x, a.py[i] = h.p.y, a.pz[i] = h.p.z;
@@ -261,7 +261,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     a.Leb[i] = Le.b;
                 }
                 const int depth = int(a.depth[i]);
-                if (ps.max_depth >= 0 && depth >= ps.max_depth) continue;
+                if (depth >= ps.max_depth) continue;
                 a.px[i] = h.p.x, a.py[i] = h.p.y, a.pz[i] = h.p.z;
                 a.pex[i] = h.p_error.x, a.pey[i] = h.p_error.y, a.pez[i] = h.p_error.z;
                 a.ngx[i] = h.ng.x, a.ngy[i] = h.ng.y, a.ngz[i] = h.ng.z;
@@ -479,9 +479,14 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 RGB<F> beta = lane::select(sampled, beta0 * weight, beta0);
                 F eta_scale = lane::select(sampled && transmission, LD(a.eta_scale) * (eta * eta), LD(a.eta_scale));
                 const F depth = LD(a.depth);
-                // Russian roulette: survive with q = min(max β·η², 0.95) from rr_depth on.
+                // Russian roulette from rr_depth on: survive with q = min(max β·η², 1) (pbrt-v4,
+                // §13.4.1), so the weight β·η² never exceeds 1. A cap below 1 (Mitsuba 3's 0.95)
+                // multiplies the weight by albedo/cap at every vertex whose albedo exceeds the cap: in
+                // a subsurface random walk (albedo 0.997, hundreds of collisions and internal
+                // reflections) single samples reached 10⁴. Paths whose weight stays 1 end at
+                // max_depth (kUnboundedDepth when unbounded).
                 const M rr = sampled && depth >= F(float(ps.rr_depth));
-                const F q = lane::min(max_component(beta) * eta_scale, F(0.95f));
+                const F q = lane::min(max_component(beta) * eta_scale, F(1.f));
                 const M survives = !rr || LD(a.u[6]) < q;
                 beta = lane::select(rr && survives, beta / lane::select(rr, q, F(1.f)), beta);
                 SM(a.alive, (sampled && survives && !is_black(beta)) || (LM(a.crossing) && on && !is_black(beta0)));

@@ -42,7 +42,9 @@ bool packet_conductor(const BxDF& b, int32_t* kind, float* q) {
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type) {
     PathSetup ps;
     ps.scene = &scene;
-    ps.max_depth = max_depth;
+    // "Unbounded" stops at kUnboundedDepth: Russian roulette does not end a path whose throughput
+    // stays 1 at medium collisions (a lossless medium walled in by mirrors would never end).
+    ps.max_depth = max_depth < 0 ? kUnboundedDepth : max_depth;
     ps.rr_depth = rr_depth;
     ps.use_nee = use_nee && !scene.lights.empty();
     ps.use_mis = use_mis;

@@ -32,9 +32,12 @@ enum PacketKind : int32_t {
 };
 constexpr int kPacketParams = 12;
 
+/// The longest path an unbounded max_depth (-1) allows, in vertices (docs/rendering.md).
+constexpr int kUnboundedDepth = 1 << 16;
+
 struct PathSetup {
     const Scene* scene = nullptr;
-    int max_depth = -1;  ///< -1 = unbounded ("direct" = 2)
+    int max_depth = kUnboundedDepth;  ///< longest path in segments ("direct" = 2; unbounded = kUnboundedDepth)
     int rr_depth = 5;
     bool use_nee = true, use_mis = true;
     SamplerType sampler = SamplerType::Independent;

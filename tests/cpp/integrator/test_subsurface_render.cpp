@@ -228,3 +228,26 @@ TEST(SubsurfaceRender, ALosslessSphereKeepsItsEnergyWithinTheDocumentedBias) {
     EXPECT_LT(mean, 1.0 + pellucid::test::z_two_sided(1e-4) * se);
     EXPECT_GT(mean, 0.96 - pellucid::test::z_two_sided(1e-4) * se);
 }
+
+TEST(SubsurfaceRender, RouletteKeepsRandomWalkWeightsBounded) {
+    // A dense, high-albedo interior (reduced albedo ≈ 0.997: hundreds of collisions per walk) under
+    // uniform radiance 1. Every estimate is at most 1: Russian roulette survives with
+    // q = min(β·η², 1), so the weight β·η² never exceeds 1. (Capping q at 0.95 made it grow by
+    // 0.997/0.95 per collision or internal reflection: single samples of over 10⁴.) The check is on
+    // every sample, through 1-spp pixels with a box filter.
+    auto scene = scene_from(R"({"camera": {"type": "perspective", "fov": 30,
+            "to_world": [{"look_at": {"origin": [0, 0, 4], "target": [0, 0, 0], "up": [0, 1, 0]}}]},
+        "film": {"width": 32, "height": 32, "filter": {"type": "box"}}, "sampler": {"sample_count": 1, "seed": 3},
+        "materials": {"m": {"type": "subsurface", "model": "random_walk", "albedo": 0.85, "mfp": 0.004, "int_ior": 1.4}},
+        "shapes": [{"type": "sphere", "radius": 0.8, "material": "m"}],
+        "lights": [{"type": "constant", "radiance": 1}]})");
+    float peak = 0.f;
+    for (int seed = 0; seed < 4; ++seed) {
+        RenderOptions o;
+        o.seed = uint64_t(seed);
+        RenderResult r = make_integrator(*scene)->render(*scene, o);
+        for (float v : r.image.data) peak = std::max(peak, v);
+    }
+    EXPECT_LE(peak, 1.0f + 1e-4f);
+    EXPECT_GT(peak, 0.1f);
+}
