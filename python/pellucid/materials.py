@@ -32,6 +32,7 @@ __all__ = [
     "rough_conductor",
     "rough_dielectric",
     "rough_plastic",
+    "subsurface",
     "thin_dielectric",
 ]
 
@@ -221,3 +222,24 @@ def principled(base_color: Optional[Colour] = None, *, variant: Optional[str] = 
                                     sheen_tint=sheen_tint, clearcoat=clearcoat, clearcoat_gloss=clearcoat_gloss,
                                     anisotropic=anisotropic, specular_transmission=specular_transmission, eta=eta,
                                     flatness=flatness, thin=thin, diffuse_transmission=diffuse_transmission))
+
+
+@_with_surface_keys
+def subsurface(albedo: Optional[Colour] = None, *, mfp: Optional[Colour] = None, model: Optional[str] = None,
+               sigma_a: Optional[Colour] = None, sigma_s: Optional[Colour] = None, scale: Optional[float] = None,
+               g: Optional[float] = None, int_ior: Optional[IOR] = None, ext_ior: Optional[IOR] = None,
+               distribution: Optional[str] = None, alpha: Optional[float] = None,
+               alpha_u: Optional[float] = None, alpha_v: Optional[float] = None,
+               roughness: Optional[float] = None, shadowing: Optional[str] = None) -> Material:
+    """A translucent body (skin, marble, milk, wax): a dielectric boundary over a scattering
+    interior, given by a diffuse colour ``albedo`` and mean free path ``mfp``, or by ``sigma_a`` /
+    ``sigma_s`` (× ``scale``), with anisotropy ``g``. ``model``: ``"auto"`` (default: per object,
+    the simplest model accurate enough), ``"dipole"``, ``"better_dipole"``, ``"random_walk"`` or
+    ``"coated"``. A roughness key makes the boundary rough.
+
+    docs/scene-format.md, ``### subsurface``; docs/subsurface.md.
+    """
+    return _make("subsurface", dict(albedo=albedo, mfp=mfp, model=model, sigma_a=sigma_a, sigma_s=sigma_s,
+                                    scale=scale, g=g, int_ior=int_ior, ext_ior=ext_ior, distribution=distribution,
+                                    alpha=alpha, alpha_u=alpha_u, alpha_v=alpha_v, roughness=roughness,
+                                    shadowing=shadowing))

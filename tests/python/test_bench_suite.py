@@ -69,7 +69,9 @@ BXDFS_OF_TYPE = {
     "rough_conductor": ["RoughConductor", "RoughConductorBeckmann"], "dielectric": ["SmoothDielectric"],
     "rough_dielectric": ["RoughDielectric<GGX>", "RoughDielectric<Beckmann>"], "thin_dielectric": ["ThinDielectric"],
     "plastic": ["SmoothPlastic"], "rough_plastic": ["RoughPlastic<GGX>", "RoughPlastic<Beckmann>"],
-    "principled": ["Principled", "PrincipledBSDF"]}
+    "principled": ["Principled", "PrincipledBSDF"],
+    # The boundary of a subsurface material is a dielectric (its interior is a BSSRDF or a medium).
+    "subsurface": ["SmoothDielectric", "RoughDielectric<GGX>", "RoughDielectric<Beckmann>"]}
 
 
 def test_generator_reproduces_the_committed_scenes():

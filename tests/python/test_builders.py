@@ -84,6 +84,8 @@ def test_every_registered_material_has_a_builder_with_the_json_keys() -> None:
             looked_up |= _builder_keys(name, {"type": name, "eta": 1.5, "k": 1.0})
         if name == "oren_nayar":  # sigma is read by the classic variant
             looked_up |= _builder_keys(name, {"type": name, "variant": "classic"})
+        if name == "subsurface":  # the boundary's microfacet keys are read when it is rough
+            looked_up |= _builder_keys(name, {"type": name, "alpha": 0.1})
         if name in ("rough_conductor", "rough_dielectric", "rough_plastic"):
             looked_up |= _builder_keys(name, {"type": name, "alpha_u": 0.1, "alpha_v": 0.2})
             looked_up |= _builder_keys(name, {"type": name, "roughness": 0.3})
@@ -107,6 +109,7 @@ def test_material_builders_produce_valid_materials() -> None:
         materials.plastic([0.1, 0.2, 0.6], int_ior=1.5),
         materials.rough_plastic(0.5, alpha_u=0.1, alpha_v=0.3),
         materials.principled([0.9, 0.4, 0.1], metallic=0.5, clearcoat=1.0),
+        materials.subsurface([0.9, 0.6, 0.4], mfp=0.01, model="dipole", int_ior=1.4),
     ]
     assert cases[0] == {"type": "lambertian", "reflectance": 0.8}
     assert cases[4] == {"type": "rough_conductor", "material": "Cu", "roughness": 0.4, "multiple_scattering": True}

@@ -46,6 +46,8 @@ TEST(Materials, EveryTypeBuildsFromJson) {
         {"rough_plastic", R"({"type": "rough_plastic", "int_ior": "polypropylene", "alpha": 0.2})"},
         {"principled", R"({"type": "principled", "base_color": [0.8, 0.2, 0.1], "roughness": 0.4,
                          "clearcoat": 1, "clearcoat_gloss": 0.9, "anisotropic": 0.5})"},
+        {"subsurface", R"({"type": "subsurface", "model": "dipole", "albedo": [0.9, 0.6, 0.4], "mfp": 0.01,
+                         "int_ior": 1.4, "g": 0.3})"},
     };
     for (const auto& [type, fn] : material_registry()) {
         auto it = examples.find(type);
