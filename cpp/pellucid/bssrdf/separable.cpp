@@ -53,15 +53,7 @@ SeparableBSSRDF bssrdf_at(const Scene& scene, const SeparableBSSRDF& b, const Su
     const MaterialTextures& mt = scene.material_textures[si.material_id];
     const auto* m = std::get_if<SubsurfaceMaterial>(&scene.materials[si.material_id]);
     if (!mt.has_bindings() || !m) return b;
-    TextureEvalContext ctx;
-    ctx.p = si.p;
-    ctx.dpdx = si.dpdx;
-    ctx.dpdy = si.dpdy;
-    ctx.uv = si.uv;
-    ctx.dudx = si.dudx;
-    ctx.dudy = si.dudy;
-    ctx.dvdx = si.dvdx;
-    ctx.dvdy = si.dvdy;
+    const TextureEvalContext ctx = texture_eval_context(si);
     return make_separable_bssrdf(get_textured_subsurface_params(*m, mt, scene.textures, ctx), b.model, b.shape);
 }
 

@@ -117,6 +117,16 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         float Ldr[W], Ldg[W], Ldb[W];
         float nwx[W], nwy[W], nwz[W];
     } a{};
+    // This vertex's point, error bound, geometric normal, wo and shading frame, into lane i.
+    auto load_vertex = [&a](int i, const SurfaceInteraction& h) {
+        a.px[i] = h.p.x, a.py[i] = h.p.y, a.pz[i] = h.p.z;
+        a.pex[i] = h.p_error.x, a.pey[i] = h.p_error.y, a.pez[i] = h.p_error.z;
+        a.ngx[i] = h.ng.x, a.ngy[i] = h.ng.y, a.ngz[i] = h.ng.z;
+        a.wox[i] = h.wo.x, a.woy[i] = h.wo.y, a.woz[i] = h.wo.z;
+        a.sx[i] = h.shading.s.x, a.sy[i] = h.shading.s.y, a.sz[i] = h.shading.s.z;
+        a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
+        a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
+    };
     auto LD = [](const float* p) { return lane::load_as<F>(p); };
     auto LM = [](const bool* p) { return lane::load_mask_as<M>(p); };
     auto ST = [](float* p, const F& v) { lane::store(p, v); };
@@ -187,13 +197,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     pending_exit[i] = false;
                     a.at_exit[i] = true;
                     const SurfaceInteraction& h = si[i];
-                    a.px[i] = h.p.x, a.py[i] = h.p.y, a.pz[i] = h.p.z;
-                    a.pex[i] = h.p_error.x, a.pey[i] = h.p_error.y, a.pez[i] = h.p_error.z;
-                    a.ngx[i] = h.ng.x, a.ngy[i] = h.ng.y, a.ngz[i] = h.ng.z;
-                    a.wox[i] = h.wo.x, a.woy[i] = h.wo.y, a.woz[i] = h.wo.z;
-                    a.sx[i] = h.shading.s.x, a.sy[i] = h.shading.s.y, a.sz[i] = h.shading.s.z;
-                    a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
-                    a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
+                    load_vertex(i, h);
                     a.goes_on[i] = true;
                     a.nee[i] = ps.use_nee;
                     const int depth = int(a.depth[i]);
@@ -220,13 +224,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                             if (depth >= ps.max_depth) continue;
                             if (a.br[i] == 0.f && a.bg[i] == 0.f && a.bb[i] == 0.f) continue;
                             const SurfaceInteraction& h = si[i];
-                            a.px[i] = h.p.x, a.py[i] = h.p.y, a.pz[i] = h.p.z;
-                            a.pex[i] = a.pey[i] = a.pez[i] = 0.f;
-                            a.ngx[i] = a.ngy[i] = a.ngz[i] = 0.f;
-                            a.wox[i] = h.wo.x, a.woy[i] = h.wo.y, a.woz[i] = h.wo.z;
-                            a.sx[i] = h.shading.s.x, a.sy[i] = h.shading.s.y, a.sz[i] = h.shading.s.z;
-                            a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
-                            a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
+                            load_vertex(i, h);  // no surface: zero normal and error bound
                             a.goes_on[i] = true;
                             a.nee[i] = ps.use_nee && ps.medium_nee;
                             VertexRandoms r;
@@ -262,13 +260,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 }
                 const int depth = int(a.depth[i]);
                 if (depth >= ps.max_depth) continue;
-                a.px[i] = h.p.x, a.py[i] = h.p.y, a.pz[i] = h.p.z;
-                a.pex[i] = h.p_error.x, a.pey[i] = h.p_error.y, a.pez[i] = h.p_error.z;
-                a.ngx[i] = h.ng.x, a.ngy[i] = h.ng.y, a.ngz[i] = h.ng.z;
-                a.wox[i] = h.wo.x, a.woy[i] = h.wo.y, a.woz[i] = h.wo.z;
-                a.sx[i] = h.shading.s.x, a.sy[i] = h.shading.s.y, a.sz[i] = h.shading.s.z;
-                a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
-                a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
+                load_vertex(i, h);
                 BxDFFlags flags;
                 if (const int32_t kind = ps.packet_kind[h.material_id]; kind != kBSDFLane) {
                     a.fast[i] = true;

@@ -36,6 +36,19 @@ float height_at(const TextureList& textures, uint32_t id, float scale, TextureEv
 }
 }  // namespace
 
+TextureEvalContext texture_eval_context(const SurfaceInteraction& si) {
+    TextureEvalContext ctx;
+    ctx.p = si.p;
+    ctx.dpdx = si.dpdx;
+    ctx.dpdy = si.dpdy;
+    ctx.uv = si.uv;
+    ctx.dudx = si.dudx;
+    ctx.dudy = si.dudy;
+    ctx.dvdx = si.dvdx;
+    ctx.dvdy = si.dvdy;
+    return ctx;
+}
+
 BxDF get_textured_bxdf(const Material& m, const MaterialTextures& mt, const TextureList& textures,
                        const TextureEvalContext& ctx, const SurfaceInteraction& si) {
     if (!mt.has_bindings()) return get_bxdf(m, si);

@@ -73,6 +73,9 @@ struct MaterialTextures {
     bool perturbs_normal() const { return bump >= 0 || normal_map >= 0; }
 };
 
+/// The texture lookup context of a hit: its position, uv and pixel footprint.
+TextureEvalContext texture_eval_context(const SurfaceInteraction& si);
+
 /// The BxDF of material `m` at a hit whose parameters come from `mt`'s textures.
 BxDF get_textured_bxdf(const Material& m, const MaterialTextures& mt, const TextureList& textures,
                        const TextureEvalContext& ctx, const SurfaceInteraction& si);

@@ -184,15 +184,7 @@ RayDifferential Scene::specular_differentials(const SurfaceInteraction& si, cons
 
 BSDF Scene::textured_bsdf(const SurfaceInteraction& si) const {
     const MaterialTextures& mt = material_textures[si.material_id];
-    TextureEvalContext ctx;
-    ctx.p = si.p;
-    ctx.dpdx = si.dpdx;
-    ctx.dpdy = si.dpdy;
-    ctx.uv = si.uv;
-    ctx.dudx = si.dudx;
-    ctx.dudy = si.dudy;
-    ctx.dvdx = si.dvdx;
-    ctx.dvdy = si.dvdy;
+    const TextureEvalContext ctx = texture_eval_context(si);
     BxDF bxdf = get_textured_bxdf(materials[si.material_id], mt, textures, ctx, si);
     if (!mt.perturbs_normal()) return BSDF(bxdf, si.shading, si.ng);
     BSDF b(bxdf, perturbed_shading_frame(mt, textures, ctx, si), si.ng);
