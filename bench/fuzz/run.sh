@@ -2,7 +2,7 @@
 # Build the libFuzzer harnesses (clang, ASan + UBSan) and run each for a bounded time.
 #   bench/fuzz/run.sh [SECONDS_PER_HARNESS] [HARNESS...]     (default: 300 s; all harnesses)
 #   FUZZ_RUNS=1000000 bench/fuzz/run.sh 0 image                (stop after 10^6 executions; 0 s: no time limit)
-#   FUZZ_CHUNK=N: at most N executions per process (default: 10000 for image, else no limit)
+#   FUZZ_CHUNK=N: at most N executions per process (default: 100000 for image, else no limit)
 # The environment passes through: PELLUCID_SIMD=scalar picks the scalar path kernel for the scene
 # harnesses' renders (see bench/fuzz/README.md, "Results").
 # Harnesses: json mitsuba_xml obj ply image, and load_dict (a Python mutation loop over
@@ -69,12 +69,11 @@ for h in "${HARNESSES[@]}"; do
   # looked for (ASAN_OPTIONS below), so libFuzzer need not run an input twice to check for them.
   maxlen=16384 timeout=20
   [ "$h" = image ] && maxlen=4096 timeout=60
-  # The image harness runs its executions in processes of at most 10,000 each (FUZZ_CHUNK):
-  # OpenImageIO keeps per-file state for every image a process opened, which over a million
-  # distinct files grows past the memory limit below though nothing leaks; a fresh process per
-  # chunk (the corpus carries over) keeps each within it.
+  # The image harness runs its executions in processes of at most 100,000 each (FUZZ_CHUNK): a
+  # process keeps the peak memory of the largest images it decoded (the allocator does not return
+  # it), so a fresh process per chunk (the corpus carries over) bounds how much of it piles up.
   chunk=${FUZZ_CHUNK:-0}
-  [ "$h" = image ] && [ -z "${FUZZ_CHUNK:-}" ] && chunk=10000
+  [ "$h" = image ] && [ -z "${FUZZ_CHUNK:-}" ] && chunk=100000
   : >"$log"
   marker=$(mktemp); start_s=$(date +%s)
   left=$RUNS execs=0

@@ -5,6 +5,7 @@
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
@@ -24,6 +25,12 @@
 namespace pellucid {
 namespace fs = std::filesystem;
 namespace {
+
+/// OpenImageIO's process-wide image cache, which ImageBuf reads go through.
+OIIO::ImageCache* shared_image_cache() {
+    static OIIO::ImageCache* ic = OIIO::ImageCache::create(/*shared=*/true);
+    return ic;
+}
 
 OIIO::TextureSystem* texture_system() {
     static OIIO::TextureSystem* ts = [] {
@@ -164,6 +171,9 @@ std::string linear_copy(const std::string& path) {
     fs::rename(tmp, out, ec);
     if (ec) throw Error(path + ": cannot write the texture cache entry " + out.string() + ": " + ec.message());
     cleanup.done = true;
+    // ImageBuf registered the source in OpenImageIO's shared image cache; the texture system reads
+    // the converted copy, so the source's record (header, tiles) is of no further use.
+    shared_image_cache()->invalidate(OIIO::ustring(path), /*force=*/true);
     return out.string();
 }
 
@@ -246,6 +256,7 @@ static ImageTextureHandle open_image_texture_unchecked(const std::string& path, 
 
 void forget_image_texture(const std::string& path) {
     texture_system()->invalidate(OIIO::ustring(path), /*force=*/true);
+    shared_image_cache()->invalidate(OIIO::ustring(path), /*force=*/true);
 }
 
 Spectrum lookup_image_texture(const ImageTextureHandle& h, TextureFilter filter, TextureWrap wrap, float s,
