@@ -1,6 +1,6 @@
 """pellucid's BxDFs against Mitsuba 3's: directional albedo vs cos θo and in-plane lobe slices.
 
-    /work/main/bench/.venv-mitsuba/bin/python bench/bxdf/compare_mitsuba.py     # or
+    bench/.venv-mitsuba/bin/python bench/bxdf/compare_mitsuba.py     # or
     .venv/bin/python bench/bxdf/compare_mitsuba.py
 
 Either interpreter works: the Mitsuba side runs in the peer venv (bench/peers/setup_mitsuba.sh;
@@ -30,7 +30,7 @@ import numpy as np
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 OUT = ROOT / "bench" / "results" / "bxdf"
-MITSUBA_PY = os.environ.get("MITSUBA_PY", "/work/main/bench/.venv-mitsuba/bin/python")
+MITSUBA_PY = os.environ.get("MITSUBA_PY", str(ROOT / "bench" / ".venv-mitsuba" / "bin" / "python"))
 PELLUCID_PY = os.environ.get("PELLUCID_PY", str(ROOT / ".venv" / "bin" / "python"))
 N_SAMPLES = 1 << 16
 COS = np.linspace(0.05, 1.0, 20)
