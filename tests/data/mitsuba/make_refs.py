@@ -2,7 +2,7 @@
 
 Run with the peer venv (bench/peers/setup_mitsuba.sh), from anywhere:
 
-    /work/main/bench/.venv-mitsuba/bin/python tests/data/mitsuba/make_refs.py [--passes 16] [--spp 256] [scene ...]
+    bench/.venv-mitsuba/bin/python tests/data/mitsuba/make_refs.py [--passes 16] [--spp 256] [scene ...]
 
 For each scene named (default: all of SCENES) it renders `passes` independent passes (seeds
 0..passes-1) of `spp` samples per pixel with Mitsuba's llvm_ad_rgb variant (scalar_rgb when LLVM is
