@@ -63,9 +63,9 @@ inline F torrance_sparrow_t(const F& D, const F& G, const F& cos_o, const F& cos
 }
 
 /// The conductor models over a lane type F (simd/lane.h), with exact Fresnel (fresnel_conductor<F>):
-/// the packet forms of the path tracer. SmoothConductor<ConductorFresnel> and RoughConductor
-/// (GGX, without Kulla–Conty compensation) call their float instantiations, so each model is one
-/// source.
+/// the packet forms of the path tracer. SmoothConductor<ConductorFresnel> and the rough conductors
+/// (GGX without Kulla–Conty compensation, and Beckmann) call their float instantiations, so each
+/// model is one source.
 template <class F>
 struct SmoothConductorT {
     RGB<F> eta, k, scale;
@@ -89,9 +89,10 @@ struct SmoothConductorT {
     }
 };
 
-template <class F>
-struct RoughConductorGGXT {
-    GGXT<F> d;
+/// Torrance–Sparrow reflection on the lane distribution DistT<F> (GGXT or BeckmannT, microfacet.h).
+template <template <class> class DistT, class F>
+struct MicrofacetConductorT {
+    DistT<F> d;
     SmoothConductorT<F> fr;  ///< η, k and specular_reflectance
 
     RGB<F> eval(const BxDFContext&, const V3<F>& wo, const V3<F>& wi) const {
@@ -133,6 +134,11 @@ struct RoughConductorGGXT {
         return s;
     }
 };
+
+template <class F>
+using RoughConductorGGXT = MicrofacetConductorT<GGXT, F>;
+template <class F>
+using RoughConductorBeckmannT = MicrofacetConductorT<BeckmannT, F>;
 
 /// Ideal mirror: weight = specular_reflectance · F(|cos θo|), discrete probability 1.
 template <class Fresnel>
@@ -187,12 +193,14 @@ public:
         }
     }
 
-    /// The packet form (RoughConductorGGXT): GGX with exact Fresnel, rough, without Kulla–Conty.
-    static constexpr bool kHasLanes = std::is_same_v<Distribution, GGX> && std::is_same_v<Fresnel, ConductorFresnel>;
-    bool lanes(RoughConductorGGXT<float>* out) const {
+    /// The packet form (RoughConductorGGXT or RoughConductorBeckmannT): exact Fresnel, rough,
+    /// without Kulla–Conty.
+    static constexpr bool kHasLanes = std::is_same_v<Fresnel, ConductorFresnel>;
+    using Lanes = std::conditional_t<std::is_same_v<Distribution, GGX>, RoughConductorGGXT<float>, RoughConductorBeckmannT<float>>;
+    bool lanes(Lanes* out) const {
         if constexpr (kHasLanes) {
             if (m_ms || m_fr.schlick || m_d.effectively_smooth()) return false;
-            *out = RoughConductorGGXT<float>{m_d.lanes(), SmoothConductorT<float>{m_fr.eta, m_fr.k, m_scale}};
+            *out = Lanes{m_d.lanes(), SmoothConductorT<float>{m_fr.eta, m_fr.k, m_scale}};
             return true;
         }
         return false;
@@ -202,7 +210,7 @@ public:
 
     Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
         if constexpr (kHasLanes) {
-            RoughConductorGGXT<float> l;
+            Lanes l;
             if (lanes(&l)) return l.eval(ctx, wo, wi);
         }
         if (m_d.effectively_smooth() || !same_hemisphere(wo, wi)) return Spectrum(0.f);
@@ -218,7 +226,7 @@ public:
     }
     float pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
         if constexpr (kHasLanes) {
-            RoughConductorGGXT<float> l;
+            Lanes l;
             if (lanes(&l)) return l.pdf(ctx, wo, wi);
         }
         if (m_d.effectively_smooth() || !has_flag(ctx.allowed, BxDFFlags::GlossyReflection) ||
@@ -239,7 +247,7 @@ public:
     std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
                                      const Vec2f& u) const {
         if constexpr (kHasLanes) {
-            RoughConductorGGXT<float> l;
+            Lanes l;
             if (lanes(&l)) return to_optional(l.sample(ctx, wo, u_lobe, u));
         }
         if (wo.z == 0.f) return std::nullopt;

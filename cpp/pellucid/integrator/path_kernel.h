@@ -387,9 +387,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const M is_dielectric = fast && kind == F(float(kPacketSmoothDielectric));
                 const M is_mirror = fast && kind == F(float(kPacketSmoothConductor));
                 const M is_rough = fast && kind == F(float(kPacketRoughConductor));
+                const M is_beckmann = fast && kind == F(float(kPacketRoughConductorBeckmann));
                 const LambertianT<F> lambert{RGB<F>(LD(a.q[0]), LD(a.q[1]), LD(a.q[2]))};
                 // The conductors' parameters (read only where such lanes exist).
-                const bool any_conductor = lane::any(is_mirror || is_rough);
+                const bool any_conductor = lane::any(is_mirror || is_rough || is_beckmann);
                 const SmoothConductorT<F> metal =
                     any_conductor ? SmoothConductorT<F>{RGB<F>(LD(a.q[0]), LD(a.q[1]), LD(a.q[2])),
                                                         RGB<F>(LD(a.q[3]), LD(a.q[4]), LD(a.q[5])),
@@ -398,6 +399,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const RoughConductorGGXT<F> rough{
                     GGXT<F>{lane::select(is_rough, LD(a.q[9]), F(1.f)), lane::select(is_rough, LD(a.q[10]), F(1.f)),
                             LD(a.q[11]) != F(0.f)},
+                    metal};
+                const RoughConductorBeckmannT<F> beckmann{
+                    BeckmannT<F>{lane::select(is_beckmann, LD(a.q[9]), F(1.f)), lane::select(is_beckmann, LD(a.q[10]), F(1.f)),
+                                 LD(a.q[11]) != F(0.f)},
                     metal};
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
@@ -409,14 +414,18 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const V3<F> wi_w(LD(a.lwx), LD(a.lwy), LD(a.lwz));
                     const V3<F> wi = frame.to_local(wi_w);
                     const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
-                    // (Of the packet forms the Lambertian and the rough conductor have lobes NEE can
+                    // (Of the packet forms the Lambertian and the rough conductors have lobes NEE can
                     // reach.)
-                    const M off = leak || !(is_lambert || is_rough);
+                    const M off = leak || !(is_lambert || is_rough || is_beckmann);
                     RGB<F> f_fast = lambert.eval(ctx, wo, wi);
                     F pdf_fast = lambert.pdf(ctx, wo, wi);
                     if (lane::any(is_rough && nee)) {
                         f_fast = lane::select(is_rough, rough.eval(ctx, wo, wi), f_fast);
                         pdf_fast = lane::select(is_rough, rough.pdf(ctx, wo, wi), pdf_fast);
+                    }
+                    if (lane::any(is_beckmann && nee)) {
+                        f_fast = lane::select(is_beckmann, beckmann.eval(ctx, wo, wi), f_fast);
+                        pdf_fast = lane::select(is_beckmann, beckmann.pdf(ctx, wo, wi), pdf_fast);
                     }
                     f_fast = lane::select(off, RGB<F>(F(0.f)), f_fast);
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
@@ -449,6 +458,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     };
                     if (lane::any(is_mirror)) merge(is_mirror, metal.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_rough)) merge(is_rough, rough.sample(ctx, wo, u_lobe, u2));
+                    if (lane::any(is_beckmann)) merge(is_beckmann, beckmann.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_dielectric)) {
                         const SmoothDielectricT<F> diel{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
                                                         RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};

@@ -13,7 +13,6 @@ namespace {
 /// A conductor's packet form and parameters (PathSetup::packet_params), if it has one.
 bool packet_conductor(const BxDF& b, int32_t* kind, float* q) {
     SmoothConductorT<float> smooth;
-    RoughConductorGGXT<float> rough;
     auto put = [&](const SmoothConductorT<float>& c) {
         for (int ch = 0; ch < 3; ++ch) q[ch] = c.eta[ch], q[3 + ch] = c.k[ch], q[6 + ch] = c.scale[ch];
     };
@@ -22,19 +21,24 @@ bool packet_conductor(const BxDF& b, int32_t* kind, float* q) {
         put(smooth);
         return true;
     }
-    if (const auto* c = std::get_if<RoughConductor>(&b)) {
-        if (c->lanes(&rough)) {
-            *kind = kPacketRoughConductor;
+    // The rough conductors, GGX or Beckmann (rough_kind), or the mirror they collapse to.
+    auto rough_or_mirror = [&](const auto& c, int32_t rough_kind) {
+        typename std::decay_t<decltype(c)>::Lanes rough;
+        if (c.lanes(&rough)) {
+            *kind = rough_kind;
             put(rough.fr);
             q[9] = rough.d.ax, q[10] = rough.d.ay, q[11] = rough.d.separable ? 1.f : 0.f;
             return true;
         }
-        if (c->distribution().effectively_smooth() && c->smooth().lanes(&smooth)) {
+        if (c.distribution().effectively_smooth() && c.smooth().lanes(&smooth)) {
             *kind = kPacketSmoothConductor;
             put(smooth);
             return true;
         }
-    }
+        return false;
+    };
+    if (const auto* c = std::get_if<RoughConductor>(&b)) return rough_or_mirror(*c, kPacketRoughConductor);
+    if (const auto* c = std::get_if<RoughConductorBeckmann>(&b)) return rough_or_mirror(*c, kPacketRoughConductorBeckmann);
     return false;
 }
 }  // namespace

@@ -29,6 +29,7 @@ enum PacketKind : int32_t {
     kPacketSmoothDielectric = 2,
     kPacketSmoothConductor = 3,
     kPacketRoughConductor = 4,
+    kPacketRoughConductorBeckmann = 5,
 };
 constexpr int kPacketParams = 12;
 
@@ -47,7 +48,7 @@ struct PathSetup {
     std::vector<int32_t> packet_kind;
     /// Per material, kPacketParams floats: the packet form's parameters (Lambertian: reflectance;
     /// smooth dielectric: η, reflectance, transmittance; conductors: η, k, specular_reflectance,
-    /// then for the rough one αx, αy and 1 for separable shadowing), and its BxDFFlags.
+    /// then for the rough ones (GGX, Beckmann) αx, αy and 1 for separable shadowing), and its BxDFFlags.
     std::vector<float> packet_params;
     std::vector<uint32_t> packet_flags;
     /// NEE's triangles when every light is an area light on a mesh (light/area.h), else empty:
