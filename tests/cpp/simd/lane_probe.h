@@ -1,6 +1,6 @@
 // What tests/cpp/simd/test_lanes_equal_scalars.cpp compares across lane types: the packet code of
-// the path tracer (Lambertian, Fresnel terms, warps, frames, ray offsets, the power heuristic,
-// emitter sampling)
+// the path tracer (Lambertian, Fresnel terms, the conductors on GGX and Beckmann, warps, frames, ray
+// offsets, the power heuristic, emitter sampling)
 // evaluated over arrays of inputs, kLaneWidth<F> lanes at a time. It is instantiated on float in
 // the test and on each SIMD target's packet in probe_<target>.cpp (built with that target's flags,
 // exporting only its entry point, as the renderer's kernels do).
@@ -29,10 +29,35 @@ struct In {
     const EmitterTable* emitters = nullptr;
 };
 /// Outputs, one array of n floats per quantity (masks as 0/1), zeroed by the caller.
-constexpr int kOutputs = 64;
+constexpr int kOutputs = 80;
 struct Out {
     float* v[kOutputs];
 };
+
+/// The Beckmann rough conductor (RoughConductorBeckmannT) and its distribution's pieces, with α from
+/// the inputs (0 included, clamped as Beckmann's constructor does; anisotropic), separable shadowing
+/// on half of the cases; and its transcendental functions over their whole ranges: e^x for
+/// x ∈ [−100, 100] (both clamps), ln on (0, 1), erfc on [0, 10], erf⁻¹ on [−1, 1).
+template <class F, class Load, class Put, class PutM>
+void beckmann(const In& in, const Load& L, const V3<F>& wo, const V3<F>& wi, const V3<F>& nrm,
+              const SmoothConductorT<F>& metal, const Put& put, const PutM& putm) {
+    using namespace microfacet_detail;
+    const BxDFContext ctx{};
+    const F ax = lane::max(F(1.5f) * L(in.albedo[0]) * L(in.albedo[0]), F(1e-4f)), ay = lane::max(L(in.albedo[2]), F(1e-4f));
+    const RoughConductorBeckmannT<F> b{BeckmannT<F>{ax, ay, L(in.u[1]) < F(0.5f)}, metal};
+    const RGB<F> f = b.eval(ctx, wo, wi);
+    put(f.r), put(f.g), put(f.b), put(b.pdf(ctx, wo, wi));
+    const BxDFSampleT<F> s = b.sample(ctx, wo, L(in.u[0]), V2<F>{L(in.u[1]), L(in.u[2])});
+    putm(s.valid), put(s.wi.x), put(s.wi.y), put(s.wi.z), put(s.weight.r), put(s.weight.b), put(s.pdf);
+    const V3<F> m = b.d.sample_visible(wo, V2<F>{L(in.u[2]), L(in.u[0])});
+    put(m.x), put(m.y), put(m.z), put(b.d.G(wo, wi)), put(b.d.lambda(wi)), put(b.d.D(normalize(nrm)));
+    put(b.d.pdf_visible(wo, normalize(nrm)));
+    const F u0 = L(in.u[0]), u1 = L(in.u[1]), u2 = L(in.u[2]);
+    put(exp_t(F(200.f) * (u0 - F(0.5f))));
+    put(log_t(lane::max(u1, F(1e-30f))));
+    put(erfc_t(F(10.f) * u2));
+    put(erfinv_t(F(2.f) * u0 - F(1.f), F(4.f) * u0 * (F(1.f) - u0)));
+}
 
 template <class F>
 void run(const In& in, Out& out) {
@@ -86,6 +111,7 @@ void run(const In& in, Out& out) {
         F cphi, sphi;
         detail::sincos_two_pi<F>(L(in.u[1]), &cphi, &sphi);
         put(cphi), put(sphi);
+        beckmann<F>(in, L, wo, wi, nrm, metal, put, putm);
         if (in.emitters) {
             const EmitterSample<F> es = sample_emitter<F>(*in.emitters, L(in.u[0]), V2<F>{L(in.u[1]), L(in.u[2])}, V(in.p));
             putm(es.valid), put(es.p.x), put(es.p.y), put(es.p.z), put(es.wi.x), put(es.pdf), put(es.L.r);

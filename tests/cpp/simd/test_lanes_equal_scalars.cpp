@@ -1,6 +1,8 @@
 // Lanes equal scalars: the packet code of the path tracer (simd/lane_probe.h: the packet Lambertian's
-// eval, pdf and sample, the concentric-disk and triangle warps, the power heuristic, ray offsets,
-// frames, the shading-leak test, emitter sampling) gives on every lane of every SIMD target exactly
+// eval, pdf and sample, the Fresnel terms, the smooth conductor and the GGX and Beckmann rough
+// conductors with their distributions' D, Λ, G, visible-normal density and sampling, the Beckmann
+// model's own exp, ln, erfc and erf⁻¹, the concentric-disk and triangle warps, the power heuristic,
+// ray offsets, frames, the shading-leak test, emitter sampling) gives on every lane of every SIMD target exactly
 // the bits the float instantiation gives for that lane's inputs: a bound of 0 ulp, since the library
 // is built without contraction and these functions use only IEEE-exact lane operations. The inputs
 // mix reflectances (materials) within a packet, include partially masked packets, and cover the
