@@ -278,12 +278,15 @@ struct BeckmannT {
     MaskT<F> separable;   ///< SmithShadowing::Separable
 
     /// D(wm) = exp(−(x²/αx² + y²/αy²)/z²) / (π αx αy z⁴) for unit wm, z > 0: Heitz 2014, eq. 82,
-    /// with tan² θm (cos² φm/αx² + sin² φm/αy²) written in wm's coordinates.
+    /// with tan² θm (cos² φm/αx² + sin² φm/αy²) written in wm's coordinates; 0 where the exponential
+    /// is (so that z⁴ underflowing to 0 at extreme grazing gives 0, not 0/0).
     F D(const V3<F>& wm) const {
         const auto up = wm.z > F(0.f);
         const F c2 = lane::select(up, wm.z * wm.z, F(1.f));
         const F e = (wm.x * wm.x / (ax * ax) + wm.y * wm.y / (ay * ay)) / c2;
-        return lane::select(up, microfacet_detail::exp_t(lane::neg(e)) / (F(kPi) * ax * ay * c2 * c2), F(0.f));
+        const F ex = microfacet_detail::exp_t(lane::neg(e));
+        const auto on = up && ex > F(0.f);
+        return lane::select(on, ex / lane::select(on, F(kPi) * ax * ay * c2 * c2, F(1.f)), F(0.f));
     }
     /// Λ(w) = (erf(a) − 1)/2 + e^{−a²}/(2a√π) with a = 1/(α tan θ) = |z|/√(αx² x² + αy² y²)
     /// (Heitz 2014, eqs. 80 and 83), evaluated as e^{−a²} (1/(a√π) − e^{a²} erfc(a))/2 so that both

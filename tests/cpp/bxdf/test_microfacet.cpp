@@ -40,6 +40,8 @@ TEST(Microfacet, CookTorranceKnownValue) {
 TEST(Microfacet, BeckmannKnownValue) {
     // D = exp(−tan²30°/0.25)/(π 0.25 cos⁴30°) = 0.5967.
     EXPECT_NEAR(Beckmann(0.5f).D(dir_theta(30.f)), 0.597f, 5e-4f);
+    // At extreme grazing cos⁴ θm underflows to 0 with the exponential: D is 0, not 0/0.
+    EXPECT_EQ(Beckmann(0.5f).D(Vec3f(1.f, 0.f, 1e-13f)), 0.f);
     // GGX at the pole: 1/(π α²).
     EXPECT_NEAR(GGX(0.5f).D(Vec3f(0, 0, 1)), 1.f / (kPi * 0.25f), 1e-6f);
 }
