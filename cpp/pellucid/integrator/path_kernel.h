@@ -55,11 +55,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     // Whole pixels of about kChunkPaths paths at a time, so the buffer of estimates stays small.
     constexpr int64_t kChunkPaths = 4096;
     const int64_t chunk_pixels = std::max<int64_t>(1, kChunkPaths / n_samples);
-    struct Estimate {
-        Spectrum L;
-        float fx, fy;
-    };
-    std::vector<Estimate> done;
+    std::vector<FilmSample> done;  // the chunk's estimates, pixel by pixel
     done.reserve(size_t(std::min<int64_t>(n_pixels, chunk_pixels) * n_samples));
 
     // Per-lane records (one lane's scalars) and the state of each lane's path as arrays, loaded
@@ -553,10 +549,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 start(i);
             }
         }
-        for (int64_t k = 0; k < n_paths; ++k) {
+        for (int64_t k = 0; k < n_paths; k += n_samples) {
             int x, y;
             pixel_xy(k, &x, &y);
-            if (!path_services::film_add(film, x, y, done[k].fx, done[k].fy, done[k].L)) ++bad;
+            bad += path_services::film_add_pixel(film, x, y, &done[size_t(k)], n_samples);
         }
     }
     return bad;

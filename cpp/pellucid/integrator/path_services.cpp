@@ -301,8 +301,12 @@ bool subsurface_exit_sample(const PathSetup& ps, int32_t ss, const SurfaceIntera
     return true;
 }
 
-bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L) {
-    return pellucid::film_add<SampleValues::NonNegative>(film, x, y, fx, fy, L);
+uint64_t film_add_pixel(Film& film, int x, int y, FilmSample* s, int n) {
+    int kept = 0;
+    for (int i = 0; i < n; ++i)
+        if (valid_sample<SampleValues::NonNegative>(s[i].L)) s[kept++] = s[i];
+    film.splat_pixel(x, y, s, kept);
+    return uint64_t(n - kept);
 }
 }  // namespace path_services
 }  // namespace pellucid

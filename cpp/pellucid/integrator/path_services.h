@@ -138,6 +138,9 @@ bool subsurface_probe(const PathSetup& ps, int32_t ss, const SurfaceInteraction&
 Spectrum subsurface_exit_eval(const PathSetup& ps, int32_t ss, const SurfaceInteraction& si, const Vec3f& wi, float* pdf);
 bool subsurface_exit_sample(const PathSetup& ps, int32_t ss, const SurfaceInteraction& si, Vec2f u, BxDFSample* out);
 
-bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L);
+/// The n estimates of pixel (x, y), in sample order, handed to the film (Film::splat_pixel); NaN,
+/// infinite or negative ones are dropped (render_loop.h film_add). Returns how many were dropped.
+/// Reorders nothing, but overwrites s with the kept estimates.
+uint64_t film_add_pixel(Film& film, int x, int y, FilmSample* s, int n);
 }  // namespace path_services
 }  // namespace pellucid
