@@ -31,6 +31,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "pellucid/bxdf/conductor.h"
@@ -55,8 +56,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     // Whole pixels of about kChunkPaths paths at a time, so the buffer of estimates stays small.
     constexpr int64_t kChunkPaths = 4096;
     const int64_t chunk_pixels = std::max<int64_t>(1, kChunkPaths / n_samples);
-    std::vector<FilmSample> done;  // the chunk's estimates, pixel by pixel
-    done.reserve(size_t(std::min<int64_t>(n_pixels, chunk_pixels) * n_samples));
+    // The chunk's estimates, pixel by pixel (an array, not a vector: its members would be emitted
+    // in this object under names other objects use).
+    const std::unique_ptr<FilmSample[]> done(new FilmSample[size_t(std::min<int64_t>(n_pixels, chunk_pixels) * n_samples)]);
 
     // Per-lane records (one lane's scalars) and the state of each lane's path as arrays, loaded
     // into packets at each vertex.
@@ -131,7 +133,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
 
     for (int64_t p0 = 0; p0 < n_pixels; p0 += chunk_pixels) {
         const int64_t n_paths = std::min(chunk_pixels, n_pixels - p0) * n_samples;
-        done.resize(size_t(n_paths));
         int64_t next = 0;
         auto pixel_xy = [&](int64_t k, int* x, int* y) {
             const int64_t px = p0 + k / n_samples;
