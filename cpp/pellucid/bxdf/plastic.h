@@ -377,28 +377,29 @@ private:
 };
 
 /// A plastic's packet parameters (PathSetup::packet_params, kPacketPlastic), kPlasticParams floats
-/// into q: η, the diffuse scale (3), Ks (3), Ks and Kd averaged, αx, αy (0 for a smooth coat: d
-/// null), 1 for separable shadowing, and PlasticBaseT::coat, where a rough coat's table is the
-/// offset of its values in *tables (appended there unless an equal table is there already).
-/// plastic_lanes reads them back; the GGX rough form covers both plastics, as a lane whose α is
-/// effectively smooth is the smooth plastic.
-constexpr int kPlasticParams = 13;
+/// into q: η, the diffuse scale (3), Ks (3), Ks and Kd averaged, αx, αy with the sign bit set for
+/// separable shadowing (0 and 0 for a smooth coat: d null), and PlasticBaseT::coat, where a rough
+/// coat's table is the offset of its values in *tables (appended there unless an equal table is
+/// there already). plastic_lanes reads them back; the GGX rough form covers both plastics, as a
+/// lane whose α is effectively smooth is the smooth plastic.
+constexpr int kPlasticParams = 12;
 void plastic_packet_params(const PlasticBase& base, const GGXT<float>* d, std::vector<float>* tables, float* q);
 /// The packet of plastics whose parameters load(k) gives (k < kPlasticParams), on the lanes of
 /// `where` (other lanes get the smooth coat and no table, so they read no table and skip the rough
 /// lobe where no lane has one).
 template <class F, class Load>
 inline RoughPlasticT<F, GGXT<F>> plastic_lanes(const MaskT<F>& where, const Load& load, const float* tables) {
-    const F ax = load(9), ay = load(10);
+    const F ax = load(9), ay_signed = load(10), ay = lane::abs(ay_signed);
     const MaskT<F> smooth = !where || lane::max(ax, ay) < F(microfacet_detail::kSmoothAlpha);
     PlasticBaseT<F> b{load(0),
                       RGB<F>(load(1), load(2), load(3)),
                       RGB<F>(load(4), load(5), load(6)),
                       load(7),
                       load(8),
-                      lane::select(where, load(12), F(PlasticBaseT<F>::kSumCoat)),
+                      lane::select(where, load(11), F(PlasticBaseT<F>::kSumCoat)),
                       tables};
-    return {b, GGXT<F>{lane::select(smooth, F(1.f), ax), lane::select(smooth, F(1.f), ay), load(11) != F(0.f)}, smooth};
+    // (A distribution's α is at least kMinAlpha, so the sign is that of a non-zero number.)
+    return {b, GGXT<F>{lane::select(smooth, F(1.f), ax), lane::select(smooth, F(1.f), ay), ay_signed < F(0.f)}, smooth};
 }
 
 /// The distribution as the packet forms' float instantiation takes it: GGX as GGXT<float>; a

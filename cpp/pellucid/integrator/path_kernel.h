@@ -402,8 +402,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     metal};
                 // The plastics (smooth, or rough over GGX; other lanes skip their lobes and tables).
                 const M is_plastic = fast && kind == F(float(kPacketPlastic));
-                const RoughPlasticT<F, GGXT<F>> plastic =
-                    plastic_lanes<F>(is_plastic, [&](int k) { return LD(a.q[k]); }, ps.coat_tables.data());
+                const bool any_plastic = lane::any(is_plastic);
+                const RoughPlasticT<F, GGXT<F>> plastic = plastic_lanes<F>(
+                    is_plastic, [&](int k) { return any_plastic ? LD(a.q[k]) : F(0.f); }, ps.coat_tables.data());
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
 

@@ -31,7 +31,7 @@ enum PacketKind : int32_t {
     kPacketRoughConductor = 4,
     kPacketPlastic = 5,  ///< smooth or GGX rough plastic (RoughPlasticT, plastic_lanes)
 };
-constexpr int kPacketParams = 13;
+constexpr int kPacketParams = 12;
 
 /// The longest path an unbounded max_depth (-1) allows, in vertices (docs/rendering.md).
 constexpr int kUnboundedDepth = 1 << 16;
@@ -48,7 +48,7 @@ struct PathSetup {
     std::vector<int32_t> packet_kind;
     /// Per material, kPacketParams floats: the packet form's parameters (Lambertian: reflectance;
     /// smooth dielectric: η, reflectance, transmittance; conductors: η, k, specular_reflectance,
-    /// then for the rough one αx, αy and 1 for separable shadowing; plastics: plastic_params),
+    /// then for the rough one αx, αy and 1 for separable shadowing; plastics: plastic_packet_params),
     /// and its BxDFFlags.
     std::vector<float> packet_params;
     std::vector<uint32_t> packet_flags;
