@@ -37,6 +37,22 @@ bool packet_conductor(const BxDF& b, int32_t* kind, float* q) {
     }
     return false;
 }
+
+static_assert(kPlasticParams <= kPacketParams, "a plastic's parameters fit a material's packet parameters");
+
+/// A plastic's packet form and parameters (plastic_packet_params): smooth, or rough over GGX.
+bool packet_plastic(const BxDF& b, int32_t* kind, float* q, std::vector<float>* tables) {
+    if (const auto* p = std::get_if<SmoothPlastic>(&b)) {
+        plastic_packet_params(p->base(), nullptr, tables, q);
+    } else if (const auto* r = std::get_if<RoughPlastic<GGX>>(&b)) {
+        const GGXT<float> d = r->distribution().lanes();
+        plastic_packet_params(r->base(), &d, tables, q);
+    } else {
+        return false;
+    }
+    *kind = kPacketPlastic;
+    return true;
+}
 }  // namespace
 
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type) {
@@ -68,7 +84,8 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
             const SmoothDielectricT<float> p = d->lanes();
             q[0] = p.eta;
             for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
-        } else if (!packet_conductor(b, &ps.packet_kind[m], q)) {
+        } else if (!packet_conductor(b, &ps.packet_kind[m], q) &&
+                   !packet_plastic(b, &ps.packet_kind[m], q, &ps.coat_tables)) {
             continue;
         }
         ps.packet_flags[m] = uint32_t(flags(b));

@@ -29,6 +29,7 @@ enum PacketKind : int32_t {
     kPacketSmoothDielectric = 2,
     kPacketSmoothConductor = 3,
     kPacketRoughConductor = 4,
+    kPacketPlastic = 5,  ///< smooth or GGX rough plastic (RoughPlasticT, plastic_lanes)
 };
 constexpr int kPacketParams = 12;
 
@@ -47,9 +48,13 @@ struct PathSetup {
     std::vector<int32_t> packet_kind;
     /// Per material, kPacketParams floats: the packet form's parameters (Lambertian: reflectance;
     /// smooth dielectric: η, reflectance, transmittance; conductors: η, k, specular_reflectance,
-    /// then for the rough one αx, αy and 1 for separable shadowing), and its BxDFFlags.
+    /// then for the rough one αx, αy and 1 for separable shadowing; plastics: plastic_packet_params),
+    /// and its BxDFFlags.
     std::vector<float> packet_params;
     std::vector<uint32_t> packet_flags;
+    /// The rough coats' transmittance tables of the packet plastics, one after another
+    /// (RoughCoatTable::values; a plastic's parameters hold its table's offset).
+    std::vector<float> coat_tables;
     /// NEE's triangles when every light is an area light on a mesh (light/area.h), else empty:
     /// then lights are sampled one lane at a time (path_services::sample_light).
     EmitterTable emitters;
