@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/bxdf/plastic.h"
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -127,12 +128,7 @@ const RoughCoatTable& RoughCoatTable::get(const D& d, float eta) {
     return *it->second;
 }
 
-float RoughCoatTable::transmittance(float mu) const {
-    float x = clamp(mu, 0.f, 1.f) * float(kSize - 1);
-    int i = std::min(int(x), kSize - 2);
-    float f = x - float(i);
-    return m_t[i] + f * (m_t[i + 1] - m_t[i]);
-}
+float RoughCoatTable::transmittance(float mu) const { return coat_table_lookup<float>(m_t, 0, mu); }
 
 template const RoughCoatTable& RoughCoatTable::get<GGX>(const GGX&, float);
 template const RoughCoatTable& RoughCoatTable::get<Beckmann>(const Beckmann&, float);
@@ -145,15 +141,22 @@ PlasticBase::PlasticBase(float eta, const Spectrum& kd, const Spectrum& ks, Plas
                          const RoughCoatTable* coat)
     : m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_kd(kd), m_ks(ks), m_variant(variant),
       m_coat(variant == PlasticVariant::Sum ? nullptr : coat) {
+    m_lanes.eta = m_eta;
+    m_lanes.ks = m_ks;
+    m_lanes.ks_avg = m_ks.average();
+    m_lanes.kd_avg = m_kd.average();
+    m_lanes.coat = m_coat ? 0.f : PlasticBaseT<float>::kSmoothCoat;
+    m_lanes.tables = m_coat ? m_coat->values() : nullptr;
     if (m_variant == PlasticVariant::Sum) {
-        m_diffuse_scale = m_kd;
+        m_lanes.scale = m_kd;
+        m_lanes.coat = PlasticBaseT<float>::kSumCoat;
         return;
     }
     m_rbar = m_coat ? m_coat->internal_reflectance()
                     : 1.f - (1.f - fresnel_dielectric_average(m_eta)) / (m_eta * m_eta);
     for (int c = 0; c < 3; ++c) {
         float bounce = m_variant == PlasticVariant::Coupled ? m_kd[c] * m_rbar : m_rbar;
-        m_diffuse_scale[c] = m_kd[c] / (m_eta * m_eta * std::max(1e-6f, 1.f - bounce));
+        m_lanes.scale[c] = m_kd[c] / (m_eta * m_eta * std::max(1e-6f, 1.f - bounce));
     }
 }
 
@@ -162,19 +165,26 @@ float PlasticBase::transmittance(float mu) const {
 }
 
 Spectrum PlasticBase::diffuse(float cos_o, float cos_i) const {
-    if (m_variant == PlasticVariant::Sum) return m_diffuse_scale * (kInvPi * cos_i);
-    float t = transmittance(cos_i) * transmittance(cos_o);
-    return m_diffuse_scale * (t * kInvPi * cos_i);
+    return m_lanes.diffuse(m_lanes.transmittance(cos_o), cos_i);
 }
 
-// Coat lobe ∝ F·Ks, base ∝ t·Kd (t = 1 for "sum"). With the rough table, F rather than 1 − t (which
-// also counts the coat's masking losses, and is > 0 even at η = 1 where the coat reflects nothing).
-float PlasticBase::coat_probability(float cos_o) const {
-    float F = fresnel_dielectric(cos_o, m_eta);
-    float T = m_variant == PlasticVariant::Sum ? 1.f : m_coat ? m_coat->transmittance(cos_o) : 1.f - F;
-    float s = F * m_ks.average();
-    float d = T * m_kd.average();
-    return s + d > 0.f ? s / (s + d) : 0.f;
+float PlasticBase::coat_probability(float cos_o) const { return m_lanes.coat_probability(cos_o); }
+
+void plastic_packet_params(const PlasticBase& base, const GGXT<float>* d, std::vector<float>* tables, float* q) {
+    const PlasticBaseT<float>& b = base.lanes();
+    float coat = b.coat;
+    if (const RoughCoatTable* t = base.coat_table()) {
+        const float* v = t->values();
+        size_t at = 0;
+        while (at < tables->size() && !std::equal(v, v + kCoatTableSize, tables->data() + at)) at += kCoatTableSize;
+        if (at == tables->size()) tables->insert(tables->end(), v, v + kCoatTableSize);
+        coat = float(at);
+    }
+    q[0] = b.eta;
+    for (int c = 0; c < 3; ++c) q[1 + c] = b.scale[c], q[4 + c] = b.ks[c];
+    q[7] = b.ks_avg, q[8] = b.kd_avg;
+    q[9] = d ? d->ax : 0.f, q[10] = d ? (d->separable ? -d->ay : d->ay) : 0.f;
+    q[11] = coat;
 }
 
 std::string PlasticBase::params() const {
@@ -184,38 +194,6 @@ std::string PlasticBase::params() const {
 }
 
 // ---------------------------------------------------------------------------------------------
-Spectrum SmoothPlastic::eval(const BxDFContext&, const Vec3f& wo, const Vec3f& wi) const {
-    if (!same_hemisphere(wo, wi)) return Spectrum(0.f);
-    return m_base.diffuse(std::fabs(wo.z), std::fabs(wi.z));
-}
-float SmoothPlastic::pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
-    if (!same_hemisphere(wo, wi) || !has_flag(ctx.allowed, BxDFFlags::DiffuseReflection)) return 0.f;
-    float p_coat = has_flag(ctx.allowed, BxDFFlags::Specular) ? m_base.coat_probability(std::fabs(wo.z)) : 0.f;
-    return (1.f - p_coat) * std::fabs(wi.z) * kInvPi;
-}
-std::optional<BxDFSample> SmoothPlastic::sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
-                                                const Vec2f& u) const {
-    if (wo.z == 0.f || !has_flag(ctx.allowed, BxDFFlags::Reflection)) return std::nullopt;
-    float co = std::fabs(wo.z);
-    bool spec_ok = has_flag(ctx.allowed, BxDFFlags::Specular), diff_ok = has_flag(ctx.allowed, BxDFFlags::Diffuse);
-    float p_coat = spec_ok ? (diff_ok ? m_base.coat_probability(co) : 1.f) : 0.f;
-    BxDFSample s;
-    if (u_lobe < p_coat) {
-        s.wi = Vec3f(-wo.x, -wo.y, wo.z);
-        s.pdf = p_coat;
-        s.weight = m_base.ks() * (fresnel_dielectric(co, m_base.eta()) / p_coat);
-        s.lobe = BxDFFlags::SpecularReflection;
-        return s;
-    }
-    if (!diff_ok) return std::nullopt;
-    s.wi = square_to_cosine_hemisphere(u);
-    if (wo.z < 0.f) s.wi.z = -s.wi.z;
-    s.pdf = pdf(ctx, wo, s.wi);
-    if (!(s.pdf > 0.f)) return std::nullopt;
-    s.weight = eval(ctx, wo, s.wi) / s.pdf;
-    s.lobe = BxDFFlags::DiffuseReflection;
-    return s;
-}
 BxDFFlags SmoothPlastic::flags() const {
     BxDFFlags f = BxDFFlags::None;
     if (!m_base.ks().is_black() && m_base.eta() != 1.f) f |= BxDFFlags::SpecularReflection;
@@ -224,46 +202,6 @@ BxDFFlags SmoothPlastic::flags() const {
 }
 
 // ---------------------------------------------------------------------------------------------
-template <class D>
-Spectrum RoughPlastic<D>::eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
-    if (smooth()) return SmoothPlastic(m_base).eval(ctx, wo, wi);
-    if (!same_hemisphere(wo, wi)) return Spectrum(0.f);
-    return m_coat.eval(ctx, wo, wi) + m_base.diffuse(std::fabs(wo.z), std::fabs(wi.z));
-}
-template <class D>
-float RoughPlastic<D>::pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
-    if (smooth()) return SmoothPlastic(m_base).pdf(ctx, wo, wi);
-    if (!same_hemisphere(wo, wi)) return 0.f;
-    bool spec_ok = has_flag(ctx.allowed, BxDFFlags::Glossy), diff_ok = has_flag(ctx.allowed, BxDFFlags::Diffuse);
-    float p_coat = spec_ok ? (diff_ok ? m_base.coat_probability(std::fabs(wo.z)) : 1.f) : 0.f;
-    float p = p_coat > 0.f ? p_coat * m_coat.pdf(ctx, wo, wi) : 0.f;
-    return p + (diff_ok ? (1.f - p_coat) * std::fabs(wi.z) * kInvPi : 0.f);
-}
-template <class D>
-std::optional<BxDFSample> RoughPlastic<D>::sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
-                                                  const Vec2f& u) const {
-    if (smooth()) return SmoothPlastic(m_base).sample(ctx, wo, u_lobe, u);
-    if (wo.z == 0.f || !has_flag(ctx.allowed, BxDFFlags::Reflection)) return std::nullopt;
-    bool spec_ok = has_flag(ctx.allowed, BxDFFlags::Glossy), diff_ok = has_flag(ctx.allowed, BxDFFlags::Diffuse);
-    float p_coat = spec_ok ? (diff_ok ? m_base.coat_probability(std::fabs(wo.z)) : 1.f) : 0.f;
-    Vec3f wi;
-    if (u_lobe < p_coat) {
-        auto s = m_coat.sample(ctx, wo, 0.5f, u);
-        if (!s) return std::nullopt;
-        wi = s->wi;
-    } else {
-        if (!diff_ok) return std::nullopt;
-        wi = square_to_cosine_hemisphere(u);
-        if (wo.z < 0.f) wi.z = -wi.z;
-    }
-    BxDFSample s;
-    s.wi = wi;
-    s.pdf = pdf(ctx, wo, wi);
-    if (!(s.pdf > 0.f)) return std::nullopt;
-    s.weight = eval(ctx, wo, wi) / s.pdf;
-    s.lobe = u_lobe < p_coat ? BxDFFlags::GlossyReflection : BxDFFlags::DiffuseReflection;
-    return s;
-}
 template <class D>
 BxDFFlags RoughPlastic<D>::flags() const {
     if (smooth()) return SmoothPlastic(m_base).flags();

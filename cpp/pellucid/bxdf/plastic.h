@@ -51,16 +51,25 @@
 // | coat_transmittance   | string   | smooth   | rough coat only: "smooth" or "rough"       |
 // JSON: {"type": "rough_plastic", "diffuse_reflectance": [0.1, 0.3, 0.6], "int_ior": "polypropylene",
 //        "distribution": "ggx", "alpha": 0.2, "variant": "linear", "coat_transmittance": "rough"}
+//
+// Packet forms: SmoothPlasticT<F> and RoughPlasticT<F, Distribution> write both plastics once over
+// a lane type F (simd/lane.h), every variant and both coat transmittances; the path tracer shades
+// untextured plastics over GGX with them (kPacketPlastic, integrator/path_services.h), and
+// SmoothPlastic and RoughPlastic call their float instantiations, so each model is one source. A
+// lane's variant and transmittance live in its parameters (PlasticBaseT::coat); the rough table is
+// read by a gather from the tables of the whole scene (PathSetup::coat_tables).
 #pragma once
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "pellucid/bxdf/bxdf_types.h"
 #include "pellucid/bxdf/conductor.h"
 #include "pellucid/bxdf/fresnel.h"
 #include "pellucid/bxdf/microfacet.h"
+#include "pellucid/sampling/warp.h"
 
 namespace pellucid {
 
@@ -68,6 +77,24 @@ enum class PlasticVariant { Coupled, Sum, Linear };
 std::string to_string(PlasticVariant v);
 enum class CoatTransmittance { Smooth, Rough };
 std::string to_string(CoatTransmittance c);
+
+/// Entries of a rough coat's transmittance table (RoughCoatTable).
+constexpr int kCoatTableSize = 64;
+
+/// t(μ) read from the kCoatTableSize values t[base + j] at μ_j = j/63 by linear interpolation
+/// (RoughCoatTable::transmittance), over a lane type F: each lane reads its own table, by a gather.
+/// μ is clamped to [0, 1]; the index is formed without a float-to-int conversion (floor, then the
+/// bits of floor + 2²³), so float and packets compute it with the same exact operations.
+template <class F>
+inline F coat_table_lookup(const float* t, const IntT<F>& base, const F& mu) {
+    using I = IntT<F>;
+    const F x = lane::min(lane::max(mu, F(0.f)), F(1.f)) * F(float(kCoatTableSize - 1));
+    const F two23(8388608.f);
+    const I i = lane::max(lane::min(lane::as_int(lane::floor(x) + two23) - lane::as_int(two23), I(kCoatTableSize - 2)), I(0));
+    const F f = x - lane::to_float(i);
+    const F t0 = lane::gather(t, base + i), t1 = lane::gather(t + 1, base + i);
+    return t0 + f * (t1 - t0);
+}
 
 /// The transmittance t(μ) and internal diffuse reflectance R̄ of a rough dielectric coat (header
 /// comment, coat_transmittance = "rough"), for one (distribution, α, shadowing, η).
@@ -96,7 +123,7 @@ std::string to_string(CoatTransmittance c);
 /// builder rejects a textured α, roughness or IOR with coat_transmittance = "rough".
 class RoughCoatTable {
 public:
-    static constexpr int kSize = 64;
+    static constexpr int kSize = kCoatTableSize;
     enum class Kind : uint8_t { GGX, Beckmann };
 
     /// The table of distribution d under a coat of relative IOR eta (cached; thread-safe).
@@ -110,6 +137,8 @@ public:
     float transmittance(float mu) const;
     /// R̄ = 2∫₀¹ R_int(μ) μ dμ.
     float internal_reflectance() const { return m_rbar; }
+    /// The kSize values t(μ_j) (coat_table_lookup reads them).
+    const float* values() const { return m_t; }
 
     struct Key {
         Kind kind;
@@ -136,6 +165,256 @@ private:
     float m_rbar = 0.f;
 };
 
+/// The plastics over a lane type F (simd/lane.h): per-lane parameters of the base and the coat.
+/// PlasticBase below fills the float instantiation once per BxDF; the path tracer loads a packet of
+/// them per vertex (plastic_lanes).
+class PlasticBase;
+
+template <class F>
+struct PlasticBaseT {
+    /// `coat` values that are not a table offset.
+    static constexpr float kSumCoat = -2.f;     ///< variant "sum": t ≡ 1 (no coupling through the coat)
+    static constexpr float kSmoothCoat = -1.f;  ///< the smooth coat's t = 1 − F
+
+    F eta;
+    RGB<F> scale;      ///< the diffuse lobe's factor: coupled Kd/(η² (1 − Kd R̄)), linear Kd/(η² (1 − R̄)), sum Kd
+    RGB<F> ks;         ///< specular_reflectance
+    F ks_avg, kd_avg;  ///< Ks and Kd averaged over the channels (the coat lobe's probability)
+    F coat;            ///< kSumCoat, kSmoothCoat, or the offset (≥ 0) of the lane's rough table in `tables`
+    const float* tables = nullptr;
+
+    /// t(μ) (header comment), given the coat's Fresnel reflectance fr = F(μ).
+    F transmittance(const F& mu, const F& fr) const {
+        F t = lane::select(coat == F(kSmoothCoat), F(1.f) - fr, F(1.f));
+        return rough_table(mu, t);
+    }
+    F transmittance(const F& mu) const {
+        const auto smooth = coat == F(kSmoothCoat);
+        F t(1.f);
+        if (lane::any(smooth)) t = lane::select(smooth, F(1.f) - fresnel_dielectric<F>(mu, eta), t);
+        return rough_table(mu, t);
+    }
+    /// f_d·|cos θi| of the header comment at cos θi = ci, given t_o = t(cos θo) (both > 0).
+    RGB<F> diffuse(const F& t_o, const F& ci) const {
+        const F t = transmittance(ci) * t_o;
+        return scale * (t * F(kInvPi) * ci);
+    }
+    /// The probability of the coat lobe, ∝ F·Ks against t·Kd (t = 1 for "sum"), from fr = F(cos θo)
+    /// and t_o = t(cos θo). With the rough table, F rather than 1 − t (which also counts the coat's
+    /// masking losses, and is > 0 even at η = 1 where the coat reflects nothing).
+    F coat_probability(const F& fr, const F& t_o) const {
+        const F s = fr * ks_avg, d = t_o * kd_avg;
+        const F sd = s + d;
+        const auto pos = sd > F(0.f);
+        return lane::select(pos, s / lane::select(pos, sd, F(1.f)), F(0.f));
+    }
+    F coat_probability(const F& co) const {
+        const F fr = fresnel_dielectric<F>(co, eta);
+        return coat_probability(fr, transmittance(co, fr));
+    }
+
+private:
+    // t where the lane has a rough table, else t_other.
+    F rough_table(const F& mu, const F& t_other) const {
+        const auto tab = coat >= F(0.f);
+        if (!lane::any(tab)) return t_other;
+        const F two23(8388608.f);  // an integral offset's bits, as in coat_table_lookup
+        const IntT<F> base = lane::as_int(lane::select(tab, coat, F(0.f)) + two23) - lane::as_int(two23);
+        return lane::select(tab, coat_table_lookup<F>(tables, base, mu), t_other);
+    }
+};
+
+/// The smooth plastic over a lane type F: a mirror coat lobe chosen with probability
+/// coat_probability, else the cosine-weighted base. SmoothPlastic is its float instantiation.
+template <class F>
+struct SmoothPlasticT {
+    PlasticBaseT<F> base;
+
+    RGB<F> eval(const BxDFContext&, const V3<F>& wo, const V3<F>& wi) const {
+        const auto same = wo.z * wi.z > F(0.f);
+        return lane::select(same, base.diffuse(base.transmittance(lane::abs(wo.z)), lane::abs(wi.z)), RGB<F>(F(0.f)));
+    }
+    F pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi) const {
+        if (!has_flag(ctx.allowed, BxDFFlags::DiffuseReflection)) return F(0.f);
+        const F p_coat = has_flag(ctx.allowed, BxDFFlags::Specular) ? base.coat_probability(lane::abs(wo.z)) : F(0.f);
+        return diffuse_pdf(p_coat, wo, wi);
+    }
+    BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& u_lobe, const V2<F>& u) const {
+        const bool spec_ok = has_flag(ctx.allowed, BxDFFlags::Specular), diff_ok = has_flag(ctx.allowed, BxDFFlags::Diffuse);
+        const F co = lane::abs(wo.z);
+        const F fr = fresnel_dielectric<F>(co, base.eta), t_o = base.transmittance(co, fr);
+        const F p_coat = spec_ok ? (diff_ok ? base.coat_probability(fr, t_o) : F(1.f)) : F(0.f);
+        const auto coat = u_lobe < p_coat;
+        // The coat's mirror: weight Ks F / p_coat.
+        const V3<F> wr(lane::neg(wo.x), lane::neg(wo.y), wo.z);
+        const RGB<F> w_r = base.ks * (fr / lane::select(coat, p_coat, F(1.f)));
+        // The base: cosine-weighted on wo's side, weight f·|cos θi| / pdf.
+        V3<F> wd = square_to_cosine_hemisphere<F>(u);
+        wd.z = lane::select(wo.z < F(0.f), lane::neg(wd.z), wd.z);
+        const F pdf_d = diffuse_pdf(p_coat, wo, wd);
+        const auto ok_d = pdf_d > F(0.f);
+        const RGB<F> f_d = lane::select(wo.z * wd.z > F(0.f), base.diffuse(t_o, lane::abs(wd.z)), RGB<F>(F(0.f)));
+        BxDFSampleT<F> s;
+        s.valid = wo.z != F(0.f) && (coat || (ok_d && MaskT<F>(diff_ok)));
+        if (!has_flag(ctx.allowed, BxDFFlags::Reflection)) s.valid = MaskT<F>(false);
+        s.wi = lane::select(coat, wr, wd);
+        s.pdf = lane::select(coat, p_coat, pdf_d);
+        s.weight = lane::select(coat, w_r, f_d / lane::select(ok_d, pdf_d, F(1.f)));
+        s.eta = F(1.f);
+        s.lobe = lane::select(lane::int_mask(coat), IntT<F>(int32_t(BxDFFlags::SpecularReflection)),
+                              IntT<F>(int32_t(BxDFFlags::DiffuseReflection)));
+        return s;
+    }
+    /// The base's share of the density, (1 − p_coat) |cos θi|/π, on wo's side.
+    static F diffuse_pdf(const F& p_coat, const V3<F>& wo, const V3<F>& wi) {
+        return lane::select(wo.z * wi.z > F(0.f), (F(1.f) - p_coat) * lane::abs(wi.z) * F(kInvPi), F(0.f));
+    }
+};
+
+/// The rough plastic over a lane type F and a distribution Dist (GGXT<F>; any type with D, G,
+/// pdf_visible and sample_visible over V3<F>): the coat's Torrance–Sparrow lobe with the dielectric
+/// Fresnel term plus the base, each sampled with its probability. Lanes whose coat is effectively
+/// smooth take SmoothPlasticT's lobes (conductor.h rule). RoughPlastic is its float instantiation.
+template <class F, class Dist>
+struct RoughPlasticT {
+    PlasticBaseT<F> base;
+    Dist d;
+    MaskT<F> smooth;  ///< the distribution is effectively smooth
+
+    RGB<F> eval(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi) const {
+        RGB<F> f(F(0.f));
+        if (lane::any(!smooth)) {
+            const F co = lane::abs(wo.z);
+            f = rough_eval(wo, wi, base.transmittance(co));
+        }
+        if (lane::any(smooth)) f = lane::select(smooth, SmoothPlasticT<F>{base}.eval(ctx, wo, wi), f);
+        return f;
+    }
+    F pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi) const {
+        F p(0.f);
+        if (lane::any(!smooth)) {
+            const bool spec_ok = has_flag(ctx.allowed, BxDFFlags::Glossy), diff_ok = has_flag(ctx.allowed, BxDFFlags::Diffuse);
+            const F p_coat = spec_ok ? (diff_ok ? base.coat_probability(lane::abs(wo.z)) : F(1.f)) : F(0.f);
+            p = mixture_pdf(p_coat, diff_ok, wo, wi, coat_pdf(ctx, wo, wi));
+        }
+        if (lane::any(smooth)) p = lane::select(smooth, SmoothPlasticT<F>{base}.pdf(ctx, wo, wi), p);
+        return p;
+    }
+    BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& u_lobe, const V2<F>& u) const {
+        BxDFSampleT<F> s;
+        if (lane::any(!smooth)) {
+            const bool spec_ok = has_flag(ctx.allowed, BxDFFlags::Glossy), diff_ok = has_flag(ctx.allowed, BxDFFlags::Diffuse);
+            const F co = lane::abs(wo.z);
+            const F fr = fresnel_dielectric<F>(co, base.eta), t_o = base.transmittance(co, fr);
+            const F p_coat = spec_ok ? (diff_ok ? base.coat_probability(fr, t_o) : F(1.f)) : F(0.f);
+            const auto coat = u_lobe < p_coat;
+            // The coat: a visible normal, reflected about (math/spherical.h reflect).
+            const auto flip = wo.z < F(0.f);
+            const V3<F> o = lane::select(flip, -wo, wo);
+            const V3<F> m = d.sample_visible(o, u);
+            const V3<F> i = -o + F(2.f) * dot(o, m) * m;
+            // The base: cosine-weighted on wo's side.
+            V3<F> wd = square_to_cosine_hemisphere<F>(u);
+            wd.z = lane::select(flip, lane::neg(wd.z), wd.z);
+            s.wi = lane::select(coat, lane::select(flip, -i, i), wd);
+            const F pc = coat_pdf(ctx, wo, s.wi);
+            s.pdf = mixture_pdf(p_coat, diff_ok, wo, s.wi, pc);
+            s.valid = wo.z != F(0.f) && lane::select(coat, i.z > F(0.f) && pc > F(0.f), MaskT<F>(diff_ok)) && s.pdf > F(0.f);
+            if (!has_flag(ctx.allowed, BxDFFlags::Reflection)) s.valid = MaskT<F>(false);
+            s.weight = rough_eval(wo, s.wi, t_o) / lane::select(s.valid, s.pdf, F(1.f));
+            s.eta = F(1.f);
+            s.lobe = lane::select(lane::int_mask(coat), IntT<F>(int32_t(BxDFFlags::GlossyReflection)),
+                                  IntT<F>(int32_t(BxDFFlags::DiffuseReflection)));
+        }
+        if (lane::any(smooth)) {
+            const BxDFSampleT<F> t = SmoothPlasticT<F>{base}.sample(ctx, wo, u_lobe, u);
+            s.valid = lane::select(smooth, t.valid, s.valid);
+            s.wi = lane::select(smooth, t.wi, s.wi);
+            s.weight = lane::select(smooth, t.weight, s.weight);
+            s.pdf = lane::select(smooth, t.pdf, s.pdf);
+            s.eta = lane::select(smooth, t.eta, s.eta);
+            s.lobe = lane::select(lane::int_mask(smooth), t.lobe, s.lobe);
+        }
+        return s;
+    }
+
+private:
+    // The coat's Torrance–Sparrow lobe (f·|cos θi|) and density (Walter et al. 2007, eqs. 20 and 14;
+    // MicrofacetReflection's), 0 off wo's hemisphere.
+    RGB<F> coat_eval(const V3<F>& wo, const V3<F>& wi) const {
+        const auto flip = wo.z < F(0.f);
+        const V3<F> o = lane::select(flip, -wo, wo), i = lane::select(flip, -wi, wi);
+        const V3<F> h = o + i;
+        const auto ok = wo.z * wi.z > F(0.f) && length2(h) != F(0.f);
+        const V3<F> wm = normalize(lane::select(ok, h, V3<F>(F(0.f), F(0.f), F(1.f))));
+        const F co = lane::max(o.z, F(kMinCos)), ci = lane::max(i.z, F(kMinCos));
+        const RGB<F> f = base.ks * fresnel_dielectric<F>(dot(o, wm), base.eta) *
+                         (torrance_sparrow_t<F>(d.D(wm), d.G(o, i), co, ci) * ci);
+        return lane::select(ok, f, RGB<F>(F(0.f)));
+    }
+    F coat_pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi) const {
+        if (!has_flag(ctx.allowed, BxDFFlags::GlossyReflection)) return F(0.f);
+        const auto flip = wo.z < F(0.f);
+        const V3<F> o = lane::select(flip, -wo, wo), i = lane::select(flip, -wi, wi);
+        const V3<F> h = o + i;
+        const auto ok = wo.z * wi.z > F(0.f) && length2(h) != F(0.f);
+        const V3<F> wm = normalize(lane::select(ok, h, V3<F>(F(0.f), F(0.f), F(1.f))));
+        const F c = dot(o, wm);
+        const auto pos = ok && c > F(0.f);
+        return lane::select(pos, d.pdf_visible(o, wm) / (F(4.f) * lane::select(pos, c, F(1.f))), F(0.f));
+    }
+    // Coat plus base (f·|cos θi|), given t_o = t(|cos θo|).
+    RGB<F> rough_eval(const V3<F>& wo, const V3<F>& wi, const F& t_o) const {
+        const auto same = wo.z * wi.z > F(0.f);
+        return lane::select(same, coat_eval(wo, wi) + base.diffuse(t_o, lane::abs(wi.z)), RGB<F>(F(0.f)));
+    }
+    // p_coat · pdf_coat + (1 − p_coat) |cos θi|/π (the latter when the base may be sampled).
+    static F mixture_pdf(const F& p_coat, bool diff_ok, const V3<F>& wo, const V3<F>& wi, const F& pdf_coat) {
+        const F p = lane::select(p_coat > F(0.f), p_coat * pdf_coat, F(0.f));
+        const F q = p + (diff_ok ? (F(1.f) - p_coat) * lane::abs(wi.z) * F(kInvPi) : F(0.f));
+        return lane::select(wo.z * wi.z > F(0.f), q, F(0.f));
+    }
+};
+
+/// A plastic's packet parameters (PathSetup::packet_params, kPacketPlastic), kPlasticParams floats
+/// into q: η, the diffuse scale (3), Ks (3), Ks and Kd averaged, αx, αy with the sign bit set for
+/// separable shadowing (0 and 0 for a smooth coat: d null), and PlasticBaseT::coat, where a rough
+/// coat's table is the offset of its values in *tables (appended there unless an equal table is
+/// there already). plastic_lanes reads them back; the GGX rough form covers both plastics, as a
+/// lane whose α is effectively smooth is the smooth plastic.
+constexpr int kPlasticParams = 12;
+void plastic_packet_params(const PlasticBase& base, const GGXT<float>* d, std::vector<float>* tables, float* q);
+/// The packet of plastics whose parameters load(k) gives (k < kPlasticParams), on the lanes of
+/// `where` (other lanes get the smooth coat and no table, so they read no table and skip the rough
+/// lobe where no lane has one).
+template <class F, class Load>
+inline RoughPlasticT<F, GGXT<F>> plastic_lanes(const MaskT<F>& where, const Load& load, const float* tables) {
+    const F ax = load(9), ay_signed = load(10), ay = lane::abs(ay_signed);
+    const MaskT<F> smooth = !where || lane::max(ax, ay) < F(microfacet_detail::kSmoothAlpha);
+    PlasticBaseT<F> b{load(0),
+                      RGB<F>(load(1), load(2), load(3)),
+                      RGB<F>(load(4), load(5), load(6)),
+                      load(7),
+                      load(8),
+                      lane::select(where, load(11), F(PlasticBaseT<F>::kSumCoat)),
+                      tables};
+    // (A distribution's α is at least kMinAlpha, so the sign is that of a non-zero number.)
+    return {b, GGXT<F>{lane::select(smooth, F(1.f), ax), lane::select(smooth, F(1.f), ay), ay_signed < F(0.f)}, smooth};
+}
+
+/// The distribution as the packet forms' float instantiation takes it: GGX as GGXT<float>; a
+/// distribution without a lane form (Beckmann, for now) as itself.
+template <class D>
+struct LaneDistribution {
+    using type = D;
+    static const D& of(const D& d) { return d; }
+};
+template <>
+struct LaneDistribution<GGX> {
+    using type = GGXT<float>;
+    static GGXT<float> of(const GGX& d) { return d.lanes(); }
+};
+
 /// The Lambertian base under the coat, shared by both plastics.
 class PlasticBase {
 public:
@@ -155,6 +434,8 @@ public:
     float eta() const { return m_eta; }
     const Spectrum& ks() const { return m_ks; }
     std::string params() const;
+    /// The packet forms' parameters (the table at offset 0 of its own values).
+    const PlasticBaseT<float>& lanes() const { return m_lanes; }
 
 private:
     float m_eta;
@@ -162,7 +443,7 @@ private:
     PlasticVariant m_variant;
     const RoughCoatTable* m_coat;  // nullptr: smooth transmittance
     float m_rbar = 0.f;
-    Spectrum m_diffuse_scale;  // coupled: Kd/(η² (1 − Kd R̄)); linear: Kd/(η² (1 − R̄)); sum: Kd
+    PlasticBaseT<float> m_lanes;   // scale: coupled Kd/(η² (1 − Kd R̄)); linear Kd/(η² (1 − R̄)); sum Kd
 };
 
 class SmoothPlastic {
@@ -172,12 +453,16 @@ public:
         : m_base(eta, kd, ks, variant) {}
     /// From an already-configured base (no Fresnel-average quadrature).
     explicit SmoothPlastic(const PlasticBase& base) : m_base(base) {}
-    Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
-    float pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
-    std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe, const Vec2f& u) const;
+    Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const { return lanes().eval(ctx, wo, wi); }
+    float pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const { return lanes().pdf(ctx, wo, wi); }
+    std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe, const Vec2f& u) const {
+        return to_optional(lanes().sample(ctx, wo, u_lobe, u));
+    }
     BxDFFlags flags() const;
     std::string to_string() const { return "SmoothPlastic[" + m_base.params() + "]"; }
     const PlasticBase& base() const { return m_base; }
+    /// The packet form's parameters (SmoothPlasticT<float>).
+    SmoothPlasticT<float> lanes() const { return {m_base.lanes()}; }
 
 private:
     PlasticBase m_base;
@@ -193,17 +478,20 @@ public:
                  const Spectrum& ks = Spectrum(1.f), PlasticVariant variant = PlasticVariant::Coupled,
                  CoatTransmittance coat_transmittance = CoatTransmittance::Smooth,
                  const RoughCoatTable* table = nullptr)
-        : m_base(eta, kd, ks, variant, coat_table(d, eta, variant, coat_transmittance, table)),
-          m_coat(d, DielectricFresnel{eta}, ks) {}
-    Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
-    float pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
-    std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe, const Vec2f& u) const;
-    BxDFFlags flags() const;
-    std::string to_string() const {
-        return "RoughPlastic[" + m_coat.distribution().to_string() + ", " + m_base.params() + "]";
+        : m_base(eta, kd, ks, variant, coat_table(d, eta, variant, coat_transmittance, table)), m_d(d) {}
+    Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const { return lanes().eval(ctx, wo, wi); }
+    float pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const { return lanes().pdf(ctx, wo, wi); }
+    std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe, const Vec2f& u) const {
+        return to_optional(lanes().sample(ctx, wo, u_lobe, u));
     }
+    BxDFFlags flags() const;
+    std::string to_string() const { return "RoughPlastic[" + m_d.to_string() + ", " + m_base.params() + "]"; }
 
     const PlasticBase& base() const { return m_base; }
+    const Distribution& distribution() const { return m_d; }
+    /// The packet form's parameters (its float instantiation).
+    using Lanes = RoughPlasticT<float, typename LaneDistribution<Distribution>::type>;
+    Lanes lanes() const { return {m_base.lanes(), LaneDistribution<Distribution>::of(m_d), smooth()}; }
 
 private:
     static const RoughCoatTable* coat_table(const Distribution& d, float eta, PlasticVariant v, CoatTransmittance c,
@@ -212,9 +500,9 @@ private:
         return table && table->matches(d, eta) ? table : &RoughCoatTable::get(d, eta);
     }
     // An effectively smooth coat evaluates as SmoothPlastic (conductor.h rule).
-    bool smooth() const { return m_coat.distribution().effectively_smooth(); }
+    bool smooth() const { return m_d.effectively_smooth(); }
     PlasticBase m_base;
-    MicrofacetReflection<Distribution, DielectricFresnel> m_coat;
+    Distribution m_d;
 };
 extern template class RoughPlastic<GGX>;
 extern template class RoughPlastic<Beckmann>;

@@ -58,60 +58,105 @@ void Film::splat(int x, int y, float fx, float fy, const Spectrum& L) {
         add_sample(x, y, L);
         return;
     }
+    const FilmSample s{L, fx, fy};
+    splat_pixel(x, y, &s, 1);
+}
+
+void Film::splat_pixel(int x, int y, const FilmSample* s, int n) {
+    if (!m_splat) {
+        for (int i = 0; i < n; ++i) add_sample(x, y, s[i].L);
+        return;
+    }
+    if (n <= 0) return;
     const int m = std::min(m_margin, 16), n_taps = 2 * m + 1;
-    // Row and column weights of this sample and, for the second sample of a pair, of the first
-    // (film.h); zero otherwise.
-    float wx[kMaxTaps], wy[kMaxTaps], px[kMaxTaps], py[kMaxTaps];
-    eval_filter_taps(*m_splat, float(x - m) + 0.5f - fx, n_taps, wx);
-    eval_filter_taps(*m_splat, float(y - m) + 0.5f - fy, n_taps, wy);
     const size_t src_index = size_t(y) * m_width + x;
     SplatSource& src = m_sources[src_index];
-    const bool second = src.n % 2 == 1;
+    // Row and column weights of the two samples of a pair (film.h): `a` the first, `b` the second.
+    float ax[kMaxTaps], ay[kMaxTaps], bx[kMaxTaps], by[kMaxTaps];
+    auto taps = [&](float sx, float sy, float* wx, float* wy) {
+        eval_filter_taps(*m_splat, float(x - m) + 0.5f - sx, n_taps, wx);
+        eval_filter_taps(*m_splat, float(y - m) + 0.5f - sy, n_taps, wy);
+    };
     TapCache& cache = t_taps;
-    if (!second) {
-        std::fill(px, px + n_taps, 0.f);
-        std::fill(py, py + n_taps, 0.f);
+    int i = 0;
+    if (src.n % 2 == 1) {
+        // The pixel's last sample waits for its partner: s[0] completes the pair. Its taps are in
+        // this thread's cache when that sample was splatted just before; else they are evaluated again.
+        if (cache.film == m_id && cache.pixel == src_index && cache.n == src.n) {
+            std::copy(cache.wx, cache.wx + n_taps, ax);
+            std::copy(cache.wy, cache.wy + n_taps, ay);
+        } else {
+            taps(src.last_fx, src.last_fy, ax, ay);
+        }
+        taps(s[0].fx, s[0].fy, bx, by);
+        accumulate(x, y, m, ax, ay, src.last_l, false, bx, by, s[0].L);
+        src.n += 1;
+        i = 1;
+    }
+    for (; i + 1 < n; i += 2) {  // whole pairs: both samples and their difference in one pass
+        taps(s[i].fx, s[i].fy, ax, ay);
+        taps(s[i + 1].fx, s[i + 1].fy, bx, by);
+        const float la[3] = {s[i].L[0], s[i].L[1], s[i].L[2]};
+        accumulate(x, y, m, ax, ay, la, true, bx, by, s[i + 1].L);
+        src.n += 2;
+    }
+    if (i < n) {  // the first sample of a pair whose partner comes later
+        taps(s[i].fx, s[i].fy, bx, by);
+        accumulate(x, y, m, nullptr, nullptr, nullptr, false, bx, by, s[i].L);
+        src.n += 1;
+        src.last_fx = s[i].fx;
+        src.last_fy = s[i].fy;
+        for (int k = 0; k < 3; ++k) src.last_l[k] = s[i].L[k];
         cache.film = m_id;
         cache.pixel = src_index;
-        cache.n = src.n + 1;
-        std::copy(wx, wx + n_taps, cache.wx);
-        std::copy(wy, wy + n_taps, cache.wy);
-    } else if (cache.film == m_id && cache.pixel == src_index && cache.n == src.n) {
-        std::copy(cache.wx, cache.wx + n_taps, px);
-        std::copy(cache.wy, cache.wy + n_taps, py);
-    } else {
-        eval_filter_taps(*m_splat, float(x - m) + 0.5f - src.last_fx, n_taps, px);
-        eval_filter_taps(*m_splat, float(y - m) + 0.5f - src.last_fy, n_taps, py);
+        cache.n = src.n;
+        std::copy(bx, bx + n_taps, cache.wx);
+        std::copy(by, by + n_taps, cache.wy);
     }
+}
+
+// Adds sample b (taps bx, by, value L) to the sums of every target pixel; with a partner a (taps ax,
+// ay, value la; ax null for none) also the pair's differences, and a itself first if add_a. The
+// sums are updated in the order a, then b, so a pair gives the bits of two single calls.
+void Film::accumulate(int x, int y, int m, const float* ax, const float* ay, const float* la, bool add_a, const float* bx,
+                      const float* by, const Spectrum& L) {
     // Targets with a nonzero weight inside the film: columns x + i0 .. x + i1, rows y + j0 .. y + j1
     // (a filter's support is an interval, so zero taps lie only at the ends of a row).
+    const bool pair = ax != nullptr;
+    auto nz = [](const float* w, int k) { return w && w[k] > 0.f; };
     int i0 = -m, i1 = m, j0 = -m, j1 = m;
-    while (i0 < i1 && !(wx[i0 + m] > 0.f) && !(px[i0 + m] > 0.f)) ++i0;
-    while (i1 > i0 && !(wx[i1 + m] > 0.f) && !(px[i1 + m] > 0.f)) --i1;
-    while (j0 < j1 && !(wy[j0 + m] > 0.f) && !(py[j0 + m] > 0.f)) ++j0;
-    while (j1 > j0 && !(wy[j1 + m] > 0.f) && !(py[j1 + m] > 0.f)) --j1;
+    while (i0 < i1 && !nz(bx, i0 + m) && !nz(ax, i0 + m)) ++i0;
+    while (i1 > i0 && !nz(bx, i1 + m) && !nz(ax, i1 + m)) --i1;
+    while (j0 < j1 && !nz(by, j0 + m) && !nz(ay, j0 + m)) ++j0;
+    while (j1 > j0 && !nz(by, j1 + m) && !nz(ay, j1 + m)) --j1;
     i0 = std::max(i0, -x), i1 = std::min(i1, m_width - 1 - x);
     j0 = std::max(j0, -y), j1 = std::min(j1, m_height - 1 - y);
-    // (1, L) and (1, L_prev): w·l4 is (w, wL), and its pair difference (Δw, Δ(wL)).
+    // (1, L) and (1, L_a): w·l4 is (w, wL), and its pair difference (Δw, Δ(wL)).
     const double l4[4] = {1.0, L[0], L[1], L[2]};
-    const double lp4[4] = {1.0, src.last_l[0], src.last_l[1], src.last_l[2]};
-    for (int j = j0; j <= j1; ++j) {
-        const double wyj = wy[j + m], pyj = py[j + m];
-        const size_t row = size_t(y + j) * m_width + x;
-        SplatSums* sums = &m_sums[row];
-        if (!second) {
+    if (!pair) {
+        for (int j = j0; j <= j1; ++j) {
+            const double wyj = by[j + m];
+            SplatSums* sums = &m_sums[size_t(y + j) * m_width + x];
             for (int i = i0; i <= i1; ++i) {
-                const double w = double(wx[i + m]) * wyj;
+                const double w = double(bx[i + m]) * wyj;
                 double* t = sums[i].v;
                 for (int k = 0; k < 4; ++k) t[k] += w * l4[k];
             }
-            continue;
         }
+        return;
+    }
+    const double lp4[4] = {1.0, la[0], la[1], la[2]};
+    for (int j = j0; j <= j1; ++j) {
+        const double wyj = by[j + m], pyj = ay[j + m];
+        const size_t row = size_t(y + j) * m_width + x;
+        SplatSums* sums = &m_sums[row];
         SplatPairSums* pairs = &m_pair_sums[row];
         for (int i = i0; i <= i1; ++i) {
-            const double w = double(wx[i + m]) * wyj, wp = double(px[i + m]) * pyj;
+            const double w = double(bx[i + m]) * wyj, wp = double(ax[i + m]) * pyj;
             double* t = sums[i].v;
             double d[4];
+            if (add_a)
+                for (int k = 0; k < 4; ++k) t[k] += wp * lp4[k];
             for (int k = 0; k < 4; ++k) {
                 t[k] += w * l4[k];
                 d[k] = w * l4[k] - wp * lp4[k];
@@ -125,11 +170,6 @@ void Film::splat(int x, int y, float fx, float fy, const Spectrum& L) {
             }
         }
     }
-    src.n += 1;
-    if (second) return;
-    src.last_fx = fx;
-    src.last_fy = fy;
-    for (int k = 0; k < 3; ++k) src.last_l[k] = L[k];
 }
 
 void Film::pixel_stats(size_t i, double mean[3], double var[3]) const {

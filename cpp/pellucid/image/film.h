@@ -43,6 +43,12 @@
 namespace pellucid {
 struct FilmState;
 
+/// One camera sample's estimate and where in the film it was taken (pixel units).
+struct FilmSample {
+    Spectrum L;
+    float fx, fy;
+};
+
 class Film {
 public:
     /// splat: the filter to splat with, or nullopt for filter sampling (add_sample). A box of radius
@@ -70,6 +76,9 @@ public:
     /// pixel whose centre lies within the filter radius. Writes pixels up to splat_margin() away.
     /// Without a splat filter (splats() false) it is add_sample(x, y, L).
     void splat(int x, int y, float fx, float fy, const Spectrum& L);
+    /// The n samples taken inside pixel (x, y), in order: the same sums, bit for bit, as n calls of
+    /// splat(), but each pair of samples is added in one pass over its target pixels.
+    void splat_pixel(int x, int y, const FilmSample* s, int n);
 
     /// Per-pixel estimate, float RGB.
     Image mean() const;
@@ -111,6 +120,8 @@ private:
         uint64_t n = 0;
         float last_fx = 0, last_fy = 0, last_l[3] = {0, 0, 0};
     };
+    void accumulate(int x, int y, int m, const float* ax, const float* ay, const float* la, bool add_a, const float* bx,
+                    const float* by, const Spectrum& L);
     // Estimate and variance of pixel i, channel k.
     void pixel_stats(size_t i, double mean[3], double var[3]) const;
 

@@ -31,11 +31,13 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "pellucid/bxdf/conductor.h"
 #include "pellucid/bxdf/dielectric.h"
 #include "pellucid/bxdf/lambertian.h"
+#include "pellucid/bxdf/plastic.h"
 #include "pellucid/integrator/path_services.h"
 #include "pellucid/math/frame.h"
 #include "pellucid/sampling/mis.h"
@@ -55,12 +57,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     // Whole pixels of about kChunkPaths paths at a time, so the buffer of estimates stays small.
     constexpr int64_t kChunkPaths = 4096;
     const int64_t chunk_pixels = std::max<int64_t>(1, kChunkPaths / n_samples);
-    struct Estimate {
-        Spectrum L;
-        float fx, fy;
-    };
-    std::vector<Estimate> done;
-    done.reserve(size_t(std::min<int64_t>(n_pixels, chunk_pixels) * n_samples));
+    // The chunk's estimates, pixel by pixel (an array, not a vector: its members would be emitted
+    // in this object under names other objects use).
+    const std::unique_ptr<FilmSample[]> done(new FilmSample[size_t(std::min<int64_t>(n_pixels, chunk_pixels) * n_samples)]);
 
     // Per-lane records (one lane's scalars) and the state of each lane's path as arrays, loaded
     // into packets at each vertex.
@@ -135,7 +134,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
 
     for (int64_t p0 = 0; p0 < n_pixels; p0 += chunk_pixels) {
         const int64_t n_paths = std::min(chunk_pixels, n_pixels - p0) * n_samples;
-        done.resize(size_t(n_paths));
         int64_t next = 0;
         auto pixel_xy = [&](int64_t k, int* x, int* y) {
             const int64_t px = p0 + k / n_samples;
@@ -404,6 +402,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     BeckmannT<F>{lane::select(is_beckmann, LD(a.q[9]), F(1.f)), lane::select(is_beckmann, LD(a.q[10]), F(1.f)),
                                  LD(a.q[11]) != F(0.f)},
                     metal};
+                // The plastics (smooth, or rough over GGX; other lanes skip their lobes and tables).
+                const M is_plastic = fast && kind == F(float(kPacketPlastic));
+                const bool any_plastic = lane::any(is_plastic);
+                const RoughPlasticT<F, GGXT<F>> plastic = plastic_lanes<F>(
+                    is_plastic, [&](int k) { return any_plastic ? LD(a.q[k]) : F(0.f); }, ps.coat_tables.data());
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
 
@@ -414,9 +417,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const V3<F> wi_w(LD(a.lwx), LD(a.lwy), LD(a.lwz));
                     const V3<F> wi = frame.to_local(wi_w);
                     const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
-                    // (Of the packet forms the Lambertian and the rough conductors have lobes NEE can
-                    // reach.)
-                    const M off = leak || !(is_lambert || is_rough || is_beckmann);
+                    // (Of the packet forms the Lambertian, the rough conductors and the plastics have
+                    // lobes NEE can reach.)
+                    const M off = leak || !(is_lambert || is_rough || is_beckmann || is_plastic);
                     RGB<F> f_fast = lambert.eval(ctx, wo, wi);
                     F pdf_fast = lambert.pdf(ctx, wo, wi);
                     if (lane::any(is_rough && nee)) {
@@ -426,6 +429,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (lane::any(is_beckmann && nee)) {
                         f_fast = lane::select(is_beckmann, beckmann.eval(ctx, wo, wi), f_fast);
                         pdf_fast = lane::select(is_beckmann, beckmann.pdf(ctx, wo, wi), pdf_fast);
+                    }
+                    if (lane::any(is_plastic && nee)) {
+                        f_fast = lane::select(is_plastic, plastic.eval(ctx, wo, wi), f_fast);
+                        pdf_fast = lane::select(is_plastic, plastic.pdf(ctx, wo, wi), pdf_fast);
                     }
                     f_fast = lane::select(off, RGB<F>(F(0.f)), f_fast);
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
@@ -459,6 +466,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (lane::any(is_mirror)) merge(is_mirror, metal.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_rough)) merge(is_rough, rough.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_beckmann)) merge(is_beckmann, beckmann.sample(ctx, wo, u_lobe, u2));
+                    if (lane::any(is_plastic)) merge(is_plastic, plastic.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_dielectric)) {
                         const SmoothDielectricT<F> diel{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
                                                         RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};
@@ -563,10 +571,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 start(i);
             }
         }
-        for (int64_t k = 0; k < n_paths; ++k) {
+        for (int64_t k = 0; k < n_paths; k += n_samples) {
             int x, y;
             pixel_xy(k, &x, &y);
-            if (!path_services::film_add(film, x, y, done[k].fx, done[k].fy, done[k].L)) ++bad;
+            bad += path_services::film_add_pixel(film, x, y, &done[size_t(k)], n_samples);
         }
     }
     return bad;

@@ -41,6 +41,22 @@ bool packet_conductor(const BxDF& b, int32_t* kind, float* q) {
     if (const auto* c = std::get_if<RoughConductorBeckmann>(&b)) return rough_or_mirror(*c, kPacketRoughConductorBeckmann);
     return false;
 }
+
+static_assert(kPlasticParams <= kPacketParams, "a plastic's parameters fit a material's packet parameters");
+
+/// A plastic's packet form and parameters (plastic_packet_params): smooth, or rough over GGX.
+bool packet_plastic(const BxDF& b, int32_t* kind, float* q, std::vector<float>* tables) {
+    if (const auto* p = std::get_if<SmoothPlastic>(&b)) {
+        plastic_packet_params(p->base(), nullptr, tables, q);
+    } else if (const auto* r = std::get_if<RoughPlastic<GGX>>(&b)) {
+        const GGXT<float> d = r->distribution().lanes();
+        plastic_packet_params(r->base(), &d, tables, q);
+    } else {
+        return false;
+    }
+    *kind = kPacketPlastic;
+    return true;
+}
 }  // namespace
 
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type) {
@@ -72,7 +88,8 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
             const SmoothDielectricT<float> p = d->lanes();
             q[0] = p.eta;
             for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
-        } else if (!packet_conductor(b, &ps.packet_kind[m], q)) {
+        } else if (!packet_conductor(b, &ps.packet_kind[m], q) &&
+                   !packet_plastic(b, &ps.packet_kind[m], q, &ps.coat_tables)) {
             continue;
         }
         ps.packet_flags[m] = uint32_t(flags(b));
@@ -305,8 +322,12 @@ bool subsurface_exit_sample(const PathSetup& ps, int32_t ss, const SurfaceIntera
     return true;
 }
 
-bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L) {
-    return pellucid::film_add<SampleValues::NonNegative>(film, x, y, fx, fy, L);
+uint64_t film_add_pixel(Film& film, int x, int y, FilmSample* s, int n) {
+    int kept = 0;
+    for (int i = 0; i < n; ++i)
+        if (valid_sample<SampleValues::NonNegative>(s[i].L)) s[kept++] = s[i];
+    film.splat_pixel(x, y, s, kept);
+    return uint64_t(n - kept);
 }
 }  // namespace path_services
 }  // namespace pellucid

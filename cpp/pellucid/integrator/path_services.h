@@ -29,7 +29,8 @@ enum PacketKind : int32_t {
     kPacketSmoothDielectric = 2,
     kPacketSmoothConductor = 3,
     kPacketRoughConductor = 4,
-    kPacketRoughConductorBeckmann = 5,
+    kPacketPlastic = 5,  ///< smooth or GGX rough plastic (RoughPlasticT, plastic_lanes)
+    kPacketRoughConductorBeckmann = 6,
 };
 constexpr int kPacketParams = 12;
 
@@ -48,9 +49,13 @@ struct PathSetup {
     std::vector<int32_t> packet_kind;
     /// Per material, kPacketParams floats: the packet form's parameters (Lambertian: reflectance;
     /// smooth dielectric: η, reflectance, transmittance; conductors: η, k, specular_reflectance,
-    /// then for the rough ones (GGX, Beckmann) αx, αy and 1 for separable shadowing), and its BxDFFlags.
+    /// then for the rough ones (GGX, Beckmann) αx, αy and 1 for separable shadowing; plastics:
+    /// plastic_packet_params), and its BxDFFlags.
     std::vector<float> packet_params;
     std::vector<uint32_t> packet_flags;
+    /// The rough coats' transmittance tables of the packet plastics, one after another
+    /// (RoughCoatTable::values; a plastic's parameters hold its table's offset).
+    std::vector<float> coat_tables;
     /// NEE's triangles when every light is an area light on a mesh (light/area.h), else empty:
     /// then lights are sampled one lane at a time (path_services::sample_light).
     EmitterTable emitters;
@@ -139,6 +144,9 @@ bool subsurface_probe(const PathSetup& ps, int32_t ss, const SurfaceInteraction&
 Spectrum subsurface_exit_eval(const PathSetup& ps, int32_t ss, const SurfaceInteraction& si, const Vec3f& wi, float* pdf);
 bool subsurface_exit_sample(const PathSetup& ps, int32_t ss, const SurfaceInteraction& si, Vec2f u, BxDFSample* out);
 
-bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L);
+/// The n estimates of pixel (x, y), in sample order, handed to the film (Film::splat_pixel); NaN,
+/// infinite or negative ones are dropped (render_loop.h film_add). Returns how many were dropped.
+/// Reorders nothing, but overwrites s with the kept estimates.
+uint64_t film_add_pixel(Film& film, int x, int y, FilmSample* s, int n);
 }  // namespace path_services
 }  // namespace pellucid

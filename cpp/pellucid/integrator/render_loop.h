@@ -116,11 +116,17 @@ inline RayDifferential camera_sample(const Scene& scene, bool splat, int x, int 
                               : RayDifferential(scene.camera.generate_ray(*fx, *fy));
 }
 
+/// Whether an estimate may enter the film: finite, and not negative under SampleValues::NonNegative.
+template <SampleValues kValues>
+bool valid_sample(const Spectrum& L) {
+    return L.is_finite() && !(kValues == SampleValues::NonNegative && L.has_negative());
+}
+
 /// Hand one estimate to the film, or reject it (NaN, infinite, or negative under
 /// SampleValues::NonNegative); returns false if rejected.
 template <SampleValues kValues>
 bool film_add(Film& film, int x, int y, float fx, float fy, const Spectrum& L) {
-    if (!L.is_finite() || (kValues == SampleValues::NonNegative && L.has_negative())) return false;
+    if (!valid_sample<kValues>(L)) return false;
     if (film.splats()) film.splat(x, y, fx, fy, L);
     else film.add_sample(x, y, L);
     return true;

@@ -17,6 +17,7 @@
 
 #include "pellucid/api.h"
 #include "pellucid/image/film.h"
+#include "pellucid/sampling/rng.h"
 #include "support/chi2.h"
 #include "support/scene_util.h"
 
@@ -109,6 +110,39 @@ TEST(FilmSplat, VarianceIsThePairFormula) {
         EXPECT_NEAR(v.data[3 * t + 2], 0.0, 1e-12) << t;  // a constant channel has no variance
         EXPECT_GT(var, 0.0);
     }
+}
+
+TEST(FilmSplat, PixelRunsEqualSingleSplats) {
+    // Film::splat_pixel (the renderer's path) adds a pixel's samples pair by pair in one pass; it
+    // must give the sums of one splat() per sample bit for bit: runs of 1 to 5 samples, so pairs
+    // start inside a run, span two runs of one pixel, and span runs of different pixels (the second
+    // sample then re-evaluates its partner's taps), with a Gaussian reaching 2 pixels.
+    const Filter filter(GaussianFilter(0.5f, true));
+    Film a(5, 4, filter), b(5, 4, filter);
+    ASSERT_EQ(a.splat_margin(), 2);
+    PCG32 rng(7, 3);
+    const int runs[] = {1, 2, 3, 5, 4, 1, 1, 2};
+    for (int pass = 0; pass < 3; ++pass)
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 5; ++x) {
+                const int n = runs[(x + 3 * y + pass) % 8];
+                std::vector<FilmSample> s(static_cast<size_t>(n));
+                for (FilmSample& e : s) {
+                    e.fx = float(x) + rng.next_float();
+                    e.fy = float(y) + rng.next_float();
+                    e.L = Spectrum(rng.next_float(), 3.f * rng.next_float(), 0.25f);
+                    a.splat(x, y, e.fx, e.fy, e.L);
+                }
+                b.splat_pixel(x, y, s.data(), n);
+            }
+    Image ma = a.mean(), mb = b.mean(), va = a.variance(), vb = b.variance();
+    size_t differ = 0;
+    for (size_t i = 0; i < ma.data.size(); ++i)
+        differ += std::memcmp(&ma.data[i], &mb.data[i], 4) != 0 || std::memcmp(&va.data[i], &vb.data[i], 4) != 0;
+    EXPECT_EQ(differ, 0u);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 5; ++x) EXPECT_EQ(a.samples(x, y), b.samples(x, y));
+    EXPECT_GT(va.data[0], 0.f);
 }
 
 TEST(FilmSplat, SplatsReachTheFilterRadiusOnly) {

@@ -19,8 +19,10 @@
 using namespace pellucid;
 
 namespace {
+// A file of scenes/, or a path relative to the repository (one with a '/').
 std::shared_ptr<const Scene> load_scene(const std::string& file, int width = 0, int height = 0) {
-    SceneDesc desc = read_json_file(std::string(PELLUCID_SOURCE_DIR) + "/scenes/" + file);
+    const std::string dir = file.find('/') == std::string::npos ? "/scenes/" : "/";
+    SceneDesc desc = read_json_file(std::string(PELLUCID_SOURCE_DIR) + dir + file);
     if (width > 0) {
         Node film = *desc.root.find("film");
         film.set("width", Node::number(width, true));
@@ -82,7 +84,9 @@ class SimdTargetRender : public ::testing::TestWithParam<std::string> {};
 TEST_P(SimdTargetRender, EveryTargetGivesTheScalarImage) {
     // Splatting (cornell_box) and filter-sampling films, area/environment/point lights, spheres,
     // glass, metals, textures with ray differentials and bump maps (BSDF lanes beside packet
-    // Lambertian lanes).
+    // Lambertian lanes), plastics (smooth, and GGX rough with the smooth coat in material_balls;
+    // with two rough coat tables, linear and coupled, beside a Beckmann one on the BSDF lanes in
+    // the suite's plastics).
     auto scene = load_scene(GetParam(), 64, 48);
     expect_every_target_gives_the_scalar_image(*scene, GetParam());
 }
@@ -122,8 +126,11 @@ TEST(SimdTargetRender, BeckmannRoughConductors) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SimdTargetRender,
                          ::testing::Values("cornell_box.json", "veach_mis.json", "env_spheres.json",
-                                           "material_balls.json", "textured_bump.json"),
-                         [](const auto& info) { return info.param.substr(0, info.param.find('.')); });
+                                           "material_balls.json", "textured_bump.json", "bench/suite/plastics.json"),
+                         [](const auto& info) {
+                             const std::string name = info.param.substr(info.param.rfind('/') + 1);
+                             return name.substr(0, name.find('.'));
+                         });
 
 TEST(SimdTargetRender, ChunksOfWholePixels) {
     // 200 spp run in passes of 25 samples, so a 16×16 tile goes through in chunks of 4096 / 25 = 163
