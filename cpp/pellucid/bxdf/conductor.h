@@ -62,6 +62,36 @@ inline F torrance_sparrow_t(const F& D, const F& G, const F& cos_o, const F& cos
     return D * G * F(1.f) / (F(4.f) * cos_o * cos_i);
 }
 
+/// A reflection pair (wo, wi) seen from the upper hemisphere (both flipped when wo.z < 0): o, i, their
+/// half vector wm (+z where there is none), and ok, whether the pair reflects (same side, o + i ≠ 0).
+/// The microfacet reflection lobes (the rough conductors, the plastics' coat) share it.
+template <class F>
+struct ReflectionPairT {
+    V3<F> o, i, wm;
+    MaskT<F> ok;
+    ReflectionPairT(const V3<F>& wo, const V3<F>& wi) {
+        const auto flip = wo.z < F(0.f);
+        o = lane::select(flip, -wo, wo), i = lane::select(flip, -wi, wi);
+        const V3<F> h = o + i;
+        ok = wo.z * wi.z > F(0.f) && length2(h) != F(0.f);
+        wm = normalize(lane::select(ok, h, V3<F>(F(0.f), F(0.f), F(1.f))));
+    }
+    /// Torrance–Sparrow D G / (4 cos θo cos θi) times cos θi, without its Fresnel factor.
+    template <class Dist>
+    F torrance_sparrow_cos(const Dist& d) const {
+        const F co = lane::max(o.z, F(kMinCos)), ci = lane::max(i.z, F(kMinCos));
+        return torrance_sparrow_t<F>(d.D(wm), d.G(o, i), co, ci) * ci;
+    }
+    /// The density of wi when wm is sampled from the visible normals of o: D_o(wm) / (4 o·wm)
+    /// (Walter et al. 2007, eq. 14); 0 where the pair does not reflect or wm faces away.
+    template <class Dist>
+    F pdf(const Dist& d) const {
+        const F c = dot(o, wm);
+        const auto pos = ok && c > F(0.f);
+        return lane::select(pos, d.pdf_visible(o, wm) / (F(4.f) * lane::select(pos, c, F(1.f))), F(0.f));
+    }
+};
+
 /// The conductor models over a lane type F (simd/lane.h), with exact Fresnel (fresnel_conductor<F>):
 /// the packet forms of the path tracer. SmoothConductor<ConductorFresnel> and the rough conductors
 /// (GGX without Kulla–Conty compensation, and Beckmann) call their float instantiations, so each
@@ -96,27 +126,13 @@ struct MicrofacetConductorT {
     SmoothConductorT<F> fr;  ///< η, k and specular_reflectance
 
     RGB<F> eval(const BxDFContext&, const V3<F>& wo, const V3<F>& wi) const {
-        const auto flip = wo.z < F(0.f);
-        const V3<F> o = lane::select(flip, -wo, wo), i = lane::select(flip, -wi, wi);
-        const V3<F> h = o + i;
-        const F l2 = length2(h);
-        const auto ok = wo.z * wi.z > F(0.f) && l2 != F(0.f);
-        const V3<F> wm = normalize(lane::select(ok, h, V3<F>(F(0.f), F(0.f), F(1.f))));
-        const F co = lane::max(o.z, F(kMinCos)), ci = lane::max(i.z, F(kMinCos));
-        const RGB<F> f = fr.scale * fr.fresnel(dot(o, wm)) * (torrance_sparrow_t<F>(d.D(wm), d.G(o, i), co, ci) * ci);
-        return lane::select(ok, f, RGB<F>(F(0.f)));
+        const ReflectionPairT<F> r(wo, wi);
+        const RGB<F> f = fr.scale * fr.fresnel(dot(r.o, r.wm)) * r.torrance_sparrow_cos(d);
+        return lane::select(r.ok, f, RGB<F>(F(0.f)));
     }
     F pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi) const {
         if (!has_flag(ctx.allowed, BxDFFlags::GlossyReflection)) return F(0.f);
-        const auto flip = wo.z < F(0.f);
-        const V3<F> o = lane::select(flip, -wo, wo), i = lane::select(flip, -wi, wi);
-        const V3<F> h = o + i;
-        const auto ok = wo.z * wi.z > F(0.f) && length2(h) != F(0.f);
-        const V3<F> wm = normalize(lane::select(ok, h, V3<F>(F(0.f), F(0.f), F(1.f))));
-        const F c = dot(o, wm);
-        const auto pos = ok && c > F(0.f);
-        // Walter et al. 2007, eq. 14: the visible-normal density over 4 (wo·wm).
-        return lane::select(pos, d.pdf_visible(o, wm) / (F(4.f) * lane::select(pos, c, F(1.f))), F(0.f));
+        return ReflectionPairT<F>(wo, wi).pdf(d);
     }
     BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& /*u_lobe*/, const V2<F>& u) const {
         BxDFSampleT<F> s;

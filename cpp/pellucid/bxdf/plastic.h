@@ -342,26 +342,13 @@ private:
     // The coat's Torrance–Sparrow lobe (f·|cos θi|) and density (Walter et al. 2007, eqs. 20 and 14;
     // MicrofacetReflection's), 0 off wo's hemisphere.
     RGB<F> coat_eval(const V3<F>& wo, const V3<F>& wi) const {
-        const auto flip = wo.z < F(0.f);
-        const V3<F> o = lane::select(flip, -wo, wo), i = lane::select(flip, -wi, wi);
-        const V3<F> h = o + i;
-        const auto ok = wo.z * wi.z > F(0.f) && length2(h) != F(0.f);
-        const V3<F> wm = normalize(lane::select(ok, h, V3<F>(F(0.f), F(0.f), F(1.f))));
-        const F co = lane::max(o.z, F(kMinCos)), ci = lane::max(i.z, F(kMinCos));
-        const RGB<F> f = base.ks * fresnel_dielectric<F>(dot(o, wm), base.eta) *
-                         (torrance_sparrow_t<F>(d.D(wm), d.G(o, i), co, ci) * ci);
-        return lane::select(ok, f, RGB<F>(F(0.f)));
+        const ReflectionPairT<F> r(wo, wi);
+        const RGB<F> f = base.ks * fresnel_dielectric<F>(dot(r.o, r.wm), base.eta) * r.torrance_sparrow_cos(d);
+        return lane::select(r.ok, f, RGB<F>(F(0.f)));
     }
     F coat_pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi) const {
         if (!has_flag(ctx.allowed, BxDFFlags::GlossyReflection)) return F(0.f);
-        const auto flip = wo.z < F(0.f);
-        const V3<F> o = lane::select(flip, -wo, wo), i = lane::select(flip, -wi, wi);
-        const V3<F> h = o + i;
-        const auto ok = wo.z * wi.z > F(0.f) && length2(h) != F(0.f);
-        const V3<F> wm = normalize(lane::select(ok, h, V3<F>(F(0.f), F(0.f), F(1.f))));
-        const F c = dot(o, wm);
-        const auto pos = ok && c > F(0.f);
-        return lane::select(pos, d.pdf_visible(o, wm) / (F(4.f) * lane::select(pos, c, F(1.f))), F(0.f));
+        return ReflectionPairT<F>(wo, wi).pdf(d);
     }
     // Coat plus base (f·|cos θi|), given t_o = t(|cos θo|).
     RGB<F> rough_eval(const V3<F>& wo, const V3<F>& wi, const F& t_o) const {
