@@ -183,7 +183,10 @@ public:
     Sampler(SamplerType type, uint64_t pixel, uint64_t sample_index, uint64_t seed)
         : m_rng(PCG32::for_sample(pixel, sample_index, seed)), m_type(type),
           m_index_rev(sobol::reverse_bits(uint32_t(sample_index))),
-          m_pixel_hash(mix_bits(pixel * 0xBF58476D1CE4E5B9ULL ^ mix_bits(seed ^ 0x94D049BB133111EBULL))) {}
+          // (Only the sobol sampler's scrambles read the pixel hash.)
+          m_pixel_hash(type == SamplerType::Sobol
+                           ? mix_bits(pixel * 0xBF58476D1CE4E5B9ULL ^ mix_bits(seed ^ 0x94D049BB133111EBULL))
+                           : 0) {}
 
     SamplerType type() const { return m_type; }
     /// Next dimension to be handed out.
