@@ -370,12 +370,14 @@ private:
 /// there already). plastic_lanes reads them back; the GGX rough form covers both plastics, as a
 /// lane whose α is effectively smooth is the smooth plastic.
 constexpr int kPlasticParams = 12;
+/// d: the rough coat's αx, αy and shadowing (GGXT or BeckmannT alike), or null for the smooth coat.
 void plastic_packet_params(const PlasticBase& base, const GGXT<float>* d, std::vector<float>* tables, float* q);
 /// The packet of plastics whose parameters load(k) gives (k < kPlasticParams), on the lanes of
 /// `where` (other lanes get the smooth coat and no table, so they read no table and skip the rough
 /// lobe where no lane has one).
-template <class F, class Load>
-inline RoughPlasticT<F, GGXT<F>> plastic_lanes(const MaskT<F>& where, const Load& load, const float* tables) {
+/// DistT: the rough coat's lane distribution (GGXT, or BeckmannT for kPacketPlasticBeckmann).
+template <class F, template <class> class DistT = GGXT, class Load>
+inline RoughPlasticT<F, DistT<F>> plastic_lanes(const MaskT<F>& where, const Load& load, const float* tables) {
     const F ax = load(9), ay_signed = load(10), ay = lane::abs(ay_signed);
     const MaskT<F> smooth = !where || lane::max(ax, ay) < F(microfacet_detail::kSmoothAlpha);
     PlasticBaseT<F> b{load(0),
@@ -386,11 +388,11 @@ inline RoughPlasticT<F, GGXT<F>> plastic_lanes(const MaskT<F>& where, const Load
                       lane::select(where, load(11), F(PlasticBaseT<F>::kSumCoat)),
                       tables};
     // (A distribution's α is at least kMinAlpha, so the sign is that of a non-zero number.)
-    return {b, GGXT<F>{lane::select(smooth, F(1.f), ax), lane::select(smooth, F(1.f), ay), ay_signed < F(0.f)}, smooth};
+    return {b, DistT<F>{lane::select(smooth, F(1.f), ax), lane::select(smooth, F(1.f), ay), ay_signed < F(0.f)}, smooth};
 }
 
-/// The distribution as the packet forms' float instantiation takes it: GGX as GGXT<float>; a
-/// distribution without a lane form (Beckmann, for now) as itself.
+/// The distribution as the packet forms' float instantiation takes it: GGX as GGXT<float>, Beckmann
+/// as BeckmannT<float>.
 template <class D>
 struct LaneDistribution {
     using type = D;
@@ -400,6 +402,11 @@ template <>
 struct LaneDistribution<GGX> {
     using type = GGXT<float>;
     static GGXT<float> of(const GGX& d) { return d.lanes(); }
+};
+template <>
+struct LaneDistribution<Beckmann> {
+    using type = BeckmannT<float>;
+    static BeckmannT<float> of(const Beckmann& d) { return d.lanes(); }
 };
 
 /// The Lambertian base under the coat, shared by both plastics.

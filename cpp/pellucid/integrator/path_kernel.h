@@ -402,11 +402,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     BeckmannT<F>{lane::select(is_beckmann, LD(a.q[9]), F(1.f)), lane::select(is_beckmann, LD(a.q[10]), F(1.f)),
                                  LD(a.q[11]) != F(0.f)},
                     metal};
-                // The plastics (smooth, or rough over GGX; other lanes skip their lobes and tables).
+                // The plastics (smooth, or rough over GGX or Beckmann; other lanes skip their lobes and tables).
                 const M is_plastic = fast && kind == F(float(kPacketPlastic));
                 const bool any_plastic = lane::any(is_plastic);
                 const RoughPlasticT<F, GGXT<F>> plastic = plastic_lanes<F>(
                     is_plastic, [&](int k) { return any_plastic ? LD(a.q[k]) : F(0.f); }, ps.coat_tables.data());
+                const M is_plastic_b = fast && kind == F(float(kPacketPlasticBeckmann));
+                const bool any_plastic_b = lane::any(is_plastic_b);
+                const RoughPlasticT<F, BeckmannT<F>> plastic_b = plastic_lanes<F, BeckmannT>(
+                    is_plastic_b, [&](int k) { return any_plastic_b ? LD(a.q[k]) : F(0.f); }, ps.coat_tables.data());
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
 
@@ -419,7 +423,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
                     // (Of the packet forms the Lambertian, the rough conductors and the plastics have
                     // lobes NEE can reach.)
-                    const M off = leak || !(is_lambert || is_rough || is_beckmann || is_plastic);
+                    const M off = leak || !(is_lambert || is_rough || is_beckmann || is_plastic || is_plastic_b);
                     RGB<F> f_fast = lambert.eval(ctx, wo, wi);
                     F pdf_fast = lambert.pdf(ctx, wo, wi);
                     if (lane::any(is_rough && nee)) {
@@ -433,6 +437,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (lane::any(is_plastic && nee)) {
                         f_fast = lane::select(is_plastic, plastic.eval(ctx, wo, wi), f_fast);
                         pdf_fast = lane::select(is_plastic, plastic.pdf(ctx, wo, wi), pdf_fast);
+                    }
+                    if (lane::any(is_plastic_b && nee)) {
+                        f_fast = lane::select(is_plastic_b, plastic_b.eval(ctx, wo, wi), f_fast);
+                        pdf_fast = lane::select(is_plastic_b, plastic_b.pdf(ctx, wo, wi), pdf_fast);
                     }
                     f_fast = lane::select(off, RGB<F>(F(0.f)), f_fast);
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
@@ -467,6 +475,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (lane::any(is_rough)) merge(is_rough, rough.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_beckmann)) merge(is_beckmann, beckmann.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_plastic)) merge(is_plastic, plastic.sample(ctx, wo, u_lobe, u2));
+                    if (lane::any(is_plastic_b)) merge(is_plastic_b, plastic_b.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_dielectric)) {
                         const SmoothDielectricT<F> diel{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
                                                         RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};

@@ -44,17 +44,23 @@ bool packet_conductor(const BxDF& b, int32_t* kind, float* q) {
 
 static_assert(kPlasticParams <= kPacketParams, "a plastic's parameters fit a material's packet parameters");
 
-/// A plastic's packet form and parameters (plastic_packet_params): smooth, or rough over GGX.
+/// A plastic's packet form and parameters (plastic_packet_params): smooth, or rough over GGX or
+/// Beckmann.
 bool packet_plastic(const BxDF& b, int32_t* kind, float* q, std::vector<float>* tables) {
+    *kind = kPacketPlastic;
     if (const auto* p = std::get_if<SmoothPlastic>(&b)) {
         plastic_packet_params(p->base(), nullptr, tables, q);
     } else if (const auto* r = std::get_if<RoughPlastic<GGX>>(&b)) {
         const GGXT<float> d = r->distribution().lanes();
         plastic_packet_params(r->base(), &d, tables, q);
+    } else if (const auto* rb = std::get_if<RoughPlastic<Beckmann>>(&b)) {
+        const BeckmannT<float> d = rb->distribution().lanes();
+        const GGXT<float> alphas{d.ax, d.ay, d.separable};  // (only α and the shadowing are stored)
+        plastic_packet_params(rb->base(), &alphas, tables, q);
+        *kind = kPacketPlasticBeckmann;
     } else {
         return false;
     }
-    *kind = kPacketPlastic;
     return true;
 }
 }  // namespace

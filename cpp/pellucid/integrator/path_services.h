@@ -31,6 +31,7 @@ enum PacketKind : int32_t {
     kPacketRoughConductor = 4,
     kPacketPlastic = 5,  ///< smooth or GGX rough plastic (RoughPlasticT, plastic_lanes)
     kPacketRoughConductorBeckmann = 6,
+    kPacketPlasticBeckmann = 7,  ///< rough plastic over Beckmann (RoughPlasticT<F, BeckmannT<F>>)
 };
 constexpr int kPacketParams = 12;
 

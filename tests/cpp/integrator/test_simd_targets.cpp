@@ -124,6 +124,27 @@ TEST(SimdTargetRender, BeckmannRoughConductors) {
     expect_every_target_gives_the_scalar_image(*scene, "env_spheres with Beckmann conductors");
 }
 
+TEST(SimdTargetRender, SuitePlasticsAreAllPacketForms) {
+    // bench/suite/plastics.json (rendered by every target in Scenes/SimdTargetRender): its smooth,
+    // GGX and Beckmann plastics all run as packet forms, the Beckmann one as kPacketPlasticBeckmann.
+    auto scene = load_desc(read_json_file(std::string(PELLUCID_SOURCE_DIR) + "/bench/suite/plastics.json"));
+    const PathSetup ps = make_path_setup(*scene, 8, 5, true, true, SamplerType::Independent);
+    int plastics = 0, beckmann = 0;
+    for (size_t m = 0; m < scene->material_bxdfs.size(); ++m) {
+        const BxDF& b = scene->material_bxdfs[m];
+        const bool is_plastic = std::holds_alternative<SmoothPlastic>(b) || std::holds_alternative<RoughPlastic<GGX>>(b) ||
+                                std::holds_alternative<RoughPlastic<Beckmann>>(b);
+        plastics += is_plastic;
+        beckmann += std::holds_alternative<RoughPlastic<Beckmann>>(b);
+        if (is_plastic)
+            EXPECT_EQ(ps.packet_kind[m], std::holds_alternative<RoughPlastic<Beckmann>>(b) ? int32_t(kPacketPlasticBeckmann)
+                                                                                          : int32_t(kPacketPlastic))
+                << m;
+    }
+    EXPECT_EQ(plastics, 4);  // smooth, GGX, Beckmann and the GGX box
+    EXPECT_EQ(beckmann, 1);
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, SimdTargetRender,
                          ::testing::Values("cornell_box.json", "veach_mis.json", "env_spheres.json",
                                            "material_balls.json", "textured_bump.json", "bench/suite/plastics.json"),
