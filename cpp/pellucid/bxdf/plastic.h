@@ -54,7 +54,8 @@
 //
 // Packet forms: SmoothPlasticT<F> and RoughPlasticT<F, Distribution> write both plastics once over
 // a lane type F (simd/lane.h), every variant and both coat transmittances; the path tracer shades
-// untextured plastics over GGX with them (kPacketPlastic, integrator/path_services.h), and
+// untextured plastics with them (kPacketPlastic; over Beckmann kPacketPlasticBeckmann;
+// integrator/path_services.h), and
 // SmoothPlastic and RoughPlastic call their float instantiations, so each model is one source. A
 // lane's variant and transmittance live in its parameters (PlasticBaseT::coat); the rough table is
 // read by a gather from the tables of the whole scene (PathSetup::coat_tables).
@@ -114,8 +115,8 @@ inline F coat_table_lookup(const float* t, const IntT<F>& base, const F& mu) {
 /// for small α (an interpolation error up to 0.29 next to it).
 ///
 /// Built once: get() returns a table from a process-wide cache keyed by the distribution kind,
-/// α (x, y), shadowing and η, computing it on the first request, outside the cache's lock (about
-/// 10 ms for GGX and 100 ms for Beckmann, whose visible-normal sampling inverts a CDF by Newton). Entries are never freed (about 300 bytes each; a process
+/// α (x, y), shadowing and η, computing it on the first request, outside the cache's lock. Entries
+/// are never freed (about 300 bytes each; a process
 /// builds one per distinct rough coat), so the pointers BxDFs hold stay valid for the whole run.
 /// Materials resolve the pointer once at scene build; a BxDF rebuilt per hit (textured Kd) is
 /// handed the same pointer and only compares the key (RoughPlastic's constructor), so no hit
