@@ -201,11 +201,13 @@ private:
 template <class Distribution, class Fresnel>
 class MicrofacetReflection {
 public:
+    /// `fresnel_avg`: the Fresnel average Kulla–Conty reads, precomputed (fresnel.h; null: computed here).
     MicrofacetReflection(const Distribution& distrib, const Fresnel& fr,
-                         const Spectrum& specular_reflectance = Spectrum(1.f), bool multiscatter = false)
+                         const Spectrum& specular_reflectance = Spectrum(1.f), bool multiscatter = false,
+                         const ConductorFresnelAverage* fresnel_avg = nullptr)
         : m_d(distrib), m_fr(fr), m_scale(specular_reflectance) {
         if constexpr (std::is_same_v<Distribution, GGX>) {
-            if (multiscatter && !m_d.effectively_smooth()) setup_multiscatter();
+            if (multiscatter && !m_d.effectively_smooth()) setup_multiscatter(fresnel_avg);
         }
     }
 
@@ -297,12 +299,12 @@ public:
     }
 
 private:
-    void setup_multiscatter() {
+    void setup_multiscatter(const ConductorFresnelAverage* fresnel_avg) {
         const GGXAlbedoTable& t = GGXAlbedoTable::get();
         m_alpha_ms = std::sqrt(m_d.alpha_x() * m_d.alpha_y());
         if (t.average_loss(m_alpha_ms) < 1e-3f) return;  // effect below 1e-3: skip (header comment)
         m_e_avg = t.E_avg(m_alpha_ms);
-        m_fms = m_scale * kulla_conty_fms(m_fr.average(), m_e_avg);
+        m_fms = m_scale * kulla_conty_fms(fresnel_average(m_fr, fresnel_avg), m_e_avg);
         m_ms = true;
     }
     // Kulla–Conty lobe f_ms without the cos θi (kulla_conty.h).

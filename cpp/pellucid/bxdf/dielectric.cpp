@@ -82,16 +82,22 @@ std::string ThinDielectric::to_string() const {
 
 // ---------------------------------------------------------------------------------------------
 template <class D>
-RoughDielectric<D>::RoughDielectric(const D& d, float eta, const Spectrum& r, const Spectrum& t, bool multiscatter)
-    : m_d(d), m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_r(r), m_t(t) {
+RoughDielectric<D>::RoughDielectric(const D& d, float eta, const Spectrum& r, const Spectrum& t, bool multiscatter,
+                                    const DielectricFresnelAverage* fresnel_avg)
+    : m_d(d), m_eta(valid_eta(eta)), m_r(r), m_t(t) {
     if constexpr (std::is_same_v<D, GGX>) {
-        if (multiscatter && !is_smooth()) setup_multiscatter();
+        if (multiscatter && !is_smooth()) setup_multiscatter(fresnel_avg);
     }
+}
+
+template <class D>
+DielectricFresnelAverage RoughDielectric<D>::multiscatter_fresnel_average(float eta) {
+    return DielectricFresnelAverage::of(less_dense_eta(valid_eta(eta)));
 }
 
 // Kulla–Conty set-up (dielectric.h header comment): losses, skip rule and the reciprocal split.
 template <class D>
-void RoughDielectric<D>::setup_multiscatter() {
+void RoughDielectric<D>::setup_multiscatter(const DielectricFresnelAverage* fresnel_avg) {
     const GGXDielectricAlbedoTable& t = GGXDielectricAlbedoTable::get();
     m_alpha_ms = std::sqrt(m_d.alpha_x() * m_d.alpha_y());
     float loss_e = 1.f - t.E_avg(m_alpha_ms, m_eta), loss_i = 1.f - t.E_avg(m_alpha_ms, 1.f / m_eta);
@@ -100,10 +106,10 @@ void RoughDielectric<D>::setup_multiscatter() {
     loss_i = std::max(loss_i, 1e-6f);
     // The less dense side L transmits like an average smooth interface, x_L = 1 − F_avg(η_ld); the
     // denser side D follows from x_L (1 − Ē_L) = η_ld² x_D (1 − Ē_D) (header comment).
-    float eta_ld = m_eta >= 1.f ? m_eta : 1.f / m_eta;
+    float eta_ld = less_dense_eta(m_eta);
     int L = m_eta >= 1.f ? 0 : 1, Dn = 1 - L;
     float loss[2] = {loss_e, loss_i};
-    m_x[L] = 1.f - fresnel_dielectric_average(eta_ld);
+    m_x[L] = 1.f - fresnel_average(eta_ld, fresnel_avg);
     m_x[Dn] = m_x[L] * loss[L] / (eta_ld * eta_ld * loss[Dn]);
     if (m_x[Dn] > 1.f) {
         m_x[Dn] = 1.f;

@@ -150,8 +150,14 @@ private:
 template <class Distribution>
 class RoughDielectric {
 public:
+    /// `fresnel_avg`: the average the Kulla–Conty set-up reads, precomputed by
+    /// multiscatter_fresnel_average(eta) (null: computed here when needed).
     RoughDielectric(const Distribution& distrib, float eta, const Spectrum& specular_reflectance = Spectrum(1.f),
-                    const Spectrum& specular_transmittance = Spectrum(1.f), bool multiscatter = false);
+                    const Spectrum& specular_transmittance = Spectrum(1.f), bool multiscatter = false,
+                    const DielectricFresnelAverage* fresnel_avg = nullptr);
+    /// The Fresnel average the multiple-scattering set-up of a BxDF of relative IOR `eta` reads
+    /// (that of the less dense side), for a material to compute once at load.
+    static DielectricFresnelAverage multiscatter_fresnel_average(float eta);
     Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
     float pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
     std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe, const Vec2f& u) const;
@@ -167,7 +173,9 @@ private:
     };
     EvalPdf eval_pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
     // Kulla–Conty (header comment): lobe value (with |cos θi|, Importance form) and sampling terms.
-    void setup_multiscatter();
+    void setup_multiscatter(const DielectricFresnelAverage* fresnel_avg);
+    static float valid_eta(float eta) { return eta > 0.f && std::isfinite(eta) ? eta : 1.f; }
+    static float less_dense_eta(float eta) { return eta >= 1.f ? eta : 1.f / eta; }  // η_ld, ≥ 1
     float ms_E(const Vec3f& w) const;  // E of the side w is on
     Spectrum ms_eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
     float ms_probability(const BxDFContext& ctx, const Vec3f& wo, float* p_trans) const;

@@ -2,7 +2,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/bxdf/fresnel.h"
 
-#include <array>
 #include <complex>
 #include <cstring>
 
@@ -25,34 +24,7 @@ double fresnel_conductor_1(double cos_i, double eta, double k) {
     return std::isfinite(r) ? std::min(1.0, std::max(0.0, r)) : 1.0;
 }
 
-namespace {
-// Textured materials rebuild their BxDF at every hit (material/textured.cpp), but an IOR is almost
-// never textured: the last quadrature's input and result, kept per thread, make it run once a
-// material instead of once a hit. Keys compare bit for bit (a NaN key never matches).
-template <class Key, class Value>
-struct LastValue {
-    Key key;
-    Value value;
-    bool valid = false;
-    template <class F>
-    Value get(const Key& k, F&& compute) {
-        if (valid && std::memcmp(&key, &k, sizeof(Key)) == 0) return value;
-        value = compute();
-        key = k;
-        valid = true;
-        return value;
-    }
-};
-float fresnel_dielectric_average_uncached(float eta);
-}  // namespace
-
 float fresnel_dielectric_average(float eta) {
-    thread_local LastValue<float, float> last;
-    return last.get(eta, [&] { return fresnel_dielectric_average_uncached(eta); });
-}
-
-namespace {
-float fresnel_dielectric_average_uncached(float eta) {
     // 2∫₀¹ F(μ) μ dμ. For η < 1, F = 1 below the critical cosine μc = sqrt(1 − η²), so that part
     // integrates to μc² exactly and the smooth part is integrated separately.
     if (eta == 1.f) return 0.f;
@@ -69,18 +41,35 @@ float fresnel_dielectric_average_uncached(float eta) {
                      0.0, 1.0);
     return float(std::min(1.0, sum));
 }
-}  // namespace
 
 Spectrum fresnel_conductor_average(const Spectrum& eta, const Spectrum& k) {
-    thread_local LastValue<std::array<float, 6>, Spectrum> last;
-    const std::array<float, 6> key{eta[0], eta[1], eta[2], k[0], k[1], k[2]};
-    return last.get(key, [&] {
-        Spectrum r;
-        for (int c = 0; c < 3; ++c)
-            r[c] = float(2.0 * integrate_gauss_legendre(
-                                   [&](double mu) { return fresnel_conductor_1(mu, eta[c], k[c]) * mu; },
-                                   0.0, 1.0));
-        return r;
-    });
+    Spectrum r;
+    for (int c = 0; c < 3; ++c)
+        r[c] = float(2.0 * integrate_gauss_legendre(
+                               [&](double mu) { return fresnel_conductor_1(mu, eta[c], k[c]) * mu; }, 0.0, 1.0));
+    return r;
+}
+
+namespace {
+bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(const Spectrum& a, const Spectrum& b) {
+    return same_bits(a.r, b.r) && same_bits(a.g, b.g) && same_bits(a.b, b.b);
+}
+}  // namespace
+
+DielectricFresnelAverage DielectricFresnelAverage::of(float eta) {
+    return DielectricFresnelAverage{eta, fresnel_dielectric_average(eta)};
+}
+float DielectricFresnelAverage::get(float e) const {
+    return same_bits(e, eta) ? value : fresnel_dielectric_average(e);
+}
+
+ConductorFresnelAverage ConductorFresnelAverage::of(const ConductorFresnel& f) {
+    return ConductorFresnelAverage{f, f.average(), true};
+}
+Spectrum ConductorFresnelAverage::get(const ConductorFresnel& f) const {
+    const bool same = valid && f.schlick == fresnel.schlick && same_bits(f.eta, fresnel.eta) &&
+                      same_bits(f.k, fresnel.k) && same_bits(f.r0, fresnel.r0);
+    return same ? value : f.average();
 }
 }  // namespace pellucid

@@ -170,6 +170,38 @@ struct ConductorFresnel {
                (schlick ? ", schlick r0=" + r0.to_string() : std::string()) + "]";
     }
 };
+/// Fresnel averages precomputed from constant parameters. A material computes them once at load
+/// (material/*.h) and hands them to the BxDF constructors that need an average (plastic's R̄,
+/// Kulla–Conty of rough_dielectric and rough_conductor). A textured material builds its BxDF at every
+/// hit (material/textured.h) from the same constants: get() returns the stored value when asked
+/// for the parameters it was computed from (bit for bit, so the result is the one the quadrature
+/// gives), and runs the quadrature otherwise, i.e. at every hit where the IOR itself is textured.
+struct DielectricFresnelAverage {
+    float eta = 1.f;
+    float value = 0.f;  ///< fresnel_dielectric_average(eta) (0 for the default η = 1)
+    static DielectricFresnelAverage of(float eta);
+    float get(float eta) const;
+};
+struct ConductorFresnelAverage {
+    ConductorFresnel fresnel;
+    Spectrum value{0.f};  ///< fresnel.average()
+    bool valid = false;   ///< false: get() always computes
+    static ConductorFresnelAverage of(const ConductorFresnel& f);
+    Spectrum get(const ConductorFresnel& f) const;
+};
+/// A Fresnel policy's average(), from `pre` where one applies (ConductorFresnel) and not null.
+template <class Fresnel>
+Spectrum fresnel_average(const Fresnel& f, const ConductorFresnelAverage*) {
+    return f.average();
+}
+inline Spectrum fresnel_average(const ConductorFresnel& f, const ConductorFresnelAverage* pre) {
+    return pre ? pre->get(f) : f.average();
+}
+/// fresnel_dielectric_average(eta), from `pre` when not null.
+inline float fresnel_average(float eta, const DielectricFresnelAverage* pre) {
+    return pre ? pre->get(eta) : fresnel_dielectric_average(eta);
+}
+
 /// Policy: Schlick's approximation with normal-incidence reflectance r0 per channel.
 struct SchlickFresnel {
     Spectrum r0{0.04f};

@@ -138,7 +138,7 @@ template RoughCoatTable RoughCoatTable::compute<Beckmann>(const Beckmann&, float
 // ---------------------------------------------------------------------------------------------
 // PlasticBase
 PlasticBase::PlasticBase(float eta, const Spectrum& kd, const Spectrum& ks, PlasticVariant variant,
-                         const RoughCoatTable* coat)
+                         const RoughCoatTable* coat, const DielectricFresnelAverage* fresnel_avg)
     : m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_kd(kd), m_ks(ks), m_variant(variant),
       m_coat(variant == PlasticVariant::Sum ? nullptr : coat) {
     m_lanes.eta = m_eta;
@@ -153,7 +153,7 @@ PlasticBase::PlasticBase(float eta, const Spectrum& kd, const Spectrum& ks, Plas
         return;
     }
     m_rbar = m_coat ? m_coat->internal_reflectance()
-                    : 1.f - (1.f - fresnel_dielectric_average(m_eta)) / (m_eta * m_eta);
+                    : 1.f - (1.f - fresnel_average(m_eta, fresnel_avg)) / (m_eta * m_eta);
     for (int c = 0; c < 3; ++c) {
         float bounce = m_variant == PlasticVariant::Coupled ? m_kd[c] * m_rbar : m_rbar;
         m_lanes.scale[c] = m_kd[c] / (m_eta * m_eta * std::max(1e-6f, 1.f - bounce));

@@ -414,8 +414,9 @@ struct LaneDistribution<Beckmann> {
 class PlasticBase {
 public:
     /// coat = nullptr: the smooth coat's t = 1 − F and R̄ = F_dri; otherwise the rough coat's table.
+    /// fresnel_avg: F_dri precomputed (fresnel.h), or null to compute it here.
     PlasticBase(float eta, const Spectrum& kd, const Spectrum& ks, PlasticVariant variant,
-                const RoughCoatTable* coat = nullptr);
+                const RoughCoatTable* coat = nullptr, const DielectricFresnelAverage* fresnel_avg = nullptr);
     /// f_d · |cos θi| of the header comment (both directions in the upper hemisphere).
     Spectrum diffuse(float cos_o, float cos_i) const;
     /// Probability of choosing the coat lobe when sampling from wo.
@@ -444,8 +445,9 @@ private:
 class SmoothPlastic {
 public:
     SmoothPlastic(float eta = 1.49f, const Spectrum& kd = Spectrum(0.5f), const Spectrum& ks = Spectrum(1.f),
-                  PlasticVariant variant = PlasticVariant::Coupled)
-        : m_base(eta, kd, ks, variant) {}
+                  PlasticVariant variant = PlasticVariant::Coupled,
+                  const DielectricFresnelAverage* fresnel_avg = nullptr)
+        : m_base(eta, kd, ks, variant, nullptr, fresnel_avg) {}
     /// From an already-configured base (no Fresnel-average quadrature).
     explicit SmoothPlastic(const PlasticBase& base) : m_base(base) {}
     Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const { return lanes().eval(ctx, wo, wi); }
@@ -472,8 +474,8 @@ public:
     RoughPlastic(const Distribution& d, float eta = 1.49f, const Spectrum& kd = Spectrum(0.5f),
                  const Spectrum& ks = Spectrum(1.f), PlasticVariant variant = PlasticVariant::Coupled,
                  CoatTransmittance coat_transmittance = CoatTransmittance::Smooth,
-                 const RoughCoatTable* table = nullptr)
-        : m_base(eta, kd, ks, variant, coat_table(d, eta, variant, coat_transmittance, table)), m_d(d) {}
+                 const RoughCoatTable* table = nullptr, const DielectricFresnelAverage* fresnel_avg = nullptr)
+        : m_base(eta, kd, ks, variant, coat_table(d, eta, variant, coat_transmittance, table), fresnel_avg), m_d(d) {}
     Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const { return lanes().eval(ctx, wo, wi); }
     float pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const { return lanes().pdf(ctx, wo, wi); }
     std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe, const Vec2f& u) const {

@@ -37,14 +37,15 @@ struct ConductorParams {
 
 class ConductorMaterial {
 public:
-    explicit ConductorMaterial(const ConductorParams& p);
-    BxDF get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+    explicit ConductorMaterial(const ConductorParams& p) : m_p(p) {}
+    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
+    /// The BxDF of `p`: params() with textured fields written in (material/textured.h).
+    BxDF bxdf_for(const ConductorParams& p) const;
     const ConductorParams& params() const { return m_p; }
     std::string to_string() const;
 
 private:
     ConductorParams m_p;
-    BxDF m_bxdf;
 };
 
 struct RoughConductorParams {
@@ -56,14 +57,17 @@ struct RoughConductorParams {
 
 class RoughConductorMaterial {
 public:
+    /// With multiple_scattering, computes Kulla–Conty's Fresnel average once.
     explicit RoughConductorMaterial(const RoughConductorParams& p);
-    /// Constant parameters: the BxDF (with its Fresnel average for Kulla–Conty) is built once.
-    BxDF get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
+    /// The BxDF of `p`: params() with textured fields written in (material/textured.h), reusing
+    /// the Fresnel average computed at construction while p's eta, k and fresnel are params()'s.
+    BxDF bxdf_for(const RoughConductorParams& p) const;
     const RoughConductorParams& params() const { return m_p; }
     std::string to_string() const;
 
 private:
     RoughConductorParams m_p;
-    BxDF m_bxdf;
+    ConductorFresnelAverage m_fresnel_avg;  // fresnel.h
 };
 }  // namespace pellucid

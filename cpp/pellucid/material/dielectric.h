@@ -34,8 +34,9 @@ struct DielectricParams {
 class DielectricMaterial {
 public:
     explicit DielectricMaterial(const DielectricParams& p) : m_p(p) {}
-    BxDF get_bxdf(const SurfaceInteraction&) const {
-        return SmoothDielectric(m_p.eta(), m_p.specular_reflectance, m_p.specular_transmittance);
+    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
+    BxDF bxdf_for(const DielectricParams& p) const {
+        return SmoothDielectric(p.eta(), p.specular_reflectance, p.specular_transmittance);
     }
     const DielectricParams& params() const { return m_p; }
     std::string to_string() const { return "DielectricMaterial[" + m_p.to_string() + "]"; }
@@ -47,8 +48,9 @@ private:
 class ThinDielectricMaterial {
 public:
     explicit ThinDielectricMaterial(const DielectricParams& p) : m_p(p) {}
-    BxDF get_bxdf(const SurfaceInteraction&) const {
-        return ThinDielectric(m_p.eta(), m_p.specular_reflectance, m_p.specular_transmittance);
+    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
+    BxDF bxdf_for(const DielectricParams& p) const {
+        return ThinDielectric(p.eta(), p.specular_reflectance, p.specular_transmittance);
     }
     const DielectricParams& params() const { return m_p; }
     std::string to_string() const { return "ThinDielectricMaterial[" + m_p.to_string() + "]"; }
@@ -65,13 +67,17 @@ struct RoughDielectricParams {
 
 class RoughDielectricMaterial {
 public:
+    /// With multiple_scattering, computes the Kulla–Conty set-up's Fresnel average once.
     explicit RoughDielectricMaterial(const RoughDielectricParams& p);
-    BxDF get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
+    /// The BxDF of `p`: params() with textured fields written in (material/textured.h), reusing
+    /// the Fresnel average computed at construction while p's IOR is params()'s.
+    BxDF bxdf_for(const RoughDielectricParams& p) const;
     const RoughDielectricParams& params() const { return m_p; }
     std::string to_string() const;
 
 private:
     RoughDielectricParams m_p;
-    BxDF m_bxdf;
+    DielectricFresnelAverage m_fresnel_avg;  // RoughDielectric::multiscatter_fresnel_average (fresnel.h)
 };
 }  // namespace pellucid

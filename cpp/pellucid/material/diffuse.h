@@ -30,7 +30,9 @@ namespace pellucid {
 /// `lambertian` (the default material of shapes without one).
 struct DiffuseMaterial {
     Spectrum reflectance{0.5f};
-    BxDF get_bxdf(const SurfaceInteraction&) const { return Lambertian(reflectance); }
+    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(*this); }
+    BxDF bxdf_for(const DiffuseMaterial& p) const { return Lambertian(p.reflectance); }
+    const DiffuseMaterial& params() const { return *this; }  ///< its own Params struct
     std::string to_string() const { return "DiffuseMaterial[reflectance=" + format_spectrum(reflectance) + "]"; }
 };
 
@@ -43,14 +45,14 @@ struct OrenNayarParams {
 
 class OrenNayarMaterial {
 public:
-    explicit OrenNayarMaterial(const OrenNayarParams& p);
-    /// Constant parameters: the BxDF (and EON's constants) is built once and copied per hit.
-    BxDF get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+    explicit OrenNayarMaterial(const OrenNayarParams& p) : m_p(p) {}
+    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
+    /// The BxDF of `p`: params() with textured fields written in (material/textured.h).
+    BxDF bxdf_for(const OrenNayarParams& p) const;
     const OrenNayarParams& params() const { return m_p; }
     std::string to_string() const;
 
 private:
     OrenNayarParams m_p;
-    BxDF m_bxdf;
 };
 }  // namespace pellucid

@@ -1,4 +1,4 @@
-// Material constructors (BxDFs built once from constant parameters) and to_string.
+// Materials: their BxDFs built from Params (with the constants precomputed at construction) and to_string.
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/material/material.h"
 
@@ -54,40 +54,35 @@ template <class D>
 D make_distribution(const MicrofacetParams& m) {
     return D(m.alpha_u, m.alpha_v, m.shadowing);
 }
-BxDF make_rough_conductor(const RoughConductorParams& p) {
+BxDF make_rough_conductor(const RoughConductorParams& p, const ConductorFresnelAverage* fresnel_avg) {
     ConductorFresnel fr = make_fresnel(p.ior);
     if (p.microfacet.distribution == MicrofacetType::Beckmann)
         return RoughConductorBeckmann(make_distribution<Beckmann>(p.microfacet), fr, p.specular_reflectance);
-    return RoughConductor(make_distribution<GGX>(p.microfacet), fr, p.specular_reflectance, p.multiple_scattering);
+    return RoughConductor(make_distribution<GGX>(p.microfacet), fr, p.specular_reflectance, p.multiple_scattering,
+                          fresnel_avg);
 }
 // `distribution` picks the template argument (as make_rough_conductor); Kulla–Conty is GGX only
 // (the builder rejects beckmann + multiple_scattering).
-BxDF make_rough_dielectric(const RoughDielectricParams& p) {
+BxDF make_rough_dielectric(const RoughDielectricParams& p, const DielectricFresnelAverage* fresnel_avg) {
     const DielectricParams& d = p.dielectric;
     const MicrofacetParams& m = p.microfacet;
     if (m.distribution == MicrofacetType::Beckmann)
         return RoughDielectric<Beckmann>(make_distribution<Beckmann>(m), d.eta(), d.specular_reflectance,
                                          d.specular_transmittance);
     return RoughDielectric<GGX>(make_distribution<GGX>(m), d.eta(), d.specular_reflectance, d.specular_transmittance,
-                                p.multiple_scattering);
+                                p.multiple_scattering, fresnel_avg);
 }
-// The BxDF, and p.coat_table set to the table it uses (RoughPlastic builds or finds the table; a
-// matching table passed in is kept, so the per-hit rebuild of a textured material only compares keys).
+// RoughPlastic takes p.coat_table when it was built for p's α and η, and otherwise builds or finds
+// the table (bxdf/plastic.h).
 template <class D>
-BxDF make_rough_plastic_resolving(RoughPlasticParams& p) {
+RoughPlastic<D> make_rough_plastic(const RoughPlasticParams& p, const DielectricFresnelAverage* fresnel_avg) {
     const PlasticParams& q = p.plastic;
-    RoughPlastic<D> b(make_distribution<D>(p.microfacet), q.int_ior / q.ext_ior, q.diffuse_reflectance,
-                      q.specular_reflectance, q.variant, p.coat_transmittance, p.coat_table);
-    p.coat_table = b.base().coat_table();
-    return b;
-}
-BxDF make_rough_plastic_resolving(RoughPlasticParams& p) {
-    if (p.microfacet.distribution == MicrofacetType::Beckmann) return make_rough_plastic_resolving<Beckmann>(p);
-    return make_rough_plastic_resolving<GGX>(p);
+    return RoughPlastic<D>(make_distribution<D>(p.microfacet), q.int_ior / q.ext_ior, q.diffuse_reflectance,
+                           q.specular_reflectance, q.variant, p.coat_transmittance, p.coat_table, fresnel_avg);
 }
 }  // namespace
 
-OrenNayarMaterial::OrenNayarMaterial(const OrenNayarParams& p) : m_p(p), m_bxdf(make_oren_nayar(p)) {}
+BxDF OrenNayarMaterial::bxdf_for(const OrenNayarParams& p) const { return make_oren_nayar(p); }
 std::string OrenNayarMaterial::to_string() const {
     bool classic = m_p.variant == OrenNayarVariant::Classic;
     return "OrenNayarMaterial[reflectance=" + format_spectrum(m_p.reflectance) +
@@ -95,36 +90,63 @@ std::string OrenNayarMaterial::to_string() const {
                     : ", variant=eon, roughness=" + format_float(m_p.roughness)) + "]";
 }
 
-ConductorMaterial::ConductorMaterial(const ConductorParams& p)
-    : m_p(p), m_bxdf(SmoothConductor<ConductorFresnel>(make_fresnel(p.ior), p.specular_reflectance)) {}
+BxDF ConductorMaterial::bxdf_for(const ConductorParams& p) const {
+    return SmoothConductor<ConductorFresnel>(make_fresnel(p.ior), p.specular_reflectance);
+}
 std::string ConductorMaterial::to_string() const {
     return "ConductorMaterial[" + m_p.ior.to_string() +
            ", specular_reflectance=" + format_spectrum(m_p.specular_reflectance) + "]";
 }
 
-RoughConductorMaterial::RoughConductorMaterial(const RoughConductorParams& p)
-    : m_p(p), m_bxdf(make_rough_conductor(p)) {}
+RoughConductorMaterial::RoughConductorMaterial(const RoughConductorParams& p) : m_p(p) {
+    if (p.multiple_scattering && p.microfacet.distribution == MicrofacetType::GGX)
+        m_fresnel_avg = ConductorFresnelAverage::of(make_fresnel(p.ior));
+}
+BxDF RoughConductorMaterial::bxdf_for(const RoughConductorParams& p) const {
+    return make_rough_conductor(p, &m_fresnel_avg);
+}
 std::string RoughConductorMaterial::to_string() const {
     return "RoughConductorMaterial[" + m_p.microfacet.to_string() + ", " + m_p.ior.to_string() +
            ", specular_reflectance=" + format_spectrum(m_p.specular_reflectance) +
            ", multiple_scattering=" + (m_p.multiple_scattering ? "true" : "false") + "]";
 }
 
-RoughDielectricMaterial::RoughDielectricMaterial(const RoughDielectricParams& p)
-    : m_p(p), m_bxdf(make_rough_dielectric(p)) {}
+RoughDielectricMaterial::RoughDielectricMaterial(const RoughDielectricParams& p) : m_p(p) {
+    if (p.multiple_scattering && p.microfacet.distribution == MicrofacetType::GGX)
+        m_fresnel_avg = RoughDielectric<GGX>::multiscatter_fresnel_average(p.dielectric.eta());
+}
+BxDF RoughDielectricMaterial::bxdf_for(const RoughDielectricParams& p) const {
+    return make_rough_dielectric(p, &m_fresnel_avg);
+}
 std::string RoughDielectricMaterial::to_string() const {
     return "RoughDielectricMaterial[" + m_p.microfacet.to_string() + ", " + m_p.dielectric.to_string() +
            ", multiple_scattering=" + (m_p.multiple_scattering ? "true" : "false") + "]";
 }
 
-PlasticMaterial::PlasticMaterial(const PlasticParams& p)
-    : m_p(p),
-      m_bxdf(SmoothPlastic(p.int_ior / p.ext_ior, p.diffuse_reflectance, p.specular_reflectance, p.variant)) {}
+// The sum variant has no R̄ (bxdf/plastic.h), so no average to compute.
+PlasticMaterial::PlasticMaterial(const PlasticParams& p) : m_p(p) {
+    if (p.variant != PlasticVariant::Sum) m_fresnel_avg = DielectricFresnelAverage::of(p.int_ior / p.ext_ior);
+}
+BxDF PlasticMaterial::bxdf_for(const PlasticParams& p) const {
+    return SmoothPlastic(p.int_ior / p.ext_ior, p.diffuse_reflectance, p.specular_reflectance, p.variant,
+                         &m_fresnel_avg);
+}
 std::string PlasticMaterial::to_string() const { return "PlasticMaterial[" + m_p.to_string() + "]"; }
 
-// m_p is constructed before m_bxdf (declaration order), which then sets m_p.coat_table.
-RoughPlasticMaterial::RoughPlasticMaterial(const RoughPlasticParams& p)
-    : m_p(p), m_bxdf(make_rough_plastic_resolving(m_p)) {}
+// The coat table is resolved here, once, by building the BxDF: a textured material's per-hit BxDF
+// (material/textured.h) copies these Params and so reuses it. A rough coat's R̄ comes from its
+// table, not from the Fresnel average.
+RoughPlasticMaterial::RoughPlasticMaterial(const RoughPlasticParams& p) : m_p(p) {
+    const PlasticParams& q = p.plastic;
+    if (q.variant != PlasticVariant::Sum) m_fresnel_avg = DielectricFresnelAverage::of(q.int_ior / q.ext_ior);
+    m_p.coat_table = p.microfacet.distribution == MicrofacetType::Beckmann
+                         ? make_rough_plastic<Beckmann>(m_p, &m_fresnel_avg).base().coat_table()
+                         : make_rough_plastic<GGX>(m_p, &m_fresnel_avg).base().coat_table();
+}
+BxDF RoughPlasticMaterial::bxdf_for(const RoughPlasticParams& p) const {
+    if (p.microfacet.distribution == MicrofacetType::Beckmann) return make_rough_plastic<Beckmann>(p, &m_fresnel_avg);
+    return make_rough_plastic<GGX>(p, &m_fresnel_avg);
+}
 std::string RoughPlasticMaterial::to_string() const {
     return "RoughPlasticMaterial[" + m_p.microfacet.to_string() + ", " + m_p.plastic.to_string() +
            ", coat_transmittance=" + pellucid::to_string(m_p.coat_transmittance) + "]";
@@ -149,17 +171,14 @@ std::string SubsurfaceParams::to_string() const {
     s += ", g=" + format_float(g);
     return rough ? s + ", " + microfacet.to_string() : s;
 }
-namespace {
-BxDF subsurface_boundary(const SubsurfaceParams& p) {
+// The boundary has no Kulla–Conty term, hence no Fresnel average.
+BxDF SubsurfaceMaterial::bxdf_for(const SubsurfaceParams& p) const {
     if (!p.rough) return SmoothDielectric(p.eta(), Spectrum(1.f), Spectrum(1.f));
     RoughDielectricParams r;
     r.microfacet = p.microfacet;
     r.dielectric = p.boundary;
-    return make_rough_dielectric(r);
+    return make_rough_dielectric(r, nullptr);
 }
-}  // namespace
-SubsurfaceMaterial::SubsurfaceMaterial(const SubsurfaceParams& p) : m_p(p), m_bxdf(subsurface_boundary(p)) {}
-BxDF SubsurfaceMaterial::get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
 
 std::string PrincipledMaterial::to_string() const {
     const PrincipledParams& p = m_p;

@@ -1,11 +1,13 @@
-// Materials: the scene-facing models. Each holds its parameters (a `*Params` struct of constants;
-// textures will replace fields later) and returns a concrete BxDF by value from get_bxdf().
+// Materials: the scene-facing models. Each holds its parameters (a `*Params` struct of constants)
+// and the constants precomputed from them at construction (Fresnel averages, fresnel.h; the rough
+// plastic's coat table), and builds its BxDF from Params: get_bxdf() from its own, bxdf_for(p) from
+// a copy with textured fields written in (material/textured.h).
 // SPDX-License-Identifier: Apache-2.0
 //
-// While every parameter is a constant, materials whose BxDF constructor does real work (Fresnel
-// averages, Kulla–Conty setup, EON constants) build it once at scene build and get_bxdf() copies
-// it; the cheap ones construct it per call. Type names and parameter tables: the family headers
-// (diffuse.h, conductor.h, dielectric.h, plastic.h, principled.h) and docs/scene-format.md.
+// A material holds no BxDF: the scene builds each material's untextured BxDF once
+// (Scene::material_bxdfs), and the textured ones are built per hit. Type names and parameter
+// tables: the family headers (diffuse.h, conductor.h, dielectric.h, plastic.h, principled.h,
+// subsurface.h) and docs/scene-format.md.
 #pragma once
 #include <string>
 #include <variant>

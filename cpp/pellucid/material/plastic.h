@@ -36,14 +36,16 @@ struct PlasticParams {
 class PlasticMaterial {
 public:
     explicit PlasticMaterial(const PlasticParams& p);
-    /// Constant parameters: the BxDF (with its Fresnel-average quadrature) is built once.
-    BxDF get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
+    /// The BxDF of `p`: params() with textured fields written in (material/textured.h). The Fresnel
+    /// average of R̄ comes from the one computed at construction while p's IOR is params()'s.
+    BxDF bxdf_for(const PlasticParams& p) const;
     const PlasticParams& params() const { return m_p; }
     std::string to_string() const;
 
 private:
     PlasticParams m_p;
-    BxDF m_bxdf;
+    DielectricFresnelAverage m_fresnel_avg;  // of params()'s η (fresnel.h)
 };
 
 struct RoughPlasticParams {
@@ -58,13 +60,16 @@ struct RoughPlasticParams {
 
 class RoughPlasticMaterial {
 public:
+    /// Resolves params().coat_table and computes the Fresnel average of R̄ once.
     explicit RoughPlasticMaterial(const RoughPlasticParams& p);
-    BxDF get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
+    /// The BxDF of `p` (as PlasticMaterial::bxdf_for; p.coat_table is reused when it matches).
+    BxDF bxdf_for(const RoughPlasticParams& p) const;
     const RoughPlasticParams& params() const { return m_p; }
     std::string to_string() const;
 
 private:
     RoughPlasticParams m_p;
-    BxDF m_bxdf;
+    DielectricFresnelAverage m_fresnel_avg;  // of params()'s η (fresnel.h)
 };
 }  // namespace pellucid

@@ -36,14 +36,16 @@ namespace pellucid {
 
 class PrincipledMaterial {
 public:
-    explicit PrincipledMaterial(const PrincipledParams& p)
-        : m_p(p), m_bxdf(p.variant == PrincipledVariant::Burley2015 ? BxDF(PrincipledBSDF(p)) : BxDF(Principled(p))) {}
-    BxDF get_bxdf(const SurfaceInteraction&) const { return m_bxdf; }
+    explicit PrincipledMaterial(const PrincipledParams& p) : m_p(p) {}
+    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
+    /// The BxDF of `p`: params() with textured fields written in (material/textured.h).
+    BxDF bxdf_for(const PrincipledParams& p) const {
+        return p.variant == PrincipledVariant::Burley2015 ? BxDF(PrincipledBSDF(p)) : BxDF(Principled(p));
+    }
     const PrincipledParams& params() const { return m_p; }
     std::string to_string() const;
 
 private:
     PrincipledParams m_p;
-    BxDF m_bxdf;
 };
 }  // namespace pellucid

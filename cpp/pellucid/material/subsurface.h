@@ -51,14 +51,15 @@ struct SubsurfaceParams {
 
 class SubsurfaceMaterial {
 public:
-    explicit SubsurfaceMaterial(const SubsurfaceParams& p);
+    explicit SubsurfaceMaterial(const SubsurfaceParams& p) : m_p(p) {}
     /// The boundary's BxDF: SmoothDielectric, or RoughDielectric of the distribution.
-    BxDF get_bxdf(const SurfaceInteraction& si) const;
+    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
+    /// The boundary's BxDF for `p`: params() with textured fields written in (material/textured.h).
+    BxDF bxdf_for(const SubsurfaceParams& p) const;
     const SubsurfaceParams& params() const { return m_p; }
     std::string to_string() const { return "SubsurfaceMaterial[" + m_p.to_string() + "]"; }
 
 private:
     SubsurfaceParams m_p;
-    BxDF m_bxdf;
 };
 }  // namespace pellucid

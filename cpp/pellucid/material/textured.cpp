@@ -53,16 +53,9 @@ BxDF get_textured_bxdf(const Material& m, const MaterialTextures& mt, const Text
                        const TextureEvalContext& ctx, const SurfaceInteraction& si) {
     if (!mt.has_bindings()) return get_bxdf(m, si);
     return std::visit([&](const auto& mat) -> BxDF {
-        using M = std::decay_t<decltype(mat)>;
-        if constexpr (std::is_same_v<M, DiffuseMaterial>) {
-            M copy = mat;  // DiffuseMaterial is its own Params struct
-            apply_bindings(copy, mt, textures, ctx);
-            return copy.get_bxdf(si);
-        } else {
-            auto p = mat.params();
-            apply_bindings(p, mt, textures, ctx);
-            return M(p).get_bxdf(si);
-        }
+        auto p = mat.params();
+        apply_bindings(p, mt, textures, ctx);
+        return mat.bxdf_for(p);
     }, m);
 }
 

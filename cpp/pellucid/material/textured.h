@@ -6,10 +6,13 @@
 // bound) and, per textured parameter, a TextureBinding: which texture, which field of the Params
 // struct (a byte offset), and how to map the texture value into it (identity, r → α = r², clamp).
 // At a hit, get_textured_bxdf() copies the Params, writes the evaluated textures into the bound
-// fields and builds the BxDF from the copy, through the same constructor the builder used: one
-// generic path for every material, and materials without textures keep their prebuilt BxDF (no
-// per-hit work). A material's Params must be standard layout for the offsets to be meaningful
-// (checked by static_assert next to each binding site in builders.cpp).
+// fields and builds the BxDF from the copy with the material's bxdf_for(), the function that built
+// its untextured BxDF: one generic path for every material. bxdf_for() reuses the constants the
+// material precomputed from its constant Params (Fresnel averages) unless the fields they depend
+// on, the IOR, are textured: then they are computed at every hit (one 32-point quadrature; three
+// for a conductor's η, k). Materials without textures use Scene::material_bxdfs (no per-hit work).
+// A material's Params must be standard layout for the offsets to be meaningful (checked by
+// static_assert next to each binding site in builders.cpp).
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -110,7 +110,7 @@ public:
     std::vector<Material> materials;
     std::vector<std::string> material_names;
     /// Each material's BxDF at an untextured hit (every parameter a constant), built once at scene
-    /// build: parallel to materials.
+    /// build: parallel to materials. The only prebuilt copy (materials hold Params, material.h).
     std::vector<BxDF> material_bxdfs;
     std::vector<MaterialTextures> material_textures;  ///< parallel to materials
     TextureList textures;
