@@ -82,6 +82,24 @@ def profile(binary: str, scene: pathlib.Path, spp: int, tmp: pathlib.Path) -> Di
     return shares
 
 
+def suite_entries(scenes: str) -> List[dict]:
+    """The manifest entries of bench/suite/suite.json named in `scenes` (comma-separated; "" = all),
+    with their generated assets written into the cache (the big mesh). KeyError names unknown ones."""
+    entries = json.loads((ROOT / "bench" / "suite" / "suite.json").read_text())["scenes"]
+    names = [e["name"] for e in entries]
+    if scenes:
+        wanted = scenes.split(",")
+        unknown = [w for w in wanted if w not in names]
+        if unknown:
+            raise KeyError(f"unknown scene(s) {unknown} (known: {', '.join(names)})")
+        entries = [e for e in entries if e["name"] in wanted]
+    sys.path.insert(0, str(ROOT / "bench" / "suite"))
+    import make_suite  # noqa: E402
+
+    make_suite.ensure_assets(sorted({a for e in entries for a in e.get("assets", [])}), log=lambda *a: None)
+    return entries
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--scenes", default="", help="comma-separated scene names (default: the whole suite)")
@@ -92,21 +110,12 @@ def main(argv=None) -> int:
     if shutil.which("perf") is None:
         print("profile_suite: perf is not installed (Debian: linux-perf)", file=sys.stderr)
         return 2
-    manifest = json.loads((ROOT / "bench" / "suite" / "suite.json").read_text())
-    entries = manifest["scenes"] if isinstance(manifest, dict) else manifest
-    names = [e["name"] if isinstance(e, dict) else str(e) for e in entries]
-    if args.scenes:
-        wanted = args.scenes.split(",")
-        unknown = [w for w in wanted if w not in names]
-        if unknown:
-            print(f"profile_suite: unknown scene(s) {unknown} (known: {', '.join(names)})", file=sys.stderr)
-            return 2
-        names = wanted
-    sys.path.insert(0, str(ROOT / "bench" / "suite"))
-    import make_suite  # noqa: E402  (writes the big mesh into the cache when a scene needs it)
-
-    make_suite.ensure_assets(sorted({a for e in entries if isinstance(e, dict) and e["name"] in names
-                                     for a in e.get("assets", [])}), log=lambda *a: None)
+    try:
+        entries = suite_entries(args.scenes)
+    except KeyError as e:
+        print(f"profile_suite: {e.args[0]}", file=sys.stderr)
+        return 2
+    names = [e["name"] for e in entries]
     stages = [s for s, _, _ in STAGES if s != "loading"]
     stages = list(dict.fromkeys(stages)) + ["other"]
     rows = []

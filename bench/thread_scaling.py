@@ -10,7 +10,6 @@ start-up and loading, each the median of --repeats runs.
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import re
 import statistics
@@ -41,20 +40,14 @@ def main(argv=None) -> int:
     ap.add_argument("--binary", default=str(ROOT / "build" / "py" / "cpp" / "pellucid-render"))
     ap.add_argument("--out", default=str(ROOT / "bench" / "results" / "suite" / "threads.md"))
     args = ap.parse_args(argv)
-    manifest = json.loads((ROOT / "bench" / "suite" / "suite.json").read_text())
-    entries = manifest["scenes"]
-    names = [e["name"] for e in entries]
-    if args.scenes:
-        wanted = args.scenes.split(",")
-        unknown = [w for w in wanted if w not in names]
-        if unknown:
-            print(f"thread_scaling: unknown scene(s) {unknown} (known: {', '.join(names)})", file=sys.stderr)
-            return 2
-        entries = [e for e in entries if e["name"] in wanted]
-    sys.path.insert(0, str(ROOT / "bench" / "suite"))
-    import make_suite  # noqa: E402  (writes the big mesh into the cache when a scene needs it)
+    sys.path.insert(0, str(ROOT / "bench"))
+    from profile_suite import suite_entries  # noqa: E402
 
-    make_suite.ensure_assets(sorted({a for e in entries for a in e.get("assets", [])}), log=lambda *a: None)
+    try:
+        entries = suite_entries(args.scenes)
+    except KeyError as e:
+        print(f"thread_scaling: {e.args[0]}", file=sys.stderr)
+        return 2
     rows = []
     with tempfile.TemporaryDirectory() as td:
         out = pathlib.Path(td) / "out.exr"
