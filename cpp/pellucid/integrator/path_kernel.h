@@ -11,8 +11,9 @@
 // Per vertex, every lane's quantities are packets: throughput, radiance, MIS densities, the
 // shading frame, the roulette. The BSDF is dispatched per lane group: lanes whose material is the
 // packet Lambertian (PathSetup::packet_lambertian) are shaded by LambertianT<F> in one pass; the
-// other lanes go through BSDF one at a time (path_services.h), as do light sampling, emission and
-// the samplers, until those have packet forms too. Every lane keeps its own Sampler and the
+// other lanes go through BSDF one at a time (path_services.h), as do emission, the samplers and
+// the sampling of lights other than mesh emitters (EmitterTable), spheres and constant environments
+// (LightTable), until those have packet forms too. Every lane keeps its own Sampler and the
 // estimates reach the film in (pixel, sample) order, so images do not depend on the thread count.
 //
 // Media (medium/medium.h, docs/media.md), when the scene has any: each lane tracks the medium its
@@ -105,6 +106,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         float u[7][W];
         // NEE.
         bool nee_ok[W], delta[W];
+        bool plight[W];      // the lane's light has a packet form (PathSetup::lights)
+        int32_t light[W];    // the light the lane picked, and its probability
+        float lsel[W];
         float lwx[W], lwy[W], lwz[W], lLr[W], lLg[W], lLb[W], lpdf[W];
         float gfr[W], gfg[W], gfb[W], gpdf[W];  // BSDF-lane eval toward the light
         // BSDF sampling of the BSDF lanes.
@@ -183,7 +187,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
 
             // One lane at a time: what has no packet form yet.
             for (int i = 0; i < W; ++i) {
-                a.fast[i] = a.goes_on[i] = a.nee[i] = a.nee_ok[i] = a.s_ok[i] = a.delta[i] = false;
+                a.fast[i] = a.goes_on[i] = a.nee[i] = a.nee_ok[i] = a.s_ok[i] = a.delta[i] = a.plight[i] = false;
                 a.in_medium[i] = a.crossing[i] = a.at_exit[i] = a.to_exit[i] = false;
                 a.Ler[i] = a.Leg[i] = a.Leb[i] = a.le_pdf[i] = 0.f;
                 a.kind[i] = 0.f;
@@ -297,16 +301,52 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 ST(b[0], o.x), ST(b[1], o.y), ST(b[2], o.z), ST(b[3], d.x), ST(b[4], d.y), ST(b[5], d.z);
                 for (int i = 0; i < W; ++i)
                     if (a.nee_ok[i]) shadow[i] = Ray{Vec3f(b[0][i], b[1][i], b[2][i]), Vec3f(b[3][i], b[4][i], b[5][i]), 1.f - 1e-4f};
+            } else if (ps.lights.any) {
+                // Next-event estimation on the packet lights: each lane picks its light as
+                // path_services::sample_light does, and the lanes whose light is a sphere or a
+                // constant environment sample it together; the shadow ray ends at the sphere's
+                // point (spawn_ray_to) or leaves toward the environment (spawn_ray).
+                bool any_packet = false;
+                for (int i = 0; i < W; ++i) {
+                    a.light[i] = 0;
+                    if (!a.goes_on[i] || !a.nee[i]) continue;
+                    a.light[i] = path_services::pick_light(ps, a.u[0][i], &a.lsel[i]);
+                    a.plight[i] = ps.lights.kind[size_t(a.light[i])] != LightTable::kNone;
+                    any_packet = any_packet || a.plight[i];
+                }
+                if (any_packet) {
+                    const V3<F> p(LD(a.px), LD(a.py), LD(a.pz)), ng(LD(a.ngx), LD(a.ngy), LD(a.ngz));
+                    const LightTableSample<F> ls = sample_light_table<F>(
+                        ps.lights, lane::load_int_as<IntT<F>>(a.light), p, V2<F>{LD(a.u[1]), LD(a.u[2])});
+                    SM(a.nee_ok, LM(a.plight) && ls.valid);
+                    ST(a.lwx, ls.wi.x), ST(a.lwy, ls.wi.y), ST(a.lwz, ls.wi.z);
+                    ST(a.lLr, ls.L.r), ST(a.lLg, ls.L.g), ST(a.lLb, ls.L.b);
+                    ST(a.lpdf, LD(a.lsel) * ls.pdf);
+                    const V3<F> o = offset_ray_origin<F>(p, V3<F>(LD(a.pex), LD(a.pey), LD(a.pez)), ng,
+                                                         lane::select(ls.infinite, ls.wi, ls.p - p));
+                    const V3<F> e = offset_ray_origin<F>(ls.p, ls.err, ls.n, o - ls.p);
+                    const V3<F> d = lane::select(ls.infinite, ls.wi, e - o);
+                    alignas(64) float b[6][W];
+                    alignas(64) bool inf[W];
+                    ST(b[0], o.x), ST(b[1], o.y), ST(b[2], o.z), ST(b[3], d.x), ST(b[4], d.y), ST(b[5], d.z);
+                    SM(inf, ls.infinite);
+                    for (int i = 0; i < W; ++i)
+                        if (a.nee_ok[i])
+                            shadow[i] = Ray{Vec3f(b[0][i], b[1][i], b[2][i]), Vec3f(b[3][i], b[4][i], b[5][i]),
+                                            inf[i] ? kInfinity : 1.f - 1e-4f};
+                }
             }
 
             // One lane at a time again: lights without a table, and the BSDF lanes.
             for (int i = 0; i < W; ++i) {
                 if (!a.goes_on[i]) continue;
                 const SurfaceInteraction& h = si[i];
-                if (a.nee[i] && ps.emitters.empty()) {
+                if (a.nee[i] && ps.emitters.empty() && !a.plight[i]) {
                     LightLiSample ls;
-                    a.nee_ok[i] = path_services::sample_light(ps, h, a.u[0][i], Vec2f(a.u[1][i], a.u[2][i]), &ls,
-                                                              &a.lpdf[i], &shadow[i]);
+                    const Vec2f u(a.u[1][i], a.u[2][i]);
+                    a.nee_ok[i] = ps.lights.any ? path_services::sample_picked_light(ps, h, a.light[i], a.lsel[i], u, &ls,
+                                                                                     &a.lpdf[i], &shadow[i])
+                                                : path_services::sample_light(ps, h, a.u[0][i], u, &ls, &a.lpdf[i], &shadow[i]);
                     if (a.nee_ok[i]) {
                         a.lwx[i] = ls.wi.x, a.lwy[i] = ls.wi.y, a.lwz[i] = ls.wi.z;
                         a.lLr[i] = ls.L.r, a.lLg[i] = ls.L.g, a.lLb[i] = ls.L.b;

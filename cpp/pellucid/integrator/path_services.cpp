@@ -103,6 +103,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     std::vector<float> pmf(scene.lights.size());
     for (size_t i = 0; i < pmf.size(); ++i) pmf[i] = scene.light_pmf(i);
     ps.emitters = make_emitter_table(scene.lights, pmf);
+    if (ps.emitters.empty()) ps.lights = make_light_table(scene.lights);
     ps.media = scene.has_media();
     ps.camera_medium = scene.camera_medium;
     ps.medium_nee = scene.integrator.medium_nee;
@@ -201,11 +202,17 @@ void randoms(Sampler& sampler, int depth, bool nee, bool roulette, VertexRandoms
 
 bool sample_light(const PathSetup& ps, const SurfaceInteraction& si, float u_sel, Vec2f u, LightLiSample* out,
                   float* light_pdf, Ray* shadow) {
-    const Scene& scene = *ps.scene;
     float pmf;
-    const size_t li = scene.sample_light(u_sel, &pmf);
+    const int32_t li = pick_light(ps, u_sel, &pmf);
+    return sample_picked_light(ps, si, li, pmf, u, out, light_pdf, shadow);
+}
+
+int32_t pick_light(const PathSetup& ps, float u_sel, float* pmf) { return int32_t(ps.scene->sample_light(u_sel, pmf)); }
+
+bool sample_picked_light(const PathSetup& ps, const SurfaceInteraction& si, int32_t li, float pmf, Vec2f u,
+                         LightLiSample* out, float* light_pdf, Ray* shadow) {
     const LightSampleContext ctx{si.p, si.ng};
-    auto ls = std::visit([&](const auto& l) { return l.sample_li(ctx, u); }, scene.lights[li]);
+    auto ls = std::visit([&](const auto& l) { return l.sample_li(ctx, u); }, ps.scene->lights[size_t(li)]);
     if (!ls || !(ls->pdf > 0.f)) return false;
     *out = *ls;
     *light_pdf = pmf * ls->pdf;

@@ -13,6 +13,7 @@
 #include "pellucid/image/film.h"
 #include "pellucid/integrator/render_loop.h"
 #include "pellucid/light/area.h"
+#include "pellucid/light/light_table.h"
 #include "pellucid/light/light_types.h"
 #include "pellucid/medium/medium.h"
 #include "pellucid/sampling/rng.h"
@@ -60,6 +61,9 @@ struct PathSetup {
     /// NEE's triangles when every light is an area light on a mesh (light/area.h), else empty:
     /// then lights are sampled one lane at a time (path_services::sample_light).
     EmitterTable emitters;
+    /// Without an emitter table: the lights NEE samples as packets (sphere area lights, constant
+    /// environments; light/light_table.h), once a lane has picked one (path_services::pick_light).
+    LightTable lights;
     /// The scene has media or null boundaries (medium/medium.h): paths track the medium they are
     /// in, which starts as camera_medium (-1: none).
     bool media = false;
@@ -102,6 +106,11 @@ void randoms(Sampler& sampler, int depth, bool nee, bool roulette, VertexRandoms
 /// NEE: pick a light and a point on it; *shadow is the ray toward it. False: no sample.
 bool sample_light(const PathSetup& ps, const SurfaceInteraction& si, float u_sel, Vec2f u, LightLiSample* ls,
                   float* light_pdf, Ray* shadow);
+/// NEE's choice of a light with u_sel (Scene::sample_light); *pmf receives its probability.
+int32_t pick_light(const PathSetup& ps, float u_sel, float* pmf);
+/// sample_light for the light li that pick_light chose with probability pmf.
+bool sample_picked_light(const PathSetup& ps, const SurfaceInteraction& si, int32_t li, float pmf, Vec2f u,
+                         LightLiSample* ls, float* light_pdf, Ray* shadow);
 /// The ray leaving si in direction wi (with differentials through a delta bounce when textures
 /// need them).
 RayDifferential next_ray(const PathSetup& ps, const SurfaceInteraction& si, const RayDifferential& in, const Vec3f& wi,

@@ -49,44 +49,26 @@ AreaLight::AreaLight(const Point3f& center, float radius, bool flip_normals, con
 
 std::optional<LightLiSample> AreaLight::sample_li(const LightSampleContext& ctx, Vec2f u) const {
     LightLiSample s;
-    if (!m_is_sphere) {
-        float u_rem;
-        size_t t = m_tri_dist.sample_discrete(u.x, nullptr, &u_rem);
-        Vec2f b = square_to_uniform_triangle(Vec2f(u_rem, u.y));
-        const Point3f* v = &m_tri[3 * t];
-        s.p_light = v[0] * (1.f - b.x - b.y) + v[1] * b.x + v[2] * b.y;
-        s.n_light = m_tri_n[t];
-        s.p_error = m_tri_err[t];
-    } else {
-        Vec3f to_c = m_center - ctx.p;
-        float d2 = length2(to_c);
-        if (d2 > m_radius * m_radius * 1.0001f) {
-            // Outside: sample the cone of directions subtended by the sphere (uniform solid angle).
-            float d = std::sqrt(d2);
-            float sin2_max = m_radius * m_radius / d2;
-            float cos_max = safe_sqrt(1.f - sin2_max);
-            Frame f = Frame::from_z(to_c / d);
-            Vec3f w = f.to_world(square_to_uniform_cone(u, cos_max));
-            // Nearest intersection of the ray (ctx.p, w) with the sphere, in double for accuracy.
-            Vec3d o(ctx.p - m_center), wd(w);
-            double bq = glm::dot(o, wd), cq = glm::dot(o, o) - double(m_radius) * m_radius;
-            double disc = std::max(0.0, bq * bq - cq);
-            double t = -bq - std::sqrt(disc);
-            Vec3f p = m_center + m_radius * normalize(Vec3f(o + t * wd));
-            s.p_light = p;
-            s.n_light = normalize(p - m_center) * (m_flip ? -1.f : 1.f);
-            s.p_error = gamma(5) * (abs(p) + abs(m_center)) + Vec3f(gamma(5) * m_radius);
-            s.wi = w;
-            s.pdf = square_to_uniform_cone_pdf(Vec3f(0, 0, 1), cos_max);
-            s.L = L(s.n_light, -w);
-            if (s.L.is_black() || !(s.pdf > 0.f)) return std::nullopt;
-            return s;
-        }
-        Vec3f n = square_to_uniform_sphere(u);
-        s.p_light = m_center + m_radius * n;
-        s.n_light = m_flip ? -n : n;
-        s.p_error = gamma(5) * (abs(s.p_light) + abs(m_center)) + Vec3f(gamma(5) * m_radius);
+    if (m_is_sphere) {
+        // The packet path tracer's sphere sampling (sample_sphere), one lane.
+        const SphereSample<float> ss = sample_sphere<float>(m_center, m_radius, m_flip, ctx.p, u);
+        if (!ss.valid) return std::nullopt;
+        s.p_light = ss.p;
+        s.n_light = ss.n;
+        s.p_error = ss.err;
+        s.wi = ss.wi;
+        s.pdf = ss.pdf;
+        s.L = L(s.n_light, -s.wi);
+        if (s.L.is_black()) return std::nullopt;
+        return s;
     }
+    float u_rem;
+    size_t t = m_tri_dist.sample_discrete(u.x, nullptr, &u_rem);
+    Vec2f b = square_to_uniform_triangle(Vec2f(u_rem, u.y));
+    const Point3f* v = &m_tri[3 * t];
+    s.p_light = v[0] * (1.f - b.x - b.y) + v[1] * b.x + v[2] * b.y;
+    s.n_light = m_tri_n[t];
+    s.p_error = m_tri_err[t];
     Vec3f d = s.p_light - ctx.p;
     float dist2 = length2(d);
     if (!(dist2 > 0.f)) return std::nullopt;
@@ -102,12 +84,17 @@ std::optional<LightLiSample> AreaLight::sample_li(const LightSampleContext& ctx,
 float AreaLight::pdf_li(const LightSampleContext& ctx, const Vec3f& wi, const Point3f& p_light,
                         const Normal3f& n_light) const {
     if (m_is_sphere) {
-        Vec3f to_c = m_center - ctx.p;
-        float d2 = length2(to_c);
-        if (d2 > m_radius * m_radius * 1.0001f) {
-            float cos_max = safe_sqrt(1.f - m_radius * m_radius / d2);
-            return square_to_uniform_cone_pdf(Vec3f(0, 0, 1), cos_max);
+        const Vec3f to_c = m_center - ctx.p;
+        const float d2 = dot(to_c, to_c), r2 = m_radius * m_radius;
+        if (sphere_outside<float>(d2, r2)) {  // sample_sphere's cone density
+            float sin2_max, omc;
+            sphere_cone<float>(d2, r2, &sin2_max, &omc);
+            return 1.f / ((2.f * kPi) * omc);
         }
+        // Inside: by area, as sample_sphere (its area 4π r², computed as there).
+        const float dist2 = length2(p_light - ctx.p);
+        const float cos_l = absdot(n_light, wi);
+        return cos_l > 0.f ? dist2 / (cos_l * ((4.f * kPi) * r2)) : 0.f;
     }
     float dist2 = length2(p_light - ctx.p);
     float cos_l = absdot(n_light, wi);

@@ -14,11 +14,95 @@
 
 #include "pellucid/geometry/mesh.h"
 #include "pellucid/light/light_types.h"
+#include "pellucid/math/frame.h"
 #include "pellucid/math/ray.h"
 #include "pellucid/sampling/distribution_1d.h"
 #include "pellucid/sampling/warp.h"
 
 namespace pellucid {
+
+/// The cone of directions a sphere of squared radius r2 subtends from a point at squared distance
+/// d2 > r2 from its centre: sin²θmax = r2/d2, and 1 − cos θmax, from the series 1 − cos θ ≈
+/// sin²θ/2 where the cone is narrower than 1.5° (there 1 − √(1 − sin²θ) would lose its digits).
+/// The density of a uniform direction in the cone is 1/(2π(1 − cos θmax)).
+constexpr float kSphereNarrowSin2 = 0.00068523f;  ///< sin² 1.5°
+template <class F>
+inline void sphere_cone(const F& d2, const F& r2, F* sin2_max, F* one_minus_cos_max) {
+    *sin2_max = r2 / d2;
+    const F cos_max = lane::sqrt(lane::max(F(0.f), F(1.f) - *sin2_max));
+    *one_minus_cos_max = lane::select(*sin2_max < F(kSphereNarrowSin2), *sin2_max * F(0.5f), F(1.f) - cos_max);
+}
+/// Whether p_ref at squared distance d2 from the centre of a sphere of squared radius r2 is outside
+/// it (with a margin: from points on or inside it the sphere is sampled by area).
+template <class F>
+inline MaskT<F> sphere_outside(const F& d2, const F& r2) { return d2 > r2 * F(1.0001f); }
+
+/// A point on a sphere light sampled as seen from p_ref, in kLaneWidth<F> lanes: its position, its
+/// emitting normal (inward where flip), its error bound, the unit direction toward it and the
+/// solid-angle density at p_ref. valid is false where no sample exists (the emitter's radiance and
+/// sides are the caller's).
+template <class F>
+struct SphereSample {
+    MaskT<F> valid;
+    V3<F> p, n, err, wi;
+    F pdf;
+};
+/// From outside, a uniform direction in the cone the sphere subtends (Shirley & Wang 1996; pbrt-v4
+/// §6.2.4): cos θ uniform on [cos θmax, 1], and the point where that direction first meets the
+/// sphere found by the law of cosines in the triangle (p_ref, centre, point), whose angle α at the
+/// centre has cos α = sin²θ/sin θmax + cos θ √(1 − sin²θ/sin²θmax), in float without a ray–sphere
+/// intersection. From inside, a uniform point on the sphere, its area density converted to solid
+/// angle (dist²/(|cos θ_light| area), Veach 1997 eq. 8.10). Only sqrt and warp.h's sincos are used,
+/// so every lane type gives the same bits.
+template <class F>
+inline SphereSample<F> sample_sphere(const V3<F>& c, const F& r, const MaskT<F>& flip, const V3<F>& p_ref, const V2<F>& u) {
+    using M = MaskT<F>;
+    const F r2 = r * r;
+    const V3<F> to_c = c - p_ref;
+    const F d2 = dot(to_c, to_c);
+    const M outside = sphere_outside<F>(d2, r2);
+    F cphi, sphi;
+    detail::sincos_two_pi<F>(u.y, &cphi, &sphi);
+    SphereSample<F> s;
+    V3<F> n;  // unit, outward
+    F pdf_cone;
+    {
+        F sin2_max, omc;
+        sphere_cone<F>(d2, r2, &sin2_max, &omc);
+        const M narrow = sin2_max < F(kSphereNarrowSin2);
+        // cos θ = 1 − u·(1 − cos θmax), and sin²θ = u sin²θmax in a narrow cone (its first-order form).
+        const F cos_t_wide = F(1.f) - u.x * omc;
+        const F sin2_t = lane::select(narrow, sin2_max * u.x, F(1.f) - cos_t_wide * cos_t_wide);
+        const F cos_t = lane::select(narrow, lane::sqrt(lane::max(F(0.f), F(1.f) - sin2_t)), cos_t_wide);
+        const F sin_max = lane::sqrt(sin2_max);
+        const F safe_sin_max = lane::select(sin_max > F(0.f), sin_max, F(1.f));
+        const F safe_sin2_max = lane::select(sin2_max > F(0.f), sin2_max, F(1.f));
+        const F cos_a = sin2_t / safe_sin_max + cos_t * lane::sqrt(lane::max(F(0.f), F(1.f) - sin2_t / safe_sin2_max));
+        const F sin_a = lane::sqrt(lane::max(F(0.f), F(1.f) - cos_a * cos_a));
+        const F d = lane::sqrt(lane::select(outside, d2, F(1.f)));
+        const V3<F> wc = to_c / d;
+        V3<F> sx, sy;
+        coordinate_system<F>(wc, sx, sy);
+        // The point's direction from the centre: α away from −wc, at azimuth φ.
+        n = -(sx * (sin_a * cphi) + sy * (sin_a * sphi) + wc * cos_a);
+        pdf_cone = F(1.f) / (F(2.f * kPi) * omc);
+    }
+    const M inside = !outside;
+    if (lane::any(inside)) {
+        n = lane::select(inside, square_to_uniform_sphere_lanes<F>(u), n);
+    }
+    s.p = c + n * r;
+    s.n = lane::select(flip, -n, n);
+    s.err = (abs(s.p) + abs(c)) * F(gamma(5)) + V3<F>(F(gamma(5)) * r);
+    const V3<F> dp = s.p - p_ref;
+    const F dist2 = dot(dp, dp);
+    s.wi = dp / lane::sqrt(lane::select(dist2 > F(0.f), dist2, F(1.f)));
+    const F cos_l = lane::abs(dot(s.n, s.wi));
+    const F pdf_area = dist2 / (lane::select(cos_l > F(0.f), cos_l, F(1.f)) * (F(4.f * kPi) * r2));
+    s.pdf = lane::select(outside, pdf_cone, pdf_area);
+    s.valid = dist2 > F(0.f) && s.pdf > F(0.f) && s.pdf < F(kInfinity) && (outside || cos_l > F(0.f));
+    return s;
+}
 
 class AreaLight {
 public:
@@ -41,6 +125,10 @@ public:
     bool is_sphere() const { return m_is_sphere; }
     bool two_sided() const { return m_two_sided; }
     const Spectrum& radiance() const { return m_radiance; }
+    /// Sphere emitter: its centre, radius and whether its normals point inward.
+    const Point3f& center() const { return m_center; }
+    float radius() const { return m_radius; }
+    bool flipped() const { return m_flip; }
     /// Mesh emitter: its triangles' corners (3 per triangle), unit normals (the side that emits)
     /// and sampled-point error bounds, as sample_li uses them.
     const std::vector<Point3f>& triangles() const { return m_tri; }

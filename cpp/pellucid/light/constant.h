@@ -19,10 +19,12 @@ class ConstantLight {
 public:
     explicit ConstantLight(const Spectrum& radiance) : m_radiance(radiance) {}
     Spectrum Le(const Vec3f& /*dir*/) const { return m_radiance; }
-    /// Uniform over the sphere of directions (pdf 1/4π).
+    const Spectrum& radiance() const { return m_radiance; }
+    /// Uniform over the sphere of directions (pdf 1/4π), as the packet path tracer samples it
+    /// (light_table.h).
     std::optional<LightLiSample> sample_li(const LightSampleContext&, Vec2f u) const {
         LightLiSample s;
-        s.wi = square_to_uniform_sphere(u);
+        s.wi = square_to_uniform_sphere_lanes<float>(u);
         s.pdf = kInv4Pi;
         s.L = m_radiance;
         s.infinite = true;

@@ -78,6 +78,17 @@ float square_to_uniform_hemisphere_pdf(const Vec3f& w);
 
 Vec3f square_to_uniform_sphere(Vec2f u);
 float square_to_uniform_sphere_pdf(const Vec3f& w);
+/// Uniform over the unit sphere, over a lane type F (pdf 1/4π): z = 1 − 2u.x and φ = 2π u.y, its
+/// sine and cosine from detail::sincos_two_pi, so every lane type gives the same bits (the float
+/// function above calls libm and may differ in the last bits).
+template <class F>
+inline V3<F> square_to_uniform_sphere_lanes(const V2<F>& u) {
+    const F z = F(1.f) - F(2.f) * u.x;
+    const F r = lane::sqrt(lane::max(F(0.f), F(1.f) - z * z));
+    F c, s;
+    detail::sincos_two_pi<F>(u.y, &c, &s);
+    return V3<F>(r * c, r * s, z);
+}
 
 /// Uniform over the spherical cap {w : w.z ≥ cos_theta_max}.
 Vec3f square_to_uniform_cone(Vec2f u, float cos_theta_max);

@@ -171,6 +171,35 @@ TEST(LightChi2, AreaSphereFromOutsideByCone) {
     }
 }
 
+TEST(LightSampling, AreaSphereNarrowCone) {
+    // A sphere under 1° wide (sin²θmax = 1e-4 < sin² 1.5°): the cone is sampled with sin²θ =
+    // u sin²θmax, so sin²θ/sin²θmax of the samples is uniform on [0, 1): its mean is 1/2 within
+    // 5σ (σ = 1/√(12 N); a false alarm has probability 6e-7). Every sample is a point on the sphere
+    // facing the receiver, on the ray ctx.p + t wi, with the density pdf_li gives.
+    const Point3f c(3.f, 100.f, -2.f);
+    const float r = 1.0045f;
+    AreaLight light(c, r, false, Spectrum(1.f), false);
+    LightSampleContext ctx{Point3f(0.f), Normal3f(0, 1, 0)};
+    const Vec3d axis = glm::normalize(Vec3d(c - ctx.p));
+    const double sin2_max = double(r) * r / glm::dot(Vec3d(c), Vec3d(c));
+    ASSERT_LT(sin2_max, double(kSphereNarrowSin2));
+    PCG32 rng(12, 5);
+    constexpr int kN = 100000;
+    double sum = 0.0;
+    for (int i = 0; i < kN; ++i) {
+        auto s = light.sample_li(ctx, rng.next_2d());
+        ASSERT_TRUE(s);
+        const double cos_t = glm::dot(Vec3d(s->wi), axis);
+        sum += std::max(0.0, 1.0 - cos_t * cos_t) / sin2_max;
+        ASSERT_NEAR(length(s->p_light - c), r, 1e-4f * r);
+        ASSERT_LT(dot(s->n_light, s->wi), 0.f);
+        const Vec3d off = glm::cross(Vec3d(s->p_light - ctx.p), Vec3d(s->wi));  // distance of p_light off the ray
+        ASSERT_LT(glm::length(off), 1e-3);
+        ASSERT_NEAR(light.pdf_li(ctx, s->wi, s->p_light, s->n_light), s->pdf, 1e-6f * s->pdf);
+    }
+    EXPECT_NEAR(sum / kN, 0.5, 5.0 / std::sqrt(12.0 * kN));
+}
+
 TEST(LightChi2, AreaSphereFromInsideByArea) {
     const Point3f c(0.f);
     const float r = 2.f;

@@ -1,6 +1,7 @@
 // What tests/cpp/simd/test_lanes_equal_scalars.cpp compares across lane types: the packet code of
 // the path tracer (Lambertian, Fresnel terms, the conductors on GGX and Beckmann, warps, frames, ray
-// offsets, the power heuristic, emitter sampling)
+// offsets, the power heuristic, emitter sampling, the packet lights: spheres and constant
+// environments)
 // evaluated over arrays of inputs, kLaneWidth<F> lanes at a time. It is instantiated on float in
 // the test and on each SIMD target's packet in probe_<target>.cpp (built with that target's flags,
 // exporting only its entry point, as the renderer's kernels do).
@@ -13,6 +14,7 @@
 #include "pellucid/bxdf/fresnel.h"
 #include "pellucid/bxdf/lambertian.h"
 #include "pellucid/light/area.h"
+#include "pellucid/light/light_table.h"
 #include "pellucid/math/frame.h"
 #include "pellucid/math/ray.h"
 #include "pellucid/sampling/mis.h"
@@ -27,9 +29,11 @@ struct In {
     const float *wo[3], *wi[3], *n_[3], *albedo[3], *u[3], *p[3], *err[3], *pdf_a, *pdf_b;
     const bool* active;
     const EmitterTable* emitters = nullptr;
+    const LightTable* lights = nullptr;
+    const int32_t* light = nullptr;  ///< per case, a row of `lights`
 };
 /// Outputs, one array of n floats per quantity (masks as 0/1), zeroed by the caller.
-constexpr int kOutputs = 80;
+constexpr int kOutputs = 96;
 struct Out {
     float* v[kOutputs];
 };
@@ -115,6 +119,14 @@ void run(const In& in, Out& out) {
         if (in.emitters) {
             const EmitterSample<F> es = sample_emitter<F>(*in.emitters, L(in.u[0]), V2<F>{L(in.u[1]), L(in.u[2])}, V(in.p));
             putm(es.valid), put(es.p.x), put(es.p.y), put(es.p.z), put(es.wi.x), put(es.pdf), put(es.L.r);
+        }
+        if (in.lights) {
+            const LightTableSample<F> ls = sample_light_table<F>(*in.lights, lane::load_int_as<IntT<F>>(in.light + o), V(in.p),
+                                                                 V2<F>{L(in.u[1]), L(in.u[0])});
+            putm(ls.valid), putm(ls.infinite), put(ls.p.x), put(ls.p.y), put(ls.p.z), put(ls.n.x), put(ls.n.z);
+            put(ls.err.x), put(ls.wi.x), put(ls.wi.y), put(ls.wi.z), put(ls.L.r), put(ls.pdf);
+            const V3<F> w = square_to_uniform_sphere_lanes<F>(V2<F>{L(in.u[2]), L(in.u[1])});
+            put(w.x), put(w.y), put(w.z);
         }
     }
 }

@@ -2,7 +2,9 @@
 // eval, pdf and sample, the Fresnel terms, the smooth conductor and the GGX and Beckmann rough
 // conductors with their distributions' D, Λ, G, visible-normal density and sampling, the Beckmann
 // model's own exp, ln, erfc and erf⁻¹, the concentric-disk and triangle warps, the power heuristic,
-// ray offsets, frames, the shading-leak test, emitter sampling) gives on every lane of every SIMD target exactly
+// ray offsets, frames, the shading-leak test, emitter sampling, the uniform sphere warp and the
+// packet lights' sampling: spheres seen from outside, from inside and as narrow cones, and constant
+// environments, mixed within packets with lights that have no packet form) gives on every lane of every SIMD target exactly
 // the bits the float instantiation gives for that lane's inputs: a bound of 0 ulp, since the library
 // is built without contraction and these functions use only IEEE-exact lane operations. The inputs
 // mix reflectances (materials) within a packet, include partially masked packets, and cover the
@@ -16,6 +18,7 @@
 #include <vector>
 
 #include "pellucid/integrator/simd_target.h"
+#include "pellucid/light/light.h"
 #include "pellucid/sampling/rng.h"
 #include "simd/lane_probe.h"
 
@@ -39,6 +42,8 @@ struct Cases {
     std::vector<float> a[3 * 7 + 2];
     std::unique_ptr<bool[]> active{new bool[kN]};
     EmitterTable emitters;
+    LightTable lights;
+    std::vector<int32_t> light;
     probe::In in;
 
     Cases() {
@@ -91,6 +96,18 @@ struct Cases {
             emitters.cdf.push_back(t == 4 ? 1.f : acc);
         }
         emitters.search_top = 4;
+        // Spheres: one the points see from outside or inside (|p| ≤ 1 or ~5000), a small one (narrow
+        // cones), a flipped two-sided one around every point; a constant environment; a point light
+        // (no packet form: its lanes come back invalid).
+        const std::vector<Light> ls = {AreaLight(Point3f(0.3f, 0.2f, -0.1f), 0.5f, false, Spectrum(1.f, 2.f, 3.f), false),
+                                       AreaLight(Point3f(-0.5f, 0.4f, 0.2f), 1e-3f, false, Spectrum(4.f), false),
+                                       AreaLight(Point3f(0.f), 1e5f, true, Spectrum(0.5f), true),
+                                       ConstantLight(Spectrum(0.25f, 0.5f, 1.f)), PointLight(Point3f(1.f), Spectrum(1.f))};
+        lights = make_light_table(ls);
+        light.resize(kN);
+        for (int i = 0; i < kN; ++i) light[size_t(i)] = int32_t((i / 3 + i / 64) % 5);
+        in.lights = &lights;
+        in.light = light.data();
         in.n = kN;
         for (int c = 0; c < 3; ++c) {
             in.wo[c] = wo[c].data(), in.wi[c] = wi[c].data(), in.n_[c] = n[c].data(), in.albedo[c] = alb[c].data();
