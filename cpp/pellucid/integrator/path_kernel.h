@@ -466,22 +466,16 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const M off = leak || !(is_lambert || is_rough || is_beckmann || is_plastic || is_plastic_b);
                     RGB<F> f_fast = lambert.eval(ctx, wo, wi);
                     F pdf_fast = lambert.pdf(ctx, wo, wi);
-                    if (lane::any(is_rough && nee)) {
-                        f_fast = lane::select(is_rough, rough.eval(ctx, wo, wi), f_fast);
-                        pdf_fast = lane::select(is_rough, rough.pdf(ctx, wo, wi), pdf_fast);
-                    }
-                    if (lane::any(is_beckmann && nee)) {
-                        f_fast = lane::select(is_beckmann, beckmann.eval(ctx, wo, wi), f_fast);
-                        pdf_fast = lane::select(is_beckmann, beckmann.pdf(ctx, wo, wi), pdf_fast);
-                    }
-                    if (lane::any(is_plastic && nee)) {
-                        f_fast = lane::select(is_plastic, plastic.eval(ctx, wo, wi), f_fast);
-                        pdf_fast = lane::select(is_plastic, plastic.pdf(ctx, wo, wi), pdf_fast);
-                    }
-                    if (lane::any(is_plastic_b && nee)) {
-                        f_fast = lane::select(is_plastic_b, plastic_b.eval(ctx, wo, wi), f_fast);
-                        pdf_fast = lane::select(is_plastic_b, plastic_b.pdf(ctx, wo, wi), pdf_fast);
-                    }
+                    // Each glossy packet form present evaluates on all lanes; its own lanes keep the result.
+                    auto eval_form = [&](const M& where, const auto& form) {
+                        if (!lane::any(where && nee)) return;
+                        f_fast = lane::select(where, form.eval(ctx, wo, wi), f_fast);
+                        pdf_fast = lane::select(where, form.pdf(ctx, wo, wi), pdf_fast);
+                    };
+                    eval_form(is_rough, rough);
+                    eval_form(is_beckmann, beckmann);
+                    eval_form(is_plastic, plastic);
+                    eval_form(is_plastic_b, plastic_b);
                     f_fast = lane::select(off, RGB<F>(F(0.f)), f_fast);
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
                     const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
