@@ -47,7 +47,7 @@ static_assert(kPlasticParams <= kPacketParams, "a plastic's parameters fit a mat
 /// A plastic's packet form and parameters (plastic_packet_params): smooth, or rough over GGX or
 /// Beckmann.
 bool packet_plastic(const BxDF& b, int32_t* kind, float* q, std::vector<float>* tables) {
-    *kind = kPacketPlastic;
+    int32_t k = kPacketPlastic;
     if (const auto* p = std::get_if<SmoothPlastic>(&b)) {
         plastic_packet_params(p->base(), nullptr, tables, q);
     } else if (const auto* r = std::get_if<RoughPlastic<GGX>>(&b)) {
@@ -57,10 +57,11 @@ bool packet_plastic(const BxDF& b, int32_t* kind, float* q, std::vector<float>* 
         const BeckmannT<float> d = rb->distribution().lanes();
         const GGXT<float> alphas{d.ax, d.ay, d.separable};  // (only α and the shadowing are stored)
         plastic_packet_params(rb->base(), &alphas, tables, q);
-        *kind = kPacketPlasticBeckmann;
+        k = kPacketPlasticBeckmann;
     } else {
-        return false;
+        return false;  // (kind untouched: the material stays a BSDF lane)
     }
+    *kind = k;
     return true;
 }
 }  // namespace
