@@ -302,7 +302,7 @@ struct RoughPlasticT {
         return p;
     }
     BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& u_lobe, const V2<F>& u) const {
-        BxDFSampleT<F> s;
+        BxDFSampleT<F> s{};  // initialised: where every lane is smooth the merge below reads it unset
         if (lane::any(!smooth)) {
             const bool spec_ok = has_flag(ctx.allowed, BxDFFlags::Glossy), diff_ok = has_flag(ctx.allowed, BxDFFlags::Diffuse);
             const F co = lane::abs(wo.z);
