@@ -12,6 +12,15 @@
 
 #include "pellucid/util/error.h"
 
+// The sums are 4-vectors of doubles: x86-64 builds also compile the accumulation for AVX2 and pick it at
+// run time. Without contraction (-ffp-contract=off) each clone rounds every product and sum alike,
+// so both give the same bits.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PELLUCID_FILM_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define PELLUCID_FILM_CLONES
+#endif
+
 namespace pellucid {
 
 namespace {
@@ -27,6 +36,17 @@ struct TapCache {
     float wx[kMaxTaps], wy[kMaxTaps];
 };
 thread_local TapCache t_taps;
+
+/// Four doubles: (Σw, Σw·L) of a target pixel, or one of its pair sums. (GCC notes that a vector
+/// return changes the ABI between the clones; these helpers are internal and always inlined.)
+#pragma GCC diagnostic ignored "-Wpsabi"
+typedef double D4 __attribute__((vector_size(32)));
+inline D4 load4(const double* p) {
+    D4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+inline void store4(double* p, D4 v) { std::memcpy(p, &v, sizeof v); }
 std::atomic<uint64_t> g_film_ids{0};
 
 /// A box of radius ½ gives each sample weight 1 in its own pixel and 0 elsewhere: splatting with it
@@ -118,7 +138,7 @@ void Film::splat_pixel(int x, int y, const FilmSample* s, int n) {
 // Adds sample b (taps bx, by, value L) to the sums of every target pixel; with a partner a (taps ax,
 // ay, value la; ax null for none) also the pair's differences, and a itself first if add_a. The
 // sums are updated in the order a, then b, so a pair gives the bits of two single calls.
-void Film::accumulate(int x, int y, int m, const float* ax, const float* ay, const float* la, bool add_a, const float* bx,
+PELLUCID_FILM_CLONES void Film::accumulate(int x, int y, int m, const float* ax, const float* ay, const float* la, bool add_a, const float* bx,
                       const float* by, const Spectrum& L) {
     // Targets with a nonzero weight inside the film: columns x + i0 .. x + i1, rows y + j0 .. y + j1
     // (a filter's support is an interval, so zero taps lie only at the ends of a row).
@@ -131,21 +151,22 @@ void Film::accumulate(int x, int y, int m, const float* ax, const float* ay, con
     while (j1 > j0 && !nz(by, j1 + m) && !nz(ay, j1 + m)) --j1;
     i0 = std::max(i0, -x), i1 = std::min(i1, m_width - 1 - x);
     j0 = std::max(j0, -y), j1 = std::min(j1, m_height - 1 - y);
-    // (1, L) and (1, L_a): w·l4 is (w, wL), and its pair difference (Δw, Δ(wL)).
-    const double l4[4] = {1.0, L[0], L[1], L[2]};
+    // (1, L) and (1, L_a): w·l4 is (w, wL), and its pair difference (Δw, Δ(wL)). Four doubles at a
+    // time (a GCC/Clang vector: one AVX2 register, or two SSE2/NEON ones; the same IEEE operation
+    // per element either way).
+    const D4 l4 = {1.0, double(L[0]), double(L[1]), double(L[2])};
     if (!pair) {
         for (int j = j0; j <= j1; ++j) {
             const double wyj = by[j + m];
             SplatSums* sums = &m_sums[size_t(y + j) * m_width + x];
             for (int i = i0; i <= i1; ++i) {
                 const double w = double(bx[i + m]) * wyj;
-                double* t = sums[i].v;
-                for (int k = 0; k < 4; ++k) t[k] += w * l4[k];
+                store4(sums[i].v, load4(sums[i].v) + l4 * w);
             }
         }
         return;
     }
-    const double lp4[4] = {1.0, la[0], la[1], la[2]};
+    const D4 lp4 = {1.0, double(la[0]), double(la[1]), double(la[2])};
     for (int j = j0; j <= j1; ++j) {
         const double wyj = by[j + m], pyj = ay[j + m];
         const size_t row = size_t(y + j) * m_width + x;
@@ -153,21 +174,13 @@ void Film::accumulate(int x, int y, int m, const float* ax, const float* ay, con
         SplatPairSums* pairs = &m_pair_sums[row];
         for (int i = i0; i <= i1; ++i) {
             const double w = double(bx[i + m]) * wyj, wp = double(ax[i + m]) * pyj;
-            double* t = sums[i].v;
-            double d[4];
-            if (add_a)
-                for (int k = 0; k < 4; ++k) t[k] += wp * lp4[k];
-            for (int k = 0; k < 4; ++k) {
-                t[k] += w * l4[k];
-                d[k] = w * l4[k] - wp * lp4[k];
-            }
-            const double dw = d[0];
-            double* sq = pairs[i].sq;
-            double* cr = pairs[i].cr;
-            for (int k = 0; k < 4; ++k) {
-                sq[k] += d[k] * d[k];
-                cr[k] += d[k] * dw;
-            }
+            const D4 b = l4 * w, a = lp4 * wp;
+            D4 t = load4(sums[i].v);
+            if (add_a) t += a;
+            store4(sums[i].v, t + b);
+            const D4 d = b - a;
+            store4(pairs[i].sq, load4(pairs[i].sq) + d * d);
+            store4(pairs[i].cr, load4(pairs[i].cr) + d * d[0]);
         }
     }
 }

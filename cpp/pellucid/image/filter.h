@@ -53,7 +53,7 @@ struct GaussianFilter {
     explicit GaussianFilter(float s = 0.5f, bool shift_to_zero = false)
         : stddev(s), shift(shift_to_zero), m_radius(4.f * s), m_k(1.f / (2.f * s * s)),
           m_bias(shift_to_zero ? std::exp(-8.f) : 0.f),
-          m_erf_r(std::erf(4.f * s / (s * 1.41421356f))) {}
+          m_erf_r(std::erf(4.f * s / (s * 1.41421356f))), m_q(std::exp(-2.f * m_k)) {}
 
     Vec2f sample(Vec2f u) const { return Vec2f(sample_1d(u.x), sample_1d(u.y)); }
     /// One axis: an offset in [−r, r] with density proportional to eval.
@@ -89,7 +89,7 @@ struct GaussianFilter {
     /// w[i] = eval(x0 + i) with two exponentials instead of n: with k = 1/(2σ²),
     /// e(x + 1) = e(x)·exp(−(2x + 1)k), and that ratio itself shrinks by exp(−2k) a step.
     void taps(float x0, int n, float* w) const {
-        const float q = std::exp(-2.f * m_k);
+        const float q = m_q;
         float e = std::exp(-x0 * x0 * m_k), r = std::exp(-(2.f * x0 + 1.f) * m_k);
         for (int i = 0; i < n; ++i) {
             w[i] = std::fabs(x0 + float(i)) < m_radius ? std::max(0.f, e - m_bias) : 0.f;
@@ -105,6 +105,7 @@ struct GaussianFilter {
     float m_k;       ///< 1/(2σ²)
     float m_bias;    ///< g(r) = e⁻⁸ when shifted, else 0
     float m_erf_r;   ///< erf(r/(σ√2)), the CDF range of the truncated Gaussian
+    float m_q;       ///< exp(−2k), the step of taps' ratio
 };
 using Filter = std::variant<BoxFilter, TentFilter, GaussianFilter>;
 inline Vec2f sample_filter(const Filter& f, Vec2f u) {

@@ -309,7 +309,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 bool any_packet = false;
                 for (int i = 0; i < W; ++i) {
                     a.light[i] = 0;
-                    a.plight[i] = false;  // (a lane without NEE at this vertex must not keep the last one's)
                     if (!a.goes_on[i] || !a.nee[i]) continue;
                     a.light[i] = path_services::pick_light(ps, a.u[0][i], &a.lsel[i]);
                     a.plight[i] = ps.lights.kind[size_t(a.light[i])] != LightTable::kNone;
