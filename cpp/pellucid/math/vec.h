@@ -23,7 +23,9 @@ inline Vec3f cross(const Vec3f& a, const Vec3f& b) { return glm::cross(a, b); }
 inline float length(const Vec3f& a) { return glm::length(a); }
 inline float length2(const Vec3f& a) { return glm::dot(a, a); }
 inline Vec3f normalize(const Vec3f& a) { return glm::normalize(a); }
-inline Vec3f abs(const Vec3f& a) { return glm::abs(a); }
+/// |a| per component by clearing the sign bit (glm::abs compiles to a branch per component, which
+/// hit records take with unpredictable signs).
+inline Vec3f abs(const Vec3f& a) { return Vec3f(std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)); }
 /// Flip v so that it lies in the same hemisphere as n.
 inline Vec3f face_forward(const Vec3f& v, const Vec3f& n) { return dot(v, n) < 0.f ? -v : v; }
 inline bool is_finite(const Vec3f& v) {
