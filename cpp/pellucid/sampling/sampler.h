@@ -200,24 +200,32 @@ public:
         m_dim = 0;
         return get_2d();
     }
+    // The independent sampler's draws are a few instructions and inline; the Sobol points are out
+    // of line (sobol_1d, sobol_2d), so that the callers of these stay small enough to inline them.
     float get_1d() {
         const int d = m_dim++;
         if (m_type == SamplerType::Independent || d >= kMaxSobolDims) return m_rng.next_float();
-        uint32_t x;
-        sobol::sample_2d_rev(m_index_rev, seeds(d), &x, nullptr);
-        return sobol::to_float(x);
+        return sobol_1d(d);
     }
     /// Two dimensions with joint (0,2)-sequence stratification (sobol).
     Vec2f get_2d() {
         const int d = m_dim;
         m_dim += 2;
         if (m_type == SamplerType::Independent || d + 2 > kMaxSobolDims) return m_rng.next_2d();
+        return sobol_2d(d);
+    }
+
+private:
+    [[gnu::noinline]] float sobol_1d(int d) const {
+        uint32_t x;
+        sobol::sample_2d_rev(m_index_rev, seeds(d), &x, nullptr);
+        return sobol::to_float(x);
+    }
+    [[gnu::noinline]] Vec2f sobol_2d(int d) const {
         uint32_t x0, x1;
         sobol::sample_2d_rev(m_index_rev, seeds(d), &x0, &x1);
         return Vec2f(sobol::to_float(x0), sobol::to_float(x1));
     }
-
-private:
     sobol::GroupSeeds seeds(int d) const { return sobol::group_seeds(m_pixel_hash, uint32_t(d)); }
     PCG32 m_rng;
     SamplerType m_type;
