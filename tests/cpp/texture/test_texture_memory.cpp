@@ -192,3 +192,21 @@ TEST(ImageTextureMemory, ForgetRereadsTheInMemoryLevel) {
         forget_image_texture(path);
     }
 }
+
+// An image above kInMemoryTextureTexels is not held in memory: every lookup goes through the
+// TextureSystem (here a 4097 x 4096 one-channel PNG, one texel past the cap by a column).
+TEST(ImageTextureMemory, LargeImagesStayOnTheTextureSystem) {
+    const test::TempDir tmp("pellucid_texmem_");
+    const std::string path = tmp.file("large.png");
+    const int w = 4097, h = 4096;
+    ASSERT_GT(int64_t(w) * h, kInMemoryTextureTexels);
+    std::vector<float> px(size_t(w) * size_t(h), 0.f);
+    px[size_t(7) * size_t(w) + 5] = 1.f;  // texel (5, 7)
+    write_test_image(path, w, h, 1, 8, px.data());
+    const ImageTextureHandle handle = open_image_texture(path, TextureColorSpace::Linear, nullptr);
+    EXPECT_EQ(handle.texels, nullptr);
+    const Spectrum v = lookup_image_texture(handle, TextureFilter::Nearest, TextureWrap::Clamp, 5.5f / float(w),
+                                            7.5f / float(h), 0, 0, 0, 0);
+    EXPECT_EQ(v.r, 1.f);
+    forget_image_texture(path);
+}
