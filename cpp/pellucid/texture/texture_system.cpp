@@ -413,8 +413,15 @@ inline void gather_quad(const ImageTextureHandle& h, TextureWrap wrap, float s, 
     const int w = h.width, hh = h.height;
     int s0 = texel_floor(s, w, &q.sf), t0 = texel_floor(t, hh, &q.tf);
     int s1 = s0 + 1, t1 = t0 + 1;
-    const bool vs0 = wrap_texel(wrap, s0, w), vs1 = wrap_texel(wrap, s1, w);
-    const bool vt0 = wrap_texel(wrap, t0, hh), vt1 = wrap_texel(wrap, t1, hh);
+    bool vs0, vs1, vt0, vt1;
+    if (wrap == TextureWrap::Repeat) {  // one division per axis: the neighbour of a wrapped index
+        vs0 = vs1 = vt0 = vt1 = wrap_texel(wrap, s0, w) && wrap_texel(wrap, t0, hh);
+        s1 = s0 + 1 == w ? 0 : s0 + 1;
+        t1 = t0 + 1 == hh ? 0 : t0 + 1;
+    } else {
+        vs0 = wrap_texel(wrap, s0, w), vs1 = wrap_texel(wrap, s1, w);
+        vt0 = wrap_texel(wrap, t0, hh), vt1 = wrap_texel(wrap, t1, hh);
+    }
     const int ss[2] = {s0, s1}, tt[2] = {t0, t1};
     const bool vss[2] = {vs0, vs1}, vtt[2] = {vt0, vt1};
     for (int j = 0; j < 2; ++j)
