@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 #include <vector>
 
@@ -71,7 +72,10 @@ float srgb_to_linear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c 
 
 /// Every texel of every MIP level of subimage 0, read a band of scanlines at a time (a few MB): the
 /// range of the channels lookups return, and the first NaN or infinite texel, which is an error.
-void scan_texels(const std::string& path, OIIO::ImageInput& in, bool srgb, ImageTextureInfo& info) {
+/// When level0 is given, it receives the full-resolution level's lookup channels as read (before
+/// any sRGB decoding), rows from the top.
+void scan_texels(const std::string& path, OIIO::ImageInput& in, bool srgb, ImageTextureInfo& info,
+                 std::vector<float>* level0) {
     const int lookup_channels = info.channels >= 3 ? 3 : 1;  // as lookup_image_texture
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     std::vector<float> band;
@@ -92,6 +96,14 @@ void scan_texels(const std::string& path, OIIO::ImageInput& in, bool srgb, Image
                                                 0, nc, OIIO::TypeDesc::FLOAT, band.data())
                                 : in.read_scanlines(0, level, y0, y1, spec.z, 0, nc, OIIO::TypeDesc::FLOAT, band.data());
             if (!ok) throw Error(path + ": cannot decode texture: " + in.geterror());
+            if (level == 0 && level0) {
+                if (y0 == spec.y) level0->resize(size_t(w) * size_t(h) * size_t(lookup_channels));
+                float* dst = level0->data() + size_t(y0 - spec.y) * size_t(w) * size_t(lookup_channels);
+                const size_t texels = band.size() / size_t(nc);
+                for (size_t k = 0; k < texels; ++k)
+                    for (int c = 0; c < lookup_channels; ++c)
+                        dst[k * size_t(lookup_channels) + size_t(c)] = band[k * size_t(nc) + size_t(c)];
+            }
             for (size_t i = 0; i < band.size(); ++i) {
                 const float v = band[i];
                 const int c = int(i % size_t(nc));
@@ -177,6 +189,68 @@ std::string linear_copy(const std::string& path) {
     return out.string();
 }
 
+/// The full-resolution levels kept in memory (ImageTextureHandle::texels), keyed by the file the
+/// TextureSystem reads, as its cache is. Blocks live until forget_image_texture of their file; the
+/// registry itself is never destroyed, so handles stay valid through static destruction.
+struct TexelBlock {
+    std::string source;  ///< the path open_image_texture was given
+    int width = 0, height = 0;
+    std::vector<float> texels;
+};
+struct TexelRegistry {
+    std::mutex mutex;
+    std::vector<std::unique_ptr<TexelBlock>> blocks;  // few textures per scene: a linear search
+    std::vector<std::string> keys;
+};
+TexelRegistry& texel_registry() {
+    static TexelRegistry* r = new TexelRegistry;
+    return *r;
+}
+
+const TexelBlock* find_texel_block(const std::string& key) {
+    TexelRegistry& r = texel_registry();
+    std::lock_guard<std::mutex> lock(r.mutex);
+    for (size_t i = 0; i < r.keys.size(); ++i)
+        if (r.keys[i] == key) return r.blocks[i].get();
+    return nullptr;
+}
+
+/// Registers block under key unless another thread did first; returns the registered one.
+const TexelBlock* add_texel_block(const std::string& key, std::unique_ptr<TexelBlock> block) {
+    TexelRegistry& r = texel_registry();
+    std::lock_guard<std::mutex> lock(r.mutex);
+    for (size_t i = 0; i < r.keys.size(); ++i)
+        if (r.keys[i] == key) return r.blocks[i].get();
+    r.keys.push_back(key);
+    r.blocks.push_back(std::move(block));
+    return r.blocks.back().get();
+}
+
+void forget_texel_blocks(const std::string& path) {
+    TexelRegistry& r = texel_registry();
+    std::lock_guard<std::mutex> lock(r.mutex);
+    for (size_t i = r.keys.size(); i-- > 0;) {
+        if (r.keys[i] != path && r.blocks[i]->source != path) continue;
+        r.keys.erase(r.keys.begin() + std::ptrdiff_t(i));
+        r.blocks.erase(r.blocks.begin() + std::ptrdiff_t(i));
+    }
+}
+
+/// Level 0 of a file, its first `channels` channels as floats (OpenImageIO's conversion, the one its
+/// tile cache applies: integer values × 1/max, half values exactly).
+std::vector<float> read_level0(const std::string& path, const std::string& file, int channels, int width,
+                               int height) {
+    auto in = OIIO::ImageInput::open(file);
+    if (!in) throw Error(path + ": cannot read texture " + file + ": " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width != width || spec.height != height || spec.nchannels < channels)
+        throw Error(path + ": the texture cache entry " + file + " does not match the source's size");
+    std::vector<float> px(size_t(width) * size_t(height) * size_t(channels));
+    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, px.data()))
+        throw Error(path + ": cannot decode texture " + file + ": " + in->geterror());
+    return px;
+}
+
 OIIO::TextureOpt::Wrap to_oiio(TextureWrap w) {
     switch (w) {
         case TextureWrap::Repeat: return OIIO::TextureOpt::WrapPeriodic;
@@ -208,6 +282,8 @@ static ImageTextureHandle open_image_texture_unchecked(const std::string& path, 
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) throw Error(path + ": texture file not found");
     ImageTextureInfo found;
+    bool keep_in_memory = false, capture = false;
+    std::vector<float> level0;
     {
         auto in = OIIO::ImageInput::open(path);
         if (!in) throw Error(path + ": cannot read texture (unsupported or corrupt image): " + OIIO::geterror());
@@ -238,12 +314,30 @@ static ImageTextureHandle open_image_texture_unchecked(const std::string& path, 
             throw Error(path + ": tiles of " + std::to_string(spec.tile_width) + "x" + std::to_string(spec.tile_height) +
                         " pixels, more than the 1048576 pixels a tile may have");
         found.srgb = cs == TextureColorSpace::SRGB || (cs == TextureColorSpace::Auto && integer_format);
-        scan_texels(path, *in, found.srgb, found);
+        // A linear file's level 0 as scanned is what the TextureSystem reads: keep it, unless the
+        // registry holds it already or the image is too large to keep.
+        keep_in_memory = int64_t(found.width) * found.height <= kInMemoryTextureTexels;
+        capture = keep_in_memory && !found.srgb && !find_texel_block(path);
+        scan_texels(path, *in, found.srgb, found, capture ? &level0 : nullptr);
         in->close();
     }
     found.resolved = found.srgb ? linear_copy(path) : path;
     const std::string& resolved = found.resolved;
     const int channels = found.channels;
+    const TexelBlock* block = nullptr;
+    if (keep_in_memory) {
+        block = find_texel_block(resolved);
+        if (!block) {
+            auto b = std::make_unique<TexelBlock>();
+            b->source = path;
+            b->width = found.width;
+            b->height = found.height;
+            // An sRGB file: the linear half-float copy the TextureSystem reads.
+            b->texels = capture ? std::move(level0)
+                                : read_level0(path, resolved, channels >= 3 ? 3 : 1, found.width, found.height);
+            block = add_texel_block(resolved, std::move(b));
+        }
+    }
 
     OIIO::TextureSystem* ts = texture_system();
     static std::mutex mutex;  // handle creation is cheap and rare; keep error reporting per call
@@ -251,16 +345,146 @@ static ImageTextureHandle open_image_texture_unchecked(const std::string& path, 
     OIIO::TextureSystem::TextureHandle* h = ts->get_texture_handle(OIIO::ustring(resolved));
     if (!h || !ts->good(h)) throw Error(path + ": cannot open texture: " + ts->geterror());
     if (info) *info = found;
-    return ImageTextureHandle{h, channels};
+    ImageTextureHandle handle;
+    handle.handle = h;
+    handle.channels = channels;
+    if (block) {
+        handle.texels = block->texels.data();
+        handle.width = block->width;
+        handle.height = block->height;
+    }
+    return handle;
 }
 
 void forget_image_texture(const std::string& path) {
+    forget_texel_blocks(path);
     texture_system()->invalidate(OIIO::ustring(path), /*force=*/true);
     shared_image_cache()->invalidate(OIIO::ustring(path), /*force=*/true);
 }
 
+namespace {
+// Lookups on the in-memory full-resolution level, with the TextureSystem's conventions (its
+// sample_closest / sample_bilinear with no MIP map, written anew): texel i's centre is at
+// s = (i + ½)/width, t = 0 is the top row, and out-of-range texel indices wrap per axis.
+
+/// Texel coordinate x = s·n − ½ split into floor and fraction. Coordinates beyond ±2^29 texels (and
+/// NaN) are pinned there so that the integer index and its neighbour stay representable.
+inline int texel_floor(float st, int n, float* frac) {
+    float x = st * float(n) - 0.5f;  // as OIIO: s·width + (origin − ½), origin 0
+    if (!(std::fabs(x) < 536870912.f)) x = x > 0.f ? 536870912.f : -536870912.f;
+    const float f = std::floor(x);
+    *frac = x - f;
+    return int(f);
+}
+
+/// Wrap texel index i of a row (or column) of n texels; false: the texel is outside and black.
+inline bool wrap_texel(TextureWrap wrap, int& i, int n) {
+    if (uint32_t(i) < uint32_t(n)) return true;  // inside: every mode leaves it
+    switch (wrap) {
+        case TextureWrap::Repeat:
+            i %= n;
+            if (i < 0) i += n;
+            return true;
+        case TextureWrap::Mirror: {
+            // Period 2n, reflected about the edges: texel −1 reads texel 0, texel n reads n − 1.
+            if (i < 0) i = -1 - i;
+            const int k = i / n;
+            i -= k * n;
+            if (k & 1) i = n - 1 - i;
+            return true;
+        }
+        case TextureWrap::Clamp:
+            i = i < 0 ? 0 : n - 1;
+            return true;
+        case TextureWrap::Black: return false;
+    }
+    return false;
+}
+
+/// The four texels around (s, t) (invalid ones read as zero) and the fractions between them.
+template <int N>
+struct Quad {
+    float v[2][2][N];  // [row: t0, t1][column: s0, s1][channel]
+    float sf, tf;
+};
+
+template <int N>
+inline void gather_quad(const ImageTextureHandle& h, TextureWrap wrap, float s, float t, Quad<N>& q) {
+    const int w = h.width, hh = h.height;
+    int s0 = texel_floor(s, w, &q.sf), t0 = texel_floor(t, hh, &q.tf);
+    int s1 = s0 + 1, t1 = t0 + 1;
+    bool vs0, vs1, vt0, vt1;
+    if (wrap == TextureWrap::Repeat) {  // one division per axis: the neighbour of a wrapped index
+        vs0 = vs1 = vt0 = vt1 = wrap_texel(wrap, s0, w) && wrap_texel(wrap, t0, hh);
+        s1 = s0 + 1 == w ? 0 : s0 + 1;
+        t1 = t0 + 1 == hh ? 0 : t0 + 1;
+    } else {
+        vs0 = wrap_texel(wrap, s0, w), vs1 = wrap_texel(wrap, s1, w);
+        vt0 = wrap_texel(wrap, t0, hh), vt1 = wrap_texel(wrap, t1, hh);
+    }
+    const int ss[2] = {s0, s1}, tt[2] = {t0, t1};
+    const bool vss[2] = {vs0, vs1}, vtt[2] = {vt0, vt1};
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < 2; ++i) {
+            if (!(vtt[j] && vss[i])) {
+                for (int c = 0; c < N; ++c) q.v[j][i][c] = 0.f;
+                continue;
+            }
+            const float* p = h.texels + (size_t(tt[j]) * size_t(w) + size_t(ss[i])) * N;
+            for (int c = 0; c < N; ++c) q.v[j][i][c] = p[c];
+        }
+}
+
+inline Spectrum to_spectrum(const float* r, int n) { return n == 1 ? Spectrum(r[0]) : Spectrum(r[0], r[1], r[2]); }
+
+template <int N>
+Spectrum memory_nearest(const ImageTextureHandle& h, TextureWrap wrap, float s, float t) {
+    float sf, tf;
+    int i = texel_floor(s, h.width, &sf), j = texel_floor(t, h.height, &tf);
+    if (sf > 0.5f) ++i;  // exactly halfway: the lower texel, as OIIO
+    if (tf > 0.5f) ++j;
+    float r[3] = {0.f, 0.f, 0.f};
+    if (wrap_texel(wrap, i, h.width) && wrap_texel(wrap, j, h.height)) {
+        const float* p = h.texels + (size_t(j) * size_t(h.width) + size_t(i)) * N;
+        for (int c = 0; c < N; ++c) r[c] = p[c];
+    }
+    return to_spectrum(r, N);
+}
+
+// The interpolation is written as OIIO's (same operations in the same order, no contraction), so
+// results agree with the TextureSystem's to the last bit or nearly.
+template <int N>
+Spectrum memory_bilinear(const ImageTextureHandle& h, TextureWrap wrap, float s, float t, Spectrum* dvalue_ds,
+                         Spectrum* dvalue_dt) {
+    Quad<N> q;
+    gather_quad<N>(h, wrap, s, t, q);
+    const float sf = q.sf, tf = q.tf, s1 = 1.f - sf, t1 = 1.f - tf;
+    float r[3] = {0.f, 0.f, 0.f};
+    for (int c = 0; c < N; ++c)
+        r[c] = t1 * (q.v[0][0][c] * s1 + q.v[0][1][c] * sf) + tf * (q.v[1][0][c] * s1 + q.v[1][1][c] * sf);
+    if (dvalue_ds) {
+        float ds[3] = {0.f, 0.f, 0.f}, dt[3] = {0.f, 0.f, 0.f};
+        const float w = float(h.width), hh = float(h.height);
+        for (int c = 0; c < N; ++c) {
+            ds[c] = w * ((q.v[0][1][c] - q.v[0][0][c]) * t1 + (q.v[1][1][c] - q.v[1][0][c]) * tf);
+            dt[c] = hh * ((q.v[1][0][c] - q.v[0][0][c]) * s1 + (q.v[1][1][c] - q.v[0][1][c]) * sf);
+        }
+        *dvalue_ds = to_spectrum(ds, N);
+        *dvalue_dt = to_spectrum(dt, N);
+    }
+    return to_spectrum(r, N);
+}
+}  // namespace
+
 Spectrum lookup_image_texture(const ImageTextureHandle& h, TextureFilter filter, TextureWrap wrap, float s,
                               float t, float dsdx, float dtdx, float dsdy, float dtdy) {
+    if (h.texels && filter <= TextureFilter::Bilinear) {
+        const bool rgb = h.channels >= 3;
+        if (filter == TextureFilter::Nearest)
+            return rgb ? memory_nearest<3>(h, wrap, s, t) : memory_nearest<1>(h, wrap, s, t);
+        return rgb ? memory_bilinear<3>(h, wrap, s, t, nullptr, nullptr)
+                   : memory_bilinear<1>(h, wrap, s, t, nullptr, nullptr);
+    }
     OIIO::TextureSystem* ts = texture_system();
     OIIO::TextureOpt opt;
     opt.swrap = opt.twrap = to_oiio(wrap);
@@ -295,6 +519,9 @@ Spectrum lookup_image_texture(const ImageTextureHandle& h, TextureFilter filter,
 
 Spectrum lookup_image_texture_gradient(const ImageTextureHandle& h, TextureWrap wrap, float s, float t,
                                        Spectrum* dvalue_ds, Spectrum* dvalue_dt) {
+    if (h.texels)
+        return h.channels >= 3 ? memory_bilinear<3>(h, wrap, s, t, dvalue_ds, dvalue_dt)
+                               : memory_bilinear<1>(h, wrap, s, t, dvalue_ds, dvalue_dt);
     OIIO::TextureSystem* ts = texture_system();
     OIIO::TextureOpt opt;
     opt.swrap = opt.twrap = to_oiio(wrap);

@@ -36,10 +36,21 @@ struct ImageTextureInfo {
     Spectrum lo{0.f}, hi{0.f};
 };
 
-/// A loaded texture: an opaque handle into the shared TextureSystem (no heap, trivially copyable).
+/// Largest image (width × height texels) whose full-resolution level open_image_texture keeps in
+/// memory as linear floats for the Nearest and Bilinear filters and the gradient lookup: 16 M texels
+/// (4096 × 4096; 192 MB as RGB). Larger images are read through the TextureSystem's tile cache.
+constexpr int64_t kInMemoryTextureTexels = int64_t(1) << 24;
+
+/// A loaded texture: an opaque handle into the shared TextureSystem plus, for an image of at most
+/// kInMemoryTextureTexels texels, its full-resolution level in memory (no heap, trivially copyable).
 struct ImageTextureHandle {
     void* handle = nullptr;  ///< OIIO::TextureSystem::TextureHandle*
-    int channels = 3;
+    /// The full-resolution level as lookups return it: width × height texels, rows from the top,
+    /// 1 float per texel when channels < 3, else 3 (RGB). Owned by a process-wide registry until
+    /// forget_image_texture of the file. Null: every lookup goes through the TextureSystem.
+    const float* texels = nullptr;
+    int width = 0, height = 0;
+    int channels = 3;  ///< the file's channel count
 };
 
 /// Open (and if needed convert) an image for filtered lookups. Throws pellucid::Error naming the
@@ -48,21 +59,24 @@ struct ImageTextureHandle {
 /// (its position named). Every texel is read once here to find them and the value range.
 ImageTextureHandle open_image_texture(const std::string& path, TextureColorSpace cs, ImageTextureInfo* info);
 
-/// Forget what the texture cache holds of the file at path (its header and decoded tiles), so that
-/// the next open_image_texture of that path reads the file again; handles to it must not be used
-/// after this. For a file rewritten under the same name.
+/// Forget what the texture cache holds of the file at path (its header, decoded tiles and in-memory
+/// level), so that the next open_image_texture of that path reads the file again; handles to it must
+/// not be used after this. For a file rewritten under the same name.
 void forget_image_texture(const std::string& path);
 
 /// Filtered lookup at texture coordinates (s, t) ∈ [0,1]² (t = 0 is the image's top row) with the
 /// screen-space derivatives of (s, t): the footprint. Zero derivatives give a point lookup at the
-/// finest level. One channel is replicated to RGB; alpha is ignored.
+/// finest level. One channel is replicated to RGB; alpha is ignored. Nearest and Bilinear read the
+/// handle's in-memory level when it has one (the TextureSystem's conventions, in our own code, with
+/// no lock and no allocation); Trilinear and Anisotropic always go through the TextureSystem.
 Spectrum lookup_image_texture(const ImageTextureHandle& h, TextureFilter filter, TextureWrap wrap, float s,
                               float t, float dsdx, float dtdx, float dsdy, float dtdy);
 
 /// Bilinear lookup at the full-resolution level (no MIP map, no footprint) at (s, t), with the exact
 /// derivatives of that bilinear interpolation with respect to s and t (texel centres at
 /// (i + ½)/width, so ∂/∂s = width × the difference of neighbouring texels, blended in t). The
-/// bump gradient of Mitsuba's bitmap texture is this derivative (bump_model "mitsuba").
+/// bump gradient of Mitsuba's bitmap texture is this derivative (bump_model "mitsuba"). Reads the
+/// in-memory level when the handle has one.
 Spectrum lookup_image_texture_gradient(const ImageTextureHandle& h, TextureWrap wrap, float s, float t,
                                        Spectrum* dvalue_ds, Spectrum* dvalue_dt);
 
