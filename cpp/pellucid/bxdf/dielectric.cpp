@@ -10,7 +10,6 @@
 
 namespace pellucid {
 namespace {
-constexpr float kMinCosD = 1e-7f;
 
 // Selection probabilities (pr, pt) of reflection and transmission for the allowed lobes.
 void lobe_probabilities(const BxDFContext& ctx, float R, float T, float& pr, float& pt) {
@@ -152,47 +151,40 @@ float RoughDielectric<D>::ms_probability(const BxDFContext& ctx, const Vec3f& wo
     return clamp(1.f - ms_E(wo), 0.f, 1.f);
 }
 
+DielectricHalf dielectric_half(const Vec3f& wo, const Vec3f& wi, float eta) {
+    DielectricHalf out;
+    const float co = wo.z, ci = wi.z;
+    if (co == 0.f || ci == 0.f) return out;
+    const bool reflect = co * ci > 0.f;
+    const double etap = reflect ? 1.0 : (co > 0.f ? double(eta) : 1.0 / double(eta));
+    const Vec3d h = Vec3d(wi) * etap + Vec3d(wo);
+    const double hl = glm::length(h);
+    if (!(hl > 0.0)) return out;
+    const Vec3d wmd = h / (h.z < 0.0 ? -hl : hl);
+    const double dot_o = glm::dot(Vec3d(wo), wmd), dot_i = glm::dot(Vec3d(wi), wmd);
+    out.wm = Vec3f(wmd);
+    out.dot_o = float(dot_o), out.dot_i = float(dot_i);
+    // Back-facing microfacets contribute nothing (Walter et al. 2007, §5.1, χ⁺ terms).
+    if (out.dot_i * ci <= 0.f || out.dot_o * co <= 0.f) return out;
+    const bool from_inside = !reflect && ((co > 0.f) != (eta >= 1.f));
+    const double Fd = fresnel_dielectric_d(from_inside ? dot_i : dot_o, eta);
+    out.R = float(Fd), out.T = float(1.0 - Fd);
+    out.denom = reflect ? 0.f : float(sqr(double(out.dot_i) + double(out.dot_o) / etap));
+    out.etap2 = float(etap * etap);
+    out.ok = true;
+    return out;
+}
+
+void dielectric_fresnel_pair(float cos_i, float eta, float* R, float* T) {
+    const double Fd = fresnel_dielectric_d(cos_i, eta);
+    *R = float(Fd), *T = float(1.0 - Fd);
+}
+
 template <class D>
 typename RoughDielectric<D>::EvalPdf RoughDielectric<D>::eval_pdf(const BxDFContext& ctx, const Vec3f& wo,
                                                                   const Vec3f& wi) const {
-    EvalPdf out;
-    float co = wo.z, ci = wi.z;
-    if (co == 0.f || ci == 0.f) return out;
-    bool reflect = co * ci > 0.f;
-    double etap = reflect ? 1.0 : (co > 0.f ? double(m_eta) : 1.0 / double(m_eta));
-    // Generalised half vector (Walter et al. 2007, eq. 16), oriented to +z. Computed in double:
-    // wo·wm and wi·wm of nearly orthogonal vectors otherwise lose most digits to cancellation.
-    Vec3d h = Vec3d(wi) * etap + Vec3d(wo);
-    double hl = glm::length(h);
-    if (!(hl > 0.0)) return out;
-    Vec3d wmd = h / (h.z < 0.0 ? -hl : hl);
-    Vec3f wm(wmd);
-    float dot_o = float(glm::dot(Vec3d(wo), wmd)), dot_i = float(glm::dot(Vec3d(wi), wmd));
-    // Back-facing microfacets contribute nothing (Walter et al. 2007, §5.1, χ⁺ terms).
-    if (dot_i * ci <= 0.f || dot_o * co <= 0.f) return out;
-    // Fresnel is symmetric across the interface, but near the critical angle of the denser side it
-    // is ill-conditioned (√ singularity), so for transmission evaluate it from the less dense side.
-    float cos_f = dot_o;
-    if (!reflect && ((co > 0.f) != (m_eta >= 1.f))) cos_f = dot_i;
-    double Fd = fresnel_dielectric_d(cos_f == dot_o ? glm::dot(Vec3d(wo), wmd) : glm::dot(Vec3d(wi), wmd), m_eta);
-    float F = float(Fd), T = float(1.0 - Fd), pr, pt;
-    lobe_probabilities(ctx, F, T, pr, pt);
-    float aco = std::max(std::fabs(co), kMinCosD);
-    float Dm = m_d.D(wm), G = m_d.G(wo, wi), vis = m_d.pdf_visible(wo, wm);
-    if (reflect) {
-        out.f = m_r * (Dm * G * F / (4.f * aco));  // eq. 20 × |cos θi|
-        out.pdf = pr + pt > 0.f ? vis / (4.f * std::fabs(dot_o)) * pr / (pr + pt) : 0.f;
-        return out;
-    }
-    float denom = float(sqr(dot_i + dot_o / etap));
-    if (!(denom > 0.f)) return out;
-    // eq. 21 × |cos θi| in the Importance form; Radiance divides by η'² (Veach 1997, eq. 5.12).
-    float ft = Dm * T * G * std::fabs(dot_i * dot_o) / (aco * denom);
-    if (ctx.mode == TransportMode::Radiance) ft = float(ft / (etap * etap));
-    out.f = m_t * ft;
-    float dwm_dwi = std::fabs(dot_i) / denom;  // eq. 17
-    out.pdf = pr + pt > 0.f ? vis * dwm_dwi * pt / (pr + pt) : 0.f;
-    return out;
+    const auto ep = lanes().eval_pdf(ctx, wo, wi, true);
+    return EvalPdf{ep.f, ep.pdf};
 }
 
 template <class D>
@@ -237,10 +229,11 @@ std::optional<BxDFSample> RoughDielectric<D>::sample(const BxDFContext& ctx, con
         }
         u_lobe = std::min((u_lobe - p_ms) / (1.f - p_ms), kOneMinusEpsilon);
     }
+    if (!m_ms) return to_optional(lanes().sample(ctx, wo, u_lobe, u, true));
     Vec3f wm = m_d.sample_visible(wo, u);
-    double Fd = fresnel_dielectric_d(dot(wo, wm), m_eta);
-    float pr, pt;
-    lobe_probabilities(ctx, float(Fd), float(1.0 - Fd), pr, pt);
+    float R, T, pr, pt;
+    dielectric_fresnel_pair(dot(wo, wm), m_eta, &R, &T);
+    lobe_probabilities(ctx, R, T, pr, pt);
     if (!(pr + pt > 0.f)) return std::nullopt;
     if (u_lobe < pr / (pr + pt)) {
         s.wi = reflect(wo, wm);
@@ -252,16 +245,9 @@ std::optional<BxDFSample> RoughDielectric<D>::sample(const BxDFContext& ctx, con
         s.eta = etap;
         s.lobe = BxDFFlags::GlossyTransmission;
     }
-    if (m_ms) {
-        s.pdf = pdf(ctx, wo, s.wi);
-        if (!(s.pdf > 0.f)) return std::nullopt;
-        s.weight = eval(ctx, wo, s.wi) / s.pdf;
-        return s;
-    }
-    EvalPdf ep = eval_pdf(ctx, wo, s.wi);  // f does not depend on ctx.allowed, pdf does
-    if (!(ep.pdf > 0.f)) return std::nullopt;
-    s.pdf = ep.pdf;
-    s.weight = ep.f / ep.pdf;
+    s.pdf = pdf(ctx, wo, s.wi);
+    if (!(s.pdf > 0.f)) return std::nullopt;
+    s.weight = eval(ctx, wo, s.wi) / s.pdf;
     return s;
 }
 

@@ -144,6 +144,168 @@ private:
     Spectrum m_r, m_t;
 };
 
+/// The smallest |cos θo| a rough dielectric divides by.
+inline constexpr float kMinCosD = 1e-7f;
+
+/// What a rough dielectric needs of the generalised half vector of (wo, wi) (Walter et al. 2007,
+/// eq. 16), oriented to +z, computed in double: wo·wm and wi·wm of nearly orthogonal vectors lose
+/// most of their digits to cancellation in float, and reciprocity at grazing angles with them.
+struct DielectricHalf {
+    Vec3f wm{0.f, 0.f, 1.f};
+    float dot_o = 0.f, dot_i = 0.f;
+    /// Fresnel reflectance on wm and 1 − it, each rounded from double. Near the critical angle
+    /// of the denser side Fresnel is ill-conditioned (√ singularity), so a transmission pair takes
+    /// it from the less dense side.
+    float R = 0.f, T = 0.f;
+    float denom = 0.f;  ///< (wi·wm + wo·wm/η')², η' = 1 for reflection (eq. 17's denominator)
+    float etap2 = 1.f;  ///< η'²
+    bool ok = false;    ///< both directions off the horizon, |h| > 0, no back-facing microfacet
+};
+DielectricHalf dielectric_half(const Vec3f& wo, const Vec3f& wi, float eta);
+/// Fresnel reflectance (double precision) at cos_i and 1 − it, both rounded to float.
+void dielectric_fresnel_pair(float cos_i, float eta, float* R, float* T);
+
+/// DielectricHalf over a lane type F: one lane at a time (a lane outside `where` gets ok = false),
+/// each lane exactly the float function.
+template <class F>
+struct DielectricHalfT {
+    V3<F> wm;
+    F dot_o, dot_i, R, T, denom, etap2;
+    MaskT<F> ok;
+};
+template <class F>
+inline DielectricHalfT<F> dielectric_half_lanes(const V3<F>& wo, const V3<F>& wi, const F& eta, const MaskT<F>& where) {
+    if constexpr (std::is_same_v<F, float>) {
+        const DielectricHalf h = where ? dielectric_half(wo, wi, eta) : DielectricHalf{};
+        return {h.wm, h.dot_o, h.dot_i, h.R, h.T, h.denom, h.etap2, h.ok};
+    } else {
+        constexpr int W = kLaneWidth<F>;
+        alignas(64) float in[7][W], out[9][W];
+        alignas(64) bool on[W], ok[W];
+        lane::store(in[0], wo.x), lane::store(in[1], wo.y), lane::store(in[2], wo.z);
+        lane::store(in[3], wi.x), lane::store(in[4], wi.y), lane::store(in[5], wi.z);
+        lane::store(in[6], eta), lane::store(on, where);
+        for (int i = 0; i < W; ++i) {
+            const DielectricHalf h = on[i] ? dielectric_half(Vec3f(in[0][i], in[1][i], in[2][i]),
+                                                             Vec3f(in[3][i], in[4][i], in[5][i]), in[6][i])
+                                           : DielectricHalf{};
+            out[0][i] = h.wm.x, out[1][i] = h.wm.y, out[2][i] = h.wm.z, out[3][i] = h.dot_o, out[4][i] = h.dot_i;
+            out[5][i] = h.R, out[6][i] = h.T, out[7][i] = h.denom, out[8][i] = h.etap2, ok[i] = h.ok;
+        }
+        auto L = [&](int k) { return lane::load_as<F>(out[k]); };
+        return {V3<F>(L(0), L(1), L(2)), L(3), L(4), L(5), L(6), L(7), L(8), lane::load_mask_as<MaskT<F>>(ok)};
+    }
+}
+/// dielectric_fresnel_pair over a lane type F, one lane at a time (lanes outside `where`: 0, 0).
+template <class F>
+inline void dielectric_fresnel_pair_lanes(const F& cos_i, const F& eta, const MaskT<F>& where, F* R, F* T) {
+    if constexpr (std::is_same_v<F, float>) {
+        *R = *T = 0.f;
+        if (where) dielectric_fresnel_pair(cos_i, eta, R, T);
+    } else {
+        constexpr int W = kLaneWidth<F>;
+        alignas(64) float c[W], e[W], r[W], t[W];
+        alignas(64) bool on[W];
+        lane::store(c, cos_i), lane::store(e, eta), lane::store(on, where);
+        for (int i = 0; i < W; ++i) {
+            r[i] = t[i] = 0.f;
+            if (on[i]) dielectric_fresnel_pair(c[i], e[i], &r[i], &t[i]);
+        }
+        *R = lane::load_as<F>(r), *T = lane::load_as<F>(t);
+    }
+}
+
+/// The rough dielectric without multiple-scattering compensation over a lane type F, on the lane
+/// distribution DistT<F> (GGXT or BeckmannT): RoughDielectric's single-scattering lobes are its
+/// float instantiation, and the path tracer's packets use it directly. The half vector and Fresnel
+/// are computed one lane at a time in double (dielectric_half_lanes); D, G and the visible-normal
+/// density and sampling run on the packet.
+template <template <class> class DistT, class F>
+struct RoughDielectricT {
+    DistT<F> d;
+    F eta;  ///< η_int / η_ext, not 1
+    RGB<F> r, t;
+
+    struct EvalPdf {
+        RGB<F> f;
+        F pdf;
+    };
+    /// f·|cos θi| (eq. 20 reflection, eq. 21 transmission; Radiance divides by η'², Veach 1997,
+    /// eq. 5.12) and the density of sample() (VNDF, Jacobians eqs. 14 and 17), on the lanes `where`.
+    EvalPdf eval_pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi, const MaskT<F>& where) const {
+        using M = MaskT<F>;
+        const DielectricHalfT<F> h = dielectric_half_lanes<F>(wo, wi, eta, where);
+        const M reflect = wo.z * wi.z > F(0.f);
+        const F pr = has_flag(ctx.allowed, BxDFFlags::Reflection) ? h.R : F(0.f);
+        const F pt = has_flag(ctx.allowed, BxDFFlags::Transmission) ? h.T : F(0.f);
+        const M lobes = pr + pt > F(0.f);
+        const F sum = lane::select(lobes, pr + pt, F(1.f));
+        const F aco = lane::max(lane::abs(wo.z), F(kMinCosD));
+        const F Dm = d.D(h.wm), G = d.G(wo, wi), vis = d.pdf_visible(wo, h.wm);
+        // Reflection.
+        const RGB<F> f_r = r * (Dm * G * h.R / (F(4.f) * aco));
+        const F pdf_r = vis / (F(4.f) * lane::select(h.ok, lane::abs(h.dot_o), F(1.f))) * pr / sum;
+        // Transmission.
+        const M tr = h.denom > F(0.f);
+        const F denom = lane::select(tr, h.denom, F(1.f));
+        F ft = Dm * h.T * G * lane::abs(h.dot_i * h.dot_o) / (aco * denom);
+        if (ctx.mode == TransportMode::Radiance) ft = ft / h.etap2;
+        const F dwm_dwi = lane::abs(h.dot_i) / denom;
+        const F pdf_t = vis * dwm_dwi * pt / sum;
+        const M on = h.ok && (reflect || tr);
+        EvalPdf out;
+        out.f = lane::select(on, lane::select(reflect, f_r, t * ft), RGB<F>(F(0.f)));
+        out.pdf = lane::select(on && lobes, lane::select(reflect, pdf_r, pdf_t), F(0.f));
+        return out;
+    }
+    /// A visible normal (VNDF), then reflection or refraction chosen by Fresnel.
+    BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& u_lobe, const V2<F>& u,
+                          const MaskT<F>& where) const {
+        using M = MaskT<F>;
+        const V3<F> wm = d.sample_visible(wo, u);
+        F R, T;
+        dielectric_fresnel_pair_lanes<F>(dot(wo, wm), eta, where, &R, &T);
+        const F pr = has_flag(ctx.allowed, BxDFFlags::Reflection) ? R : F(0.f);
+        const F pt = has_flag(ctx.allowed, BxDFFlags::Transmission) ? T : F(0.f);
+        const M lobes = pr + pt > F(0.f);
+        const M reflects = u_lobe < pr / lane::select(lobes, pr + pt, F(1.f));
+        const V3<F> wr = -wo + F(2.f) * dot(wo, wm) * wm;  // reflect (math/spherical.h)
+        F etap;
+        V3<F> wt;
+        const M refracts = refract<F>(wo, wm, eta, &etap, &wt) && wt.z * wo.z < F(0.f);
+        BxDFSampleT<F> s;
+        s.wi = lane::select(reflects, wr, wt);
+        const EvalPdf ep = eval_pdf(ctx, wo, s.wi, where && lobes);
+        s.valid = where && wo.z != F(0.f) && lobes && lane::select(reflects, wr.z * wo.z > F(0.f), refracts) &&
+                  ep.pdf > F(0.f);
+        s.pdf = ep.pdf;
+        s.weight = ep.f / lane::select(s.valid, ep.pdf, F(1.f));
+        s.eta = lane::select(reflects, F(1.f), etap);
+        s.lobe = lane::select(lane::int_mask(reflects), IntT<F>(int32_t(BxDFFlags::GlossyReflection)),
+                              IntT<F>(int32_t(BxDFFlags::GlossyTransmission)));
+        return s;
+    }
+};
+
+/// The path tracer's packet parameters of a rough dielectric (kRoughDielectricParams floats): 0 η,
+/// 1–3 specular reflectance, 4–6 specular transmittance, 9 αx, 10 αy, 11 separable shadowing (1 or 0).
+inline constexpr int kRoughDielectricParams = 12;
+template <template <class> class DistT>
+inline void rough_dielectric_packet_params(const RoughDielectricT<DistT, float>& l, float* q) {
+    q[0] = l.eta;
+    for (int c = 0; c < 3; ++c) q[1 + c] = l.r[c], q[4 + c] = l.t[c];
+    q[7] = q[8] = 0.f;
+    q[9] = l.d.ax, q[10] = l.d.ay, q[11] = l.d.separable ? 1.f : 0.f;
+}
+/// The packet form from packet parameters q(k) on the lanes `where`; the other lanes (other models,
+/// whose parameters are not a dielectric's) get η 1.5, α 1 and black reflectance and transmittance.
+template <template <class> class DistT, class F, class Q>
+inline RoughDielectricT<DistT, F> rough_dielectric_lanes(const MaskT<F>& where, Q q) {
+    auto at = [&](int k, float other) { return lane::select(where, q(k), F(other)); };
+    return {DistT<F>{at(9, 1.f), at(10, 1.f), at(11, 0.f) != F(0.f)}, at(0, 1.5f),
+            RGB<F>(at(1, 0.f), at(2, 0.f), at(3, 0.f)), RGB<F>(at(4, 0.f), at(5, 0.f), at(6, 0.f))};
+}
+
 /// Rough dielectric interface: Walter, Marschner, Li, Torrance 2007, "Microfacet Models for
 /// Refraction through Rough Surfaces", EGSR. Reflection eq. 20, transmission eq. 21, generalised
 /// half vector eq. 16, Jacobians eqs. 14 and 17; VNDF sampling replaces their eq. 24–28 sampling.
@@ -165,6 +327,12 @@ public:
     std::string to_string() const;
     bool is_smooth() const { return m_d.effectively_smooth() || m_eta == 1.f; }
     bool multiscatter() const { return m_ms; }
+    /// The single-scattering lobes' packet form (RoughDielectricT<float>).
+    using Lanes = std::conditional_t<std::is_same_v<Distribution, GGX>, RoughDielectricT<GGXT, float>,
+                                     RoughDielectricT<BeckmannT, float>>;
+    Lanes lanes() const { return Lanes{m_d.lanes(), m_eta, m_r, m_t}; }
+    /// Whether the model is exactly its packet form: rough, and without multiple scattering.
+    bool has_lanes() const { return !is_smooth() && !m_ms; }
 
 private:
     struct EvalPdf {

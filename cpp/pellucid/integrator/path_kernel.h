@@ -451,6 +451,14 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const bool any_plastic_b = lane::any(is_plastic_b);
                 const RoughPlasticT<F, BeckmannT<F>> plastic_b = plastic_lanes<F, BeckmannT>(
                     is_plastic_b, [&](int k) { return any_plastic_b ? LD(a.q[k]) : F(0.f); }, ps.coat_tables.data());
+                // The rough dielectrics (GGX or Beckmann), without multiple scattering.
+                const M is_rdiel = fast && kind == F(float(kPacketRoughDielectric));
+                const M is_rdiel_b = fast && kind == F(float(kPacketRoughDielectricBeckmann));
+                const M is_any_rdiel = is_rdiel || is_rdiel_b;
+                const bool any_rdiel = lane::any(is_any_rdiel);
+                auto rdiel_q = [&](int k) { return any_rdiel ? LD(a.q[k]) : F(0.f); };
+                const RoughDielectricT<GGXT, F> rdiel = rough_dielectric_lanes<GGXT, F>(is_any_rdiel, rdiel_q);
+                const RoughDielectricT<BeckmannT, F> rdiel_b = rough_dielectric_lanes<BeckmannT, F>(is_any_rdiel, rdiel_q);
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
 
@@ -463,7 +471,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
                     // (Of the packet forms the Lambertian, the rough conductors and the plastics have
                     // lobes NEE can reach.)
-                    const M off = leak || !(is_lambert || is_rough || is_beckmann || is_plastic || is_plastic_b);
+                    const M off =
+                        leak || !(is_lambert || is_rough || is_beckmann || is_plastic || is_plastic_b || is_any_rdiel);
                     RGB<F> f_fast = lambert.eval(ctx, wo, wi);
                     F pdf_fast = lambert.pdf(ctx, wo, wi);
                     // Each glossy packet form present evaluates on all lanes; its own lanes keep the result.
@@ -476,6 +485,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     eval_form(is_beckmann, beckmann);
                     eval_form(is_plastic, plastic);
                     eval_form(is_plastic_b, plastic_b);
+                    // The dielectrics evaluate f and pdf together (one half vector, in double, a lane at a time).
+                    auto eval_dielectric = [&](const M& where, const auto& form) {
+                        if (!lane::any(where && nee)) return;
+                        const auto ep = form.eval_pdf(ctx, wo, wi, where && nee);
+                        f_fast = lane::select(where, ep.f, f_fast);
+                        pdf_fast = lane::select(where, ep.pdf, pdf_fast);
+                    };
+                    eval_dielectric(is_rdiel, rdiel);
+                    eval_dielectric(is_rdiel_b, rdiel_b);
                     f_fast = lane::select(off, RGB<F>(F(0.f)), f_fast);
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
                     const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
@@ -510,6 +528,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (lane::any(is_beckmann)) merge(is_beckmann, beckmann.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_plastic)) merge(is_plastic, plastic.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_plastic_b)) merge(is_plastic_b, plastic_b.sample(ctx, wo, u_lobe, u2));
+                    if (lane::any(is_rdiel)) merge(is_rdiel, rdiel.sample(ctx, wo, u_lobe, u2, is_rdiel));
+                    if (lane::any(is_rdiel_b)) merge(is_rdiel_b, rdiel_b.sample(ctx, wo, u_lobe, u2, is_rdiel_b));
                     if (lane::any(is_dielectric)) {
                         const SmoothDielectricT<F> diel{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
                                                         RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};

@@ -42,6 +42,7 @@ bool packet_conductor(const BxDF& b, int32_t* kind, float* q) {
     return false;
 }
 
+static_assert(kRoughDielectricParams <= kPacketParams, "a rough dielectric's parameters fit a material's");
 static_assert(kPlasticParams <= kPacketParams, "a plastic's parameters fit a material's packet parameters");
 
 /// A plastic's packet form and parameters (plastic_packet_params): smooth, or rough over GGX or
@@ -63,6 +64,19 @@ bool packet_plastic(const BxDF& b, int32_t* kind, float* q, std::vector<float>* 
     }
     *kind = k;
     return true;
+}
+/// A rough dielectric's packet form: rough and without multiple scattering (has_lanes); its
+/// parameters by rough_dielectric_packet_params.
+bool packet_rough_dielectric(const BxDF& b, int32_t* kind, float* q) {
+    auto put = [&](const auto& r, int32_t k) {
+        if (!r.has_lanes()) return false;
+        rough_dielectric_packet_params(r.lanes(), q);
+        *kind = k;
+        return true;
+    };
+    if (const auto* r = std::get_if<RoughDielectric<GGX>>(&b)) return put(*r, kPacketRoughDielectric);
+    if (const auto* r = std::get_if<RoughDielectric<Beckmann>>(&b)) return put(*r, kPacketRoughDielectricBeckmann);
+    return false;
 }
 }  // namespace
 
@@ -96,7 +110,8 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
             q[0] = p.eta;
             for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
         } else if (!packet_conductor(b, &ps.packet_kind[m], q) &&
-                   !packet_plastic(b, &ps.packet_kind[m], q, &ps.coat_tables)) {
+                   !packet_plastic(b, &ps.packet_kind[m], q, &ps.coat_tables) &&
+                   !packet_rough_dielectric(b, &ps.packet_kind[m], q)) {
             continue;
         }
         ps.packet_flags[m] = uint32_t(flags(b));

@@ -33,6 +33,8 @@ enum PacketKind : int32_t {
     kPacketPlastic = 5,  ///< smooth or GGX rough plastic (RoughPlasticT, plastic_lanes)
     kPacketRoughConductorBeckmann = 6,
     kPacketPlasticBeckmann = 7,  ///< rough plastic over Beckmann (RoughPlasticT<F, BeckmannT<F>>)
+    kPacketRoughDielectric = 8,  ///< GGX rough dielectric without multiple scattering (RoughDielectricT)
+    kPacketRoughDielectricBeckmann = 9,
 };
 constexpr int kPacketParams = 12;
 

@@ -150,6 +150,8 @@ TEST(SimdTargetRender, PacketKindsMatchTheirModels) {
             if (std::holds_alternative<SmoothPlastic>(b) || std::holds_alternative<RoughPlastic<GGX>>(b))
                 allowed.insert(kPacketPlastic);
             if (std::holds_alternative<RoughPlastic<Beckmann>>(b)) allowed.insert(kPacketPlasticBeckmann);
+            if (std::holds_alternative<RoughDielectric<GGX>>(b)) allowed.insert(kPacketRoughDielectric);
+            if (std::holds_alternative<RoughDielectric<Beckmann>>(b)) allowed.insert(kPacketRoughDielectricBeckmann);
             EXPECT_TRUE(allowed.count(ps.packet_kind[m])) << file << ": material " << m << " (BxDF alternative "
                                                            << b.index() << ") has packet kind " << ps.packet_kind[m];
         }
@@ -222,4 +224,39 @@ TEST(SimdTargetRender, ForcingAMissingTargetIsAnError) {
             EXPECT_THROW(set_simd_target(t), Error) << to_string(t);
         }
     }
+}
+
+TEST(SimdTargetRender, RoughDielectricsWithoutMultipleScatteringArePacketForms) {
+    // bench/suite/glass.json's GGX and Beckmann rough dielectrics run as their packet forms; a GGX one
+    // with Kulla–Conty compensation, whose extra lobe has no packet form, stays a BSDF lane.
+    SceneDesc desc = read_json_file(std::string(PELLUCID_SOURCE_DIR) + "/bench/suite/glass.json");
+    Node materials = *desc.root.find("materials");
+    Node frosted = *materials.find("frosted");
+    frosted.set("multiple_scattering", Node::boolean(true));
+    frosted.set("alpha", Node::number(0.6));
+    frosted.set("shadowing", Node::string("height_correlated"));
+    materials.set("compensated", frosted);
+    desc.root.set("materials", materials);
+    auto scene = load_desc(desc);
+    const PathSetup ps = make_path_setup(*scene, 8, 5, true, true, SamplerType::Independent);
+    int ggx = 0, beckmann = 0, compensated = 0;
+    for (size_t m = 0; m < scene->material_bxdfs.size(); ++m) {
+        const BxDF& b = scene->material_bxdfs[m];
+        if (const auto* g = std::get_if<RoughDielectric<GGX>>(&b)) {
+            if (g->multiscatter()) {
+                ++compensated;
+                EXPECT_EQ(ps.packet_kind[m], int32_t(kBSDFLane)) << m;
+            } else {
+                ++ggx;
+                EXPECT_EQ(ps.packet_kind[m], int32_t(kPacketRoughDielectric)) << m;
+            }
+        }
+        if (std::holds_alternative<RoughDielectric<Beckmann>>(b)) {
+            ++beckmann;
+            EXPECT_EQ(ps.packet_kind[m], int32_t(kPacketRoughDielectricBeckmann)) << m;
+        }
+    }
+    EXPECT_EQ(ggx, 1);
+    EXPECT_EQ(beckmann, 1);
+    EXPECT_EQ(compensated, 1);
 }
