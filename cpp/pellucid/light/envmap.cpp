@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "pellucid/math/constants.h"
 #include "pellucid/util/error.h"
@@ -13,6 +14,9 @@ namespace pellucid {
 EnvmapLight::EnvmapLight(const Image& image, float scale, const Mat3f& rotation, std::string name)
     : m_w(image.width), m_h(image.height), m_rot(rotation), m_name(std::move(name)) {
     PELLUCID_CHECK(m_w >= 2 && m_h >= 3 && image.channels >= 3, "envmap image must be at least 2x3 RGB");
+    // (The lane code converts texel and cell coordinates through floats: exact below 2²³.)
+    PELLUCID_CHECK(m_w < (1 << 23) && m_h < (1 << 23),
+                   "envmap image too large: " + std::to_string(m_w) + "x" + std::to_string(m_h));
     std::vector<Spectrum> texels(size_t(m_w) * size_t(m_h));
     for (int y = 0; y < m_h; ++y)
         for (int x = 0; x < m_w; ++x) {
