@@ -14,8 +14,9 @@
 // other lanes go through BSDF one at a time (path_services.h), as do emission, the samplers and
 // the sampling of lights other than mesh emitters (EmitterTable), spheres, constant environments
 // and environment maps (LightTable), until those have packet forms too. Rays that escape the scene
-// take the lights at infinity's radiance as a packet (escaped_radiance). Every lane keeps its own Sampler and the
-// estimates reach the film in (pixel, sample) order, so images do not depend on the thread count.
+// take the radiance of the lights at infinity as a packet (escaped_radiance). Every lane keeps its
+// own Sampler and the estimates reach the film in (pixel, sample) order, so images do not depend on
+// the thread count.
 //
 // Media (medium/medium.h, docs/media.md), when the scene has any: each lane tracks the medium its
 // ray runs through. Before a hit is shaded, distance sampling over the segment either finds a
@@ -326,8 +327,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             } else if (ps.lights.any) {
                 // Next-event estimation on the packet lights: each lane picks its light as
                 // path_services::sample_light does, and the lanes whose light is a sphere, a
-                // constant environment or an environment map sample it together; the shadow ray ends at the sphere's
-                // point (spawn_ray_to) or leaves toward the environment (spawn_ray).
+                // constant environment or an environment map sample it together; the shadow ray
+                // ends at the sphere's point (spawn_ray_to) or leaves toward the environment
+                // (spawn_ray).
                 bool any_packet = false;
                 for (int i = 0; i < W; ++i) {
                     a.light[i] = 0;

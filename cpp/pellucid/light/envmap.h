@@ -68,7 +68,8 @@ inline F atan_unit(const F& t) {
     const auto big = t > F(0.41421356f);
     const F s = lane::select(big, (t - F(1.f)) / (t + F(1.f)), t);
     const F z = s * s;
-    const F p = F(-0.33333316f) + z * (F(0.19998471f) + z * (F(-0.14243539f) + z * (F(0.10593848f) + z * F(-0.060782962f))));
+    const F p = F(-0.33333316f) +
+                z * (F(0.19998471f) + z * (F(-0.14243539f) + z * (F(0.10593848f) + z * F(-0.060782962f))));
     const F a = s + s * (z * p);
     return lane::select(big, F(kPiOver4) + a, a);
 }

@@ -120,8 +120,8 @@ inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>
 /// MIS-weighted against NEE's density for it (bsdf_hit_weight: the previous vertex's BSDF density
 /// prev_pdf, `specular` after a delta bounce), summed in index order as path_services::escaped does.
 template <class F>
-inline RGB<F> escaped_radiance(const LightTable& t, const V3<F>& d, bool use_mis, bool use_nee, const MaskT<F>& specular,
-                               const F& prev_pdf) {
+inline RGB<F> escaped_radiance(const LightTable& t, const V3<F>& d, bool use_mis, bool use_nee,
+                               const MaskT<F>& specular, const F& prev_pdf) {
     RGB<F> L(F(0.f));
     for (size_t k = 0; k < t.infinite.size(); ++k) {
         const int32_t li = t.infinite[k];

@@ -141,7 +141,8 @@ template <class F>
 inline F piecewise_2d_pdf(const Piecewise2DLanes<F>& d, const V2<F>& p) {
     using I = IntT<F>;
     auto cell = [](const F& t, const I& n) {  // ⌊t·n⌋ clamped to [0, n − 1]
-        const F x = lane::floor(lane::select(t > F(0.f), lane::select(t < F(1.f), t, F(1.f)), F(0.f)) * lane::to_float(n));
+        const F c = lane::select(t > F(0.f), lane::select(t < F(1.f), t, F(1.f)), F(0.f));
+        const F x = lane::floor(c * lane::to_float(n));
         return lane::min(detail::whole_to_int<F>(x), n - I(1));
     };
     return piecewise_2d_cell_pdf<F>(d, cell(p.x, d.nu), cell(p.y, d.nv));

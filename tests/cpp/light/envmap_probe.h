@@ -48,9 +48,10 @@ void run(const In& in, Out& out) {
         const EnvmapLanes<F> e = envmap_lanes<F>(*in.lights, light);
         const RGB<F> Le = envmap_Le<F>(e, d);
         put(envmap_pdf<F>(e, d)), put(Le.r), put(Le.g), put(Le.b);
-        const RGB<F> esc = escaped_radiance<F>(*in.lights, d, true, true, lane::load_mask_as<M>(spec), L(in.prev_pdf));
+        const M specular = lane::load_mask_as<M>(spec);
+        const RGB<F> esc = escaped_radiance<F>(*in.lights, d, true, true, specular, L(in.prev_pdf));
         put(esc.r), put(esc.g), put(esc.b);
-        const RGB<F> esc_nee = escaped_radiance<F>(*in.lights, d, false, true, lane::load_mask_as<M>(spec), L(in.prev_pdf));
+        const RGB<F> esc_nee = escaped_radiance<F>(*in.lights, d, false, true, specular, L(in.prev_pdf));
         put(esc_nee.r);
     }
 }
