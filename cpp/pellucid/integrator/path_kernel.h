@@ -12,9 +12,11 @@
 // shading frame, the roulette. The BSDF is dispatched per lane group: lanes whose material is the
 // packet Lambertian (PathSetup::packet_lambertian) are shaded by LambertianT<F> in one pass; the
 // other lanes go through BSDF one at a time (path_services.h), as do emission, the samplers and
-// the sampling of lights other than mesh emitters (EmitterTable), spheres and constant environments
-// (LightTable), until those have packet forms too. Every lane keeps its own Sampler and the
-// estimates reach the film in (pixel, sample) order, so images do not depend on the thread count.
+// the sampling of lights other than mesh emitters (EmitterTable), spheres, constant environments
+// and environment maps (LightTable), until those have packet forms too. Rays that escape the scene
+// take the radiance of the lights at infinity as a packet (escaped_radiance). Every lane keeps its
+// own Sampler and the estimates reach the film in (pixel, sample) order, so images do not depend on
+// the thread count.
 //
 // Media (medium/medium.h, docs/media.md), when the scene has any: each lane tracks the medium its
 // ray runs through. Before a hit is shaded, distance sampling over the segment either finds a
@@ -99,6 +101,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         float q[kPacketParams][W];  // the packet form's parameters (PathSetup::packet_params)
         float kind[W];              // PacketKind of the lane's material
         bool fast[W], goes_on[W], nee[W];
+        bool esc[W];                   // the ray escaped: the lights at infinity, as a packet
+        float edx[W], edy[W], edz[W];  // its direction
         bool in_medium[W];   // this vertex is a collision in a medium (the phase function scatters)
         bool crossing[W];    // the ray crossed a null boundary: the path goes on unchanged
         bool at_exit[W];     // this vertex is a BSSRDF's exit point (its exit lobe scatters)
@@ -188,7 +192,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             // One lane at a time: what has no packet form yet.
             for (int i = 0; i < W; ++i) {
                 a.fast[i] = a.goes_on[i] = a.nee[i] = a.nee_ok[i] = a.s_ok[i] = a.delta[i] = a.plight[i] = false;
-                a.in_medium[i] = a.crossing[i] = a.at_exit[i] = a.to_exit[i] = false;
+                a.in_medium[i] = a.crossing[i] = a.at_exit[i] = a.to_exit[i] = a.esc[i] = false;
                 a.Ler[i] = a.Leg[i] = a.Leb[i] = a.le_pdf[i] = 0.f;
                 a.kind[i] = 0.f;
                 if (!active[i]) continue;
@@ -245,6 +249,12 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         continue;
                     }
                 }
+                if (!hit[i] && !ps.lights.infinite.empty()) {  // escaped: the lights at infinity, below
+                    a.esc[i] = true;
+                    a.edx[i] = ray[i].d.x, a.edy[i] = ray[i].d.y, a.edz[i] = ray[i].d.z;
+                    a.le_pdf[i] = -1.f;  // weighted already
+                    continue;
+                }
                 if (!hit[i]) {  // escaped: the lights at infinity
                     const Spectrum Le = path_services::escaped(ps, prev, ray[i].d, a.specular[i], a.prev_pdf[i]);
                     a.Ler[i] = Le.r;
@@ -283,6 +293,19 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
             }
 
+            // Escaped rays: the radiance of the lights at infinity (light table), MIS-weighted, for
+            // all lanes at once.
+            if (!ps.lights.infinite.empty()) {
+                const M esc = LM(a.esc);
+                if (lane::any(esc)) {
+                    const RGB<F> Le = escaped_radiance<F>(ps.lights, V3<F>(LD(a.edx), LD(a.edy), LD(a.edz)), ps.use_mis,
+                                                          ps.use_nee, LM(a.specular), LD(a.prev_pdf));
+                    ST(a.Ler, lane::select(esc, Le.r, LD(a.Ler)));
+                    ST(a.Leg, lane::select(esc, Le.g, LD(a.Leg)));
+                    ST(a.Leb, lane::select(esc, Le.b, LD(a.Leb)));
+                }
+            }
+
             // Next-event estimation on the emitter table, for all lanes at once: a point on an
             // emitting triangle and the shadow ray toward it (SurfaceInteraction::spawn_ray_to:
             // both ends offset off their surfaces).
@@ -303,9 +326,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (a.nee_ok[i]) shadow[i] = Ray{Vec3f(b[0][i], b[1][i], b[2][i]), Vec3f(b[3][i], b[4][i], b[5][i]), 1.f - 1e-4f};
             } else if (ps.lights.any) {
                 // Next-event estimation on the packet lights: each lane picks its light as
-                // path_services::sample_light does, and the lanes whose light is a sphere or a
-                // constant environment sample it together; the shadow ray ends at the sphere's
-                // point (spawn_ray_to) or leaves toward the environment (spawn_ray).
+                // path_services::sample_light does, and the lanes whose light is a sphere, a
+                // constant environment or an environment map sample it together; the shadow ray
+                // ends at the sphere's point (spawn_ray_to) or leaves toward the environment
+                // (spawn_ray).
                 bool any_packet = false;
                 for (int i = 0; i < W; ++i) {
                     a.light[i] = 0;

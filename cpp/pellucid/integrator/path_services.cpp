@@ -119,7 +119,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     std::vector<float> pmf(scene.lights.size());
     for (size_t i = 0; i < pmf.size(); ++i) pmf[i] = scene.light_pmf(i);
     ps.emitters = make_emitter_table(scene.lights, pmf);
-    if (ps.emitters.empty()) ps.lights = make_light_table(scene.lights);
+    if (ps.emitters.empty()) ps.lights = make_light_table(scene.lights, pmf);
     ps.media = scene.has_media();
     ps.camera_medium = scene.camera_medium;
     ps.medium_nee = scene.integrator.medium_nee;

@@ -64,7 +64,8 @@ struct PathSetup {
     /// then lights are sampled one lane at a time (path_services::sample_light).
     EmitterTable emitters;
     /// Without an emitter table: the lights NEE samples as packets (sphere area lights, constant
-    /// environments; light/light_table.h), once a lane has picked one (path_services::pick_light).
+    /// environments, environment maps; light/light_table.h), once a lane has picked one
+    /// (path_services::pick_light), and the lights at infinity that escaping rays see.
     LightTable lights;
     /// The scene has media or null boundaries (medium/medium.h): paths track the medium they are
     /// in, which starts as camera_medium (-1: none).

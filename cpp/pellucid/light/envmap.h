@@ -14,21 +14,178 @@
 // +y). Radiance is bilinear between texels, with column x centred at u = (x + ½)/W (wrapping in u)
 // and row y centred at v = y/(H − 1), so the first and last rows sit on the poles.
 //
-// Sampling: a piecewise-constant Distribution2D over the W × (H − 1) interpolation cells, each
-// weighted by the exact integral of the channel-averaged bilinear radiance times sin θ over the
-// cell; inside a cell (u, v) is uniform. The solid-angle density is p(u, v) / (2π² sin θ)
-// (pbrt-v4 §12.5.2, eq. 12.24: dω = sin θ dθ dφ = 2π² sin θ du dv).
+// Sampling: a piecewise-constant distribution (sampling/piecewise_2d.h, float CDFs) over the
+// W × (H − 1) interpolation cells, each weighted by the exact integral of the channel-averaged
+// bilinear radiance times sin θ over the cell; inside a cell (u, v) is uniform. The solid-angle
+// density is p(u, v) / (2π² sin θ) (pbrt-v4 §12.5.2, eq. 12.24: dω = sin θ dθ dφ = 2π² sin θ du dv).
+//
+// Sampling, its density and the radiance are written once over a lane type F (simd/lane.h):
+// EnvmapLight's sample_li, pdf_li, Le and lookup are the float instantiation, and the packet path
+// tracer runs the same templates on its lanes (light/light_table.h). They use IEEE-exact lane
+// operations only, and no libm: the angles come from detail::sincos_two_pi (warp.h) and
+// envmap_detail::atan2_lanes below, so every lane gives the bits of the float instantiation.
 #pragma once
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "pellucid/image/image.h"
 #include "pellucid/light/light_types.h"
+#include "pellucid/math/constants.h"
+#include "pellucid/math/lane_types.h"
 #include "pellucid/math/transform.h"
-#include "pellucid/sampling/distribution_2d.h"
+#include "pellucid/sampling/piecewise_2d.h"
+#include "pellucid/sampling/warp.h"
 
 namespace pellucid {
+
+/// An environment map as lanes read it: the sampling distribution and the texels in one float
+/// buffer (by offsets, per lane), the image size and the rotation to world (column-major:
+/// rot[3c + k] is row k of column c).
+template <class F>
+struct EnvmapLanes {
+    Piecewise2DLanes<F> dist;  ///< over (u − half texel, v): w × (h − 1) cells
+    IntT<F> texels;            ///< offset of texel (0, 0)'s red; texel (x, y) at texels + 3(y·w + x)
+    IntT<F> w, h;
+    F rot[9];
+};
+
+template <class F>
+struct EnvmapSampleT {
+    MaskT<F> valid;
+    V3<F> wi;  ///< world, unit
+    F pdf;     ///< solid angle
+    RGB<F> L;
+};
+
+namespace envmap_detail {
+/// atan t for t ∈ [0, 1]: above tan(π/8), π/4 + atan((t − 1)/(t + 1)); then s + s·z·P(z), z = s²,
+/// |s| ≤ tan(π/8), with P a degree-4 polynomial fitted to (atan s − s)/(s z) on that interval
+/// (weighted least squares on the relative error; fit error 7e-10, below float rounding).
+template <class F>
+inline F atan_unit(const F& t) {
+    const auto big = t > F(0.41421356f);
+    const F s = lane::select(big, (t - F(1.f)) / (t + F(1.f)), t);
+    const F z = s * s;
+    const F p = F(-0.33333316f) +
+                z * (F(0.19998471f) + z * (F(-0.14243539f) + z * (F(0.10593848f) + z * F(-0.060782962f))));
+    const F a = s + s * (z * p);
+    return lane::select(big, F(kPiOver4) + a, a);
+}
+/// atan2(y, x) ∈ [−π, π] (0 for y = x = 0; the sign of y kept).
+template <class F>
+inline F atan2_lanes(const F& y, const F& x) {
+    const F ax = lane::abs(x), ay = lane::abs(y);
+    const auto steep = ay > ax;
+    const F num = lane::select(steep, ax, ay), den = lane::select(steep, ay, ax);
+    const F t = lane::select(den > F(0.f), num / lane::select(den > F(0.f), den, F(1.f)), F(0.f));
+    F a = atan_unit<F>(t);
+    a = lane::select(steep, F(kPiOver2) - a, a);
+    a = lane::select(x < F(0.f), F(kPi) - a, a);
+    return lane::copysign(a, y);
+}
+}  // namespace envmap_detail
+
+/// Mitsuba 3's lat-long mapping in the map's frame (see the header comment): the direction of
+/// (u, v) ∈ [0,1)×[0,1], and sin θ.
+template <class F>
+inline V3<F> envmap_uv_to_direction(const V2<F>& uv, F* sin_theta) {
+    F cp, sp, ct, st;
+    detail::sincos_two_pi<F>(uv.x, &cp, &sp);              // φ = 2π u
+    detail::sincos_two_pi<F>(uv.y * F(0.5f), &ct, &st);  // θ = π v = 2π (v/2)
+    *sin_theta = st;
+    return V3<F>(sp * st, ct, lane::neg(cp) * st);
+}
+/// (u, v) of a unit direction d of the map's frame, u ∈ [0, 1); sin_theta = √(d.x² + d.z²).
+template <class F>
+inline V2<F> envmap_direction_to_uv(const V3<F>& d, const F& sin_theta) {
+    F u = envmap_detail::atan2_lanes<F>(d.x, lane::neg(d.z)) * F(kInv2Pi);
+    u = lane::select(u < F(0.f), u + F(1.f), u);
+    u = lane::select(u < F(1.f), u, F(0.f));
+    const F v = envmap_detail::atan2_lanes<F>(sin_theta, d.y) * F(kInvPi);
+    return V2<F>{u, v};
+}
+
+/// Bilinear radiance at (u, v) ∈ [0,1]² of the map's frame (column x centred at u = (x + ½)/w,
+/// wrapping; row y at v = y/(h − 1)).
+template <class F>
+inline RGB<F> envmap_lookup(const EnvmapLanes<F>& e, const V2<F>& uv) {
+    using I = IntT<F>;
+    const F fw = lane::to_float(e.w), fh = lane::to_float(e.h);
+    F s = uv.x - F(0.5f) / fw;
+    s = s - lane::floor(s);
+    s = lane::select(s > F(0.f), s, F(0.f));  // (NaN to 0: every texel index stays inside the map)
+    const F v = lane::select(uv.y > F(0.f), lane::select(uv.y < F(1.f), uv.y, F(1.f)), F(0.f));
+    const F fx = s * fw, fy = v * (fh - F(1.f));
+    const I x0 = lane::min(detail::whole_to_int<F>(lane::floor(fx)), e.w - I(1));
+    const I y0 = lane::min(detail::whole_to_int<F>(lane::floor(fy)), e.h - I(2));
+    const F wx = fx - lane::to_float(x0), wy = fy - lane::to_float(y0);
+    const I x1 = lane::select(x0 + I(1) < e.w, x0 + I(1), I(0));
+    const I r0 = e.texels + I(3) * (y0 * e.w), r1 = r0 + I(3) * e.w;
+    const I a = r0 + I(3) * x0, b = r0 + I(3) * x1, c = r1 + I(3) * x0, d = r1 + I(3) * x1;
+    const float* t = e.dist.base;
+    const F ox = F(1.f) - wx, oy = F(1.f) - wy;
+    auto channel = [&](int k) {
+        const I kk = I(k);
+        const F top = lane::gather(t, a + kk) * ox + lane::gather(t, b + kk) * wx;
+        const F bottom = lane::gather(t, c + kk) * ox + lane::gather(t, d + kk) * wx;
+        return top * oy + bottom * wy;
+    };
+    return RGB<F>(channel(0), channel(1), channel(2));
+}
+
+/// The map's frame from world (the transpose of the rotation) and back.
+template <class F>
+inline V3<F> envmap_to_local(const EnvmapLanes<F>& e, const V3<F>& w) {
+    const F* r = e.rot;
+    return V3<F>(r[0] * w.x + r[1] * w.y + r[2] * w.z, r[3] * w.x + r[4] * w.y + r[5] * w.z,
+                 r[6] * w.x + r[7] * w.y + r[8] * w.z);
+}
+template <class F>
+inline V3<F> envmap_to_world(const EnvmapLanes<F>& e, const V3<F>& d) {
+    const F* r = e.rot;
+    return V3<F>(r[0] * d.x + r[3] * d.y + r[6] * d.z, r[1] * d.x + r[4] * d.y + r[7] * d.z,
+                 r[2] * d.x + r[5] * d.y + r[8] * d.z);
+}
+
+/// Radiance arriving along −wi from world direction wi (unit).
+template <class F>
+inline RGB<F> envmap_Le(const EnvmapLanes<F>& e, const V3<F>& wi) {
+    const V3<F> d = envmap_to_local<F>(e, wi);
+    return envmap_lookup<F>(e, envmap_direction_to_uv<F>(d, lane::sqrt(d.x * d.x + d.z * d.z)));
+}
+
+/// Solid-angle density with which envmap_sample produces world direction wi (unit); 0 at the poles.
+template <class F>
+inline F envmap_pdf(const EnvmapLanes<F>& e, const V3<F>& wi) {
+    const V3<F> d = envmap_to_local<F>(e, wi);
+    const F st = lane::sqrt(d.x * d.x + d.z * d.z);
+    const V2<F> uv = envmap_direction_to_uv<F>(d, st);
+    F s = uv.x - F(0.5f) / lane::to_float(e.w);
+    s = s - lane::floor(s);
+    const F p = piecewise_2d_pdf<F>(e.dist, V2<F>{s, uv.y});
+    const auto ok = st > F(0.f);
+    return lane::select(ok, p / (F(2.f * kPi * kPi) * lane::select(ok, st, F(1.f))), F(0.f));
+}
+
+/// A direction with u ∈ [0,1)²: a cell by its weight, uniform inside it, then to world.
+template <class F>
+inline EnvmapSampleT<F> envmap_sample(const EnvmapLanes<F>& e, const V2<F>& u) {
+    const Piecewise2DSample<F> ps = sample_piecewise_2d<F>(e.dist, u);
+    F ux = ps.p.x + F(0.5f) / lane::to_float(e.w);
+    ux = lane::select(ux < F(1.f), ux, ux - F(1.f));
+    const V2<F> uv{ux, ps.p.y};
+    F st;
+    const V3<F> d = envmap_uv_to_direction<F>(uv, &st);
+    const auto ok = ps.pdf > F(0.f) && st > F(0.f);
+    EnvmapSampleT<F> s;
+    s.wi = normalize(envmap_to_world<F>(e, d));
+    s.pdf = ps.pdf / (F(2.f * kPi * kPi) * lane::select(ok, st, F(1.f)));
+    s.L = envmap_lookup<F>(e, uv);
+    s.valid = ok && !is_black(s.L) && s.pdf < F(kInfinity);
+    return s;
+}
 
 class EnvmapLight {
 public:
@@ -37,10 +194,10 @@ public:
     EnvmapLight(const Image& image, float scale, const Mat3f& rotation, std::string name = "");
 
     /// Radiance arriving along -dir from direction dir (world, unit).
-    Spectrum Le(const Vec3f& dir) const { return lookup(direction_to_uv(to_local(dir))); }
+    Spectrum Le(const Vec3f& dir) const { return envmap_Le<float>(lanes(), dir); }
     std::optional<LightLiSample> sample_li(const LightSampleContext& ctx, Vec2f u) const;
     /// Solid-angle density with which sample_li produces direction wi (world, unit).
-    float pdf_li(const LightSampleContext& ctx, const Vec3f& wi) const;
+    float pdf_li(const LightSampleContext&, const Vec3f& wi) const { return envmap_pdf<float>(lanes(), wi); }
     /// Power through a disk of the scene's bounding radius: π r² ∫ L̄(ω) dω (as ConstantLight).
     float power(float scene_radius) const;
     /// ∫ over the sphere of the channel-averaged radiance (exact for the bilinear radiance).
@@ -48,18 +205,39 @@ public:
     std::string to_string() const;
 
     /// Mitsuba 3's lat-long mapping in the map's frame (see the header comment).
-    static Vec3f uv_to_direction(Vec2f uv, float* sin_theta = nullptr);
-    static Vec2f direction_to_uv(const Vec3f& d);
+    static Vec3f uv_to_direction(Vec2f uv, float* sin_theta = nullptr) {
+        float st;
+        const Vec3f d = envmap_uv_to_direction<float>(uv, &st);
+        if (sin_theta) *sin_theta = st;
+        return d;
+    }
+    static Vec2f direction_to_uv(const Vec3f& d) {
+        return envmap_direction_to_uv<float>(d, std::sqrt(d.x * d.x + d.z * d.z));
+    }
     /// Bilinear radiance at (u, v) ∈ [0,1]² of the map's frame.
-    Spectrum lookup(Vec2f uv) const;
+    Spectrum lookup(Vec2f uv) const { return envmap_lookup<float>(lanes(), uv); }
+
+    /// The map as the lane templates read it (float instantiation).
+    EnvmapLanes<float> lanes() const {
+        EnvmapLanes<float> e{{m_data->data(), m_dist.marginal, m_dist.conditional, m_dist.nu, m_dist.nv},
+                             m_texels, m_w, m_h, {}};
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 3; ++k) e.rot[3 * c + k] = m_rot[c][k];
+        return e;
+    }
+    /// The buffer lanes() reads (CDFs and texels), shared so that a light table can keep it.
+    const std::shared_ptr<const std::vector<float>>& data() const { return m_data; }
+    const Piecewise2DLayout& layout() const { return m_dist; }
+    int32_t texel_offset() const { return m_texels; }
+    int width() const { return m_w; }
+    int height() const { return m_h; }
+    const Mat3f& rotation() const { return m_rot; }
 
 private:
-    Vec3f to_local(const Vec3f& w) const { return glm::transpose(m_rot) * w; }
-    float half_texel() const { return 0.5f / float(m_w); }
-
     int m_w = 0, m_h = 0;
-    std::vector<Spectrum> m_texels;  ///< m_h rows of m_w texels, scale applied
-    Distribution2D m_dist;           ///< over (u − half texel, v): m_w × (m_h − 1) cells
+    std::shared_ptr<const std::vector<float>> m_data;  ///< the CDFs, then m_h rows of m_w RGB texels (scale applied)
+    Piecewise2DLayout m_dist;                           ///< over (u − half texel, v): m_w × (m_h − 1) cells
+    int32_t m_texels = 0;
     Mat3f m_rot{1.f};
     double m_integral = 0.0;
     std::string m_name;

@@ -2,17 +2,39 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/light/light_table.h"
 
+#include <cstdint>
+
 #include "pellucid/light/light.h"
+#include "pellucid/util/error.h"
 
 namespace pellucid {
 
 template <class LightT>
-LightTable make_light_table(const std::vector<LightT>& lights) {
+LightTable make_light_table(const std::vector<LightT>& lights, const std::vector<float>& pmf) {
     LightTable t;
     t.data.assign(LightTable::kStride * lights.size(), 0.f);
+    t.idata.assign(LightTable::kIntStride * lights.size(), 0);
     t.kind.assign(lights.size(), LightTable::kNone);
+    std::vector<const EnvmapLight*> maps;
+    for (const auto& l : lights)
+        if (const auto* e = std::get_if<EnvmapLight>(&l)) maps.push_back(e);
+    // One map: its own buffer. Several: copies in one pool, so that one base serves every lane.
+    if (maps.size() == 1) {
+        t.env = maps[0]->data();
+    } else if (maps.size() > 1) {
+        size_t n = 0;
+        for (const EnvmapLight* e : maps) n += e->data()->size();
+        PELLUCID_CHECK(n < size_t(INT32_MAX), "environment maps too large for one light table");
+        auto pool = std::make_shared<std::vector<float>>();
+        pool->reserve(n);
+        for (const EnvmapLight* e : maps) pool->insert(pool->end(), e->data()->begin(), e->data()->end());
+        t.env = std::move(pool);
+    }
+    int32_t pool_at = 0;
     for (size_t i = 0; i < lights.size(); ++i) {
         float* row = &t.data[LightTable::kStride * i];
+        int32_t* irow = &t.idata[LightTable::kIntStride * i];
+        irow[3] = 2, irow[4] = 3;
         Spectrum L(0.f);
         if (const auto* a = std::get_if<AreaLight>(&lights[i]); a && a->is_sphere()) {
             t.kind[i] = LightTable::kSphere;
@@ -24,14 +46,32 @@ LightTable make_light_table(const std::vector<LightT>& lights) {
         } else if (const auto* k = std::get_if<ConstantLight>(&lights[i])) {
             t.kind[i] = LightTable::kConstant;
             L = k->radiance();
+        } else if (const auto* e = std::get_if<EnvmapLight>(&lights[i])) {
+            t.kind[i] = LightTable::kEnvmap;
+            for (int c = 0; c < 3; ++c)
+                for (int k2 = 0; k2 < 3; ++k2) row[1 + 3 * c + k2] = e->rotation()[c][k2];
+            irow[0] = pool_at + e->layout().marginal;
+            irow[1] = pool_at + e->layout().conditional;
+            irow[2] = pool_at + e->texel_offset();
+            irow[3] = e->width(), irow[4] = e->height();
+            if (maps.size() > 1) pool_at += int32_t(e->data()->size());
+            row[0] = float(t.kind[i]);
+            t.infinite.push_back(int32_t(i));
+            t.infinite_pmf.push_back(i < pmf.size() ? pmf[i] : 0.f);
+            t.any = true;
+            continue;
         } else {
             continue;
         }
         row[0] = float(t.kind[i]);
         for (int c = 0; c < 3; ++c) row[7 + c] = L[c];
+        if (t.kind[i] == LightTable::kConstant) {
+            t.infinite.push_back(int32_t(i));
+            t.infinite_pmf.push_back(i < pmf.size() ? pmf[i] : 0.f);
+        }
         t.any = true;
     }
     return t;
 }
-template LightTable make_light_table<Light>(const std::vector<Light>&);
+template LightTable make_light_table<Light>(const std::vector<Light>&, const std::vector<float>&);
 }  // namespace pellucid

@@ -1,30 +1,64 @@
 // The lights next-event estimation samples as packets when the scene has no emitter table
-// (area.h): sphere area lights and constant environments, one row each, read by the light's index
-// with gathers. The light is still picked one lane at a time (Scene::sample_light, whose
+// (area.h): sphere area lights, constant environments and environment maps, one row each, read by
+// the light's index with gathers. The light is still picked one lane at a time (Scene::sample_light, whose
 // double-precision CDF stays the one choice); lanes whose light has no row here are sampled one at
 // a time (path_services::sample_light). The scalar sample_li of these lights is the float
-// instantiation of the same code (sample_sphere, square_to_uniform_sphere_lanes<F>).
+// instantiation of the same code (sample_sphere, square_to_uniform_sphere_lanes<F>, envmap_sample).
+// An environment map's row holds its rotation, and its integer row the offsets of its CDFs and
+// texels in one buffer (LightTable::env) that packets gather from, so lanes of different maps mix.
+// The table also lists the lights at infinity, for the radiance of escaping rays (escaped_radiance).
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <vector>
 
+#include <memory>
+
 #include "pellucid/light/area.h"
 #include "pellucid/light/constant.h"
+#include "pellucid/light/envmap.h"
+#include "pellucid/sampling/mis.h"
 
 namespace pellucid {
 
-/// Per light, kStride floats: kind (LightTable::Kind as a float), centre (3), radius, flip (1 or
-/// 0), two-sided (1 or 0), radiance (3), one float of padding.
+/// Per light, kStride floats: kind (LightTable::Kind as a float), then for a sphere its centre (3),
+/// radius, flip (1 or 0), two-sided (1 or 0), radiance (3); for a constant environment its radiance
+/// at 7..9; for an environment map its rotation (9, column-major) at 1..9; one float of padding.
+/// Per light, kIntStride integers: for an environment map the offsets in env of its marginal
+/// CDF, its conditional CDFs and its texels, its width and height; for other lights offsets 0 and
+/// the size 2 × 3, which keep their lanes' (unused) reads inside any map's buffer.
 struct LightTable {
-    enum Kind : int { kNone = 0, kSphere = 1, kConstant = 2 };
+    enum Kind : int { kNone = 0, kSphere = 1, kConstant = 2, kEnvmap = 3 };
     static constexpr int kStride = 11;
+    static constexpr int kIntStride = 5;
     std::vector<float> data;
+    std::vector<int32_t> idata;
     std::vector<int32_t> kind;  ///< per light: Kind
     bool any = false;           ///< some light has a packet form
+    /// The environment maps' buffer: the one map's own, or their copies one after another.
+    std::shared_ptr<const std::vector<float>> env;
+    const float* env_base() const { return env ? env->data() : nullptr; }
+    /// The lights at infinity (constant environments, environment maps) in index order, with the
+    /// probability with which NEE picks each.
+    std::vector<int32_t> infinite;
+    std::vector<float> infinite_pmf;
 };
 
+/// The environment map of row(s) `light` as lanes read it (light_table's rows for kEnvmap).
+template <class F>
+inline EnvmapLanes<F> envmap_lanes(const LightTable& t, const IntT<F>& light) {
+    using I = IntT<F>;
+    const I base = light * I(LightTable::kStride), ibase = light * I(LightTable::kIntStride);
+    auto N = [&](int k) { return lane::gather(t.idata.data() + k, ibase); };
+    EnvmapLanes<F> e;
+    e.w = N(3), e.h = N(4);
+    e.dist = Piecewise2DLanes<F>{t.env_base(), N(0), N(1), e.w, e.h - I(1)};
+    e.texels = N(2);
+    for (int k = 0; k < 9; ++k) e.rot[k] = lane::gather(t.data.data() + 1 + k, base);
+    return e;
+}
+
 /// A light sample in kLaneWidth<F> lanes: the point (for a sphere) and what NEE needs of it.
-/// infinite: the constant environment (the shadow ray has no end).
+/// infinite: a light at infinity, a constant environment or a map (the shadow ray has no end).
 template <class F>
 struct LightTableSample {
     MaskT<F> valid, infinite;
@@ -34,7 +68,8 @@ struct LightTableSample {
 };
 
 /// Sample light `light` (an index with a row in t, per lane) as seen from p_ref with u: a sphere by
-/// sample_sphere, a constant environment uniformly over the sphere of directions. Each lane's
+/// sample_sphere, a constant environment uniformly over the sphere of directions, an environment
+/// map by envmap_sample. Each lane's
 /// results depend on its own inputs only; lanes of other lights come back invalid and zero.
 template <class F>
 inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>& light, const V3<F>& p_ref,
@@ -46,6 +81,7 @@ inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>
     auto E = [&](int k) { return lane::gather(d + k, base); };
     const F kind = E(0);
     const M sphere = kind == F(float(LightTable::kSphere)), constant = kind == F(float(LightTable::kConstant));
+    const M envmap = kind == F(float(LightTable::kEnvmap));
     const RGB<F> radiance(E(7), E(8), E(9));
     LightTableSample<F> s;
     s.valid = M(false);
@@ -69,10 +105,44 @@ inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>
         s.L = lane::select(constant, radiance, s.L);
         s.valid = s.valid || constant;
     }
+    if (lane::any(envmap)) {
+        const EnvmapSampleT<F> es = envmap_sample<F>(envmap_lanes<F>(t, light), u);
+        s.wi = lane::select(envmap, es.wi, s.wi);
+        s.pdf = lane::select(envmap, es.pdf, s.pdf);
+        s.L = lane::select(envmap, es.L, s.L);
+        s.valid = s.valid || (envmap && es.valid);
+        s.infinite = s.infinite || envmap;
+    }
     return s;
 }
 
-/// The rows of `lights` (a Light variant list, light.h).
+/// Radiance that rays escaping the scene along d (unit) pick up from the lights at infinity, each
+/// MIS-weighted against NEE's density for it (bsdf_hit_weight: the previous vertex's BSDF density
+/// prev_pdf, `specular` after a delta bounce), summed in index order as path_services::escaped does.
+template <class F>
+inline RGB<F> escaped_radiance(const LightTable& t, const V3<F>& d, bool use_mis, bool use_nee,
+                               const MaskT<F>& specular, const F& prev_pdf) {
+    RGB<F> L(F(0.f));
+    for (size_t k = 0; k < t.infinite.size(); ++k) {
+        const int32_t li = t.infinite[k];
+        const float* row = &t.data[size_t(LightTable::kStride) * size_t(li)];
+        RGB<F> Le;
+        F pdf;
+        if (t.kind[size_t(li)] == LightTable::kEnvmap) {
+            const EnvmapLanes<F> e = envmap_lanes<F>(t, IntT<F>(li));
+            Le = envmap_Le<F>(e, d);
+            pdf = envmap_pdf<F>(e, d);
+        } else {
+            Le = RGB<F>(F(row[7]), F(row[8]), F(row[9]));
+            pdf = F(kInv4Pi);
+        }
+        L += Le * bsdf_hit_weight<F>(use_mis, use_nee, specular, prev_pdf, F(t.infinite_pmf[k]) * pdf);
+    }
+    return L;
+}
+
+/// The rows of `lights` (a Light variant list, light.h); pmf: NEE's probability of each light
+/// (empty: all 0).
 template <class LightT>
-LightTable make_light_table(const std::vector<LightT>& lights);
+LightTable make_light_table(const std::vector<LightT>& lights, const std::vector<float>& pmf = {});
 }  // namespace pellucid

@@ -1,0 +1,150 @@
+// Piecewise-constant 2D distribution on [0,1)² with float CDFs, sampled over a lane type F
+// (simd/lane.h): the environment map's importance sampling, one lane or a packet at a time.
+// SPDX-License-Identifier: Apache-2.0
+//
+// The density is constant on each of the nu × nv cells: a marginal CDF over the rows, then one
+// conditional CDF per row (Pharr, Jakob & Humphreys, pbrt-v4 §A.5.3). The CDFs are float arrays in
+// one buffer that the sampler reads by offsets, so a packet reads its lanes' entries with gathers and
+// lanes may belong to different distributions.
+//
+// The density is defined by the CDFs themselves: cell (i, j) has probability
+// (cdf_v[j+1] − cdf_v[j]) · (cdf_u,j[i+1] − cdf_u,j[i]), and inside it the point is uniform (u is
+// remapped linearly within the cell's CDF interval). pdf() returns that probability times nu·nv, so
+// it equals the density sampling produces, also for cells whose float CDF width rounded away from
+// the weight's share (a cell of zero width is never sampled and has density 0).
+//
+// Every operation is an IEEE-exact lane operation (+, −, ·, /, comparisons, selects, gathers,
+// integer arithmetic), so each lane of a packet gives the bits the float instantiation gives.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "pellucid/math/lane_types.h"
+
+namespace pellucid {
+
+/// The CDFs of one distribution, appended to a float buffer.
+struct Piecewise2DLayout {
+    int32_t marginal = 0;     ///< offset of the marginal CDF (nv + 1 floats, 0 … 1)
+    int32_t conditional = 0;  ///< offset of row 0's conditional CDF (nv rows of nu + 1 floats)
+    int32_t nu = 0, nv = 0;
+};
+
+namespace detail {
+/// The CDF of non-negative weights w[0..n) in steps of `stride`, normalised to end at exactly 1
+/// (summed in double); all zero gives the uniform CDF.
+inline void append_cdf(std::vector<float>& out, const double* w, size_t n) {
+    double total = 0.0;
+    for (size_t i = 0; i < n; ++i) total += std::max(0.0, w[i]);
+    out.push_back(0.f);
+    double acc = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        acc += total > 0.0 ? std::max(0.0, w[i]) : 1.0;
+        out.push_back(i + 1 == n ? 1.f : float(acc / (total > 0.0 ? total : double(n))));
+    }
+}
+
+/// Integer of a float lane holding a whole number in [0, 2²³) (exact on every lane type).
+template <class F>
+inline IntT<F> whole_to_int(const F& k) {
+    return lane::as_int(k + F(8388608.f)) - lane::as_int(F(8388608.f));
+}
+
+/// Largest index i in [0, n) with cdf[i] ≤ u, for cdf[0] = 0 ≤ u < 1 = cdf[n]: then
+/// cdf[i] ≤ u < cdf[i+1], so the cell is never empty. A branch-free binary search whose steps
+/// are the same on every lane type (lanes of shorter CDFs stop moving when their length is 1).
+template <class F>
+inline IntT<F> cdf_find(const float* base, const IntT<F>& cdf, const IntT<F>& n, const F& u) {
+    using I = IntT<F>;
+    I at = I(0), len = n + I(1);
+    while (lane::any(len > I(1))) {
+        const I half = len >> 1;
+        const auto ok = lane::int_mask(lane::gather(base, cdf + at + half) <= u);
+        at = lane::select(ok, at + half, at);
+        len = len - half;
+    }
+    return lane::min(at, n - I(1));
+}
+}  // namespace detail
+
+/// Append the CDFs of weights (nv rows of nu values, row-major, ≥ 0) to `buffer`.
+inline Piecewise2DLayout append_piecewise_2d(std::vector<float>& buffer, const std::vector<float>& weights, size_t nu,
+                                             size_t nv) {
+    Piecewise2DLayout l;
+    l.nu = int32_t(nu), l.nv = int32_t(nv);
+    std::vector<double> row(nu), row_sums(nv);
+    for (size_t v = 0; v < nv; ++v) {
+        double s = 0.0;
+        for (size_t u = 0; u < nu; ++u) s += std::max(0.0, double(weights[v * nu + u]));
+        row_sums[v] = s;
+    }
+    l.marginal = int32_t(buffer.size());
+    detail::append_cdf(buffer, row_sums.data(), nv);
+    l.conditional = int32_t(buffer.size());
+    for (size_t v = 0; v < nv; ++v) {
+        for (size_t u = 0; u < nu; ++u) row[u] = double(weights[v * nu + u]);
+        detail::append_cdf(buffer, row.data(), nu);
+    }
+    return l;
+}
+
+/// A distribution as lanes read it: the buffer, and per lane its offsets and size.
+template <class F>
+struct Piecewise2DLanes {
+    const float* base;
+    IntT<F> marginal, conditional, nu, nv;
+};
+
+template <class F>
+struct Piecewise2DSample {
+    V2<F> p;   ///< in [0,1)²
+    F pdf;     ///< density at p (> 0 for every sample of a valid u)
+    IntT<F> i, j;  ///< the cell: column i, row j
+};
+
+/// Sample a point with u ∈ [0,1)² by inverting the marginal CDF (u.y), then row j's conditional
+/// CDF (u.x); the point is linear in u inside the chosen cell.
+template <class F>
+inline Piecewise2DSample<F> sample_piecewise_2d(const Piecewise2DLanes<F>& d, const V2<F>& u) {
+    using I = IntT<F>;
+    const I j = detail::cdf_find<F>(d.base, d.marginal, d.nv, u.y);
+    const F v0 = lane::gather(d.base, d.marginal + j), v1 = lane::gather(d.base, d.marginal + j + I(1));
+    const I row = d.conditional + j * (d.nu + I(1));
+    const I i = detail::cdf_find<F>(d.base, row, d.nu, u.x);
+    const F u0 = lane::gather(d.base, row + i), u1 = lane::gather(d.base, row + i + I(1));
+    const F nu = lane::to_float(d.nu), nv = lane::to_float(d.nv);
+    const F wv = v1 - v0, wu = u1 - u0;
+    // (Both widths are > 0 for u in [0,1); the selects keep lanes with invalid u finite.)
+    const F dv = (u.y - v0) / lane::select(wv > F(0.f), wv, F(1.f));
+    const F du = (u.x - u0) / lane::select(wu > F(0.f), wu, F(1.f));
+    Piecewise2DSample<F> s;
+    s.p = V2<F>{lane::min((lane::to_float(i) + du) / nu, F(0x1.fffffep-1f)),
+                lane::min((lane::to_float(j) + dv) / nv, F(0x1.fffffep-1f))};
+    s.pdf = (wv * nv) * (wu * nu);
+    s.i = i, s.j = j;
+    return s;
+}
+
+/// The density of cell (i, j), as sample_piecewise_2d gives it.
+template <class F>
+inline F piecewise_2d_cell_pdf(const Piecewise2DLanes<F>& d, const IntT<F>& i, const IntT<F>& j) {
+    using I = IntT<F>;
+    const F wv = lane::gather(d.base, d.marginal + j + I(1)) - lane::gather(d.base, d.marginal + j);
+    const I row = d.conditional + j * (d.nu + I(1));
+    const F wu = lane::gather(d.base, row + i + I(1)) - lane::gather(d.base, row + i);
+    return (wv * lane::to_float(d.nv)) * (wu * lane::to_float(d.nu));
+}
+
+/// The density at p ∈ [0,1]² (points outside are clamped to the border cells, NaN to cell 0).
+template <class F>
+inline F piecewise_2d_pdf(const Piecewise2DLanes<F>& d, const V2<F>& p) {
+    using I = IntT<F>;
+    auto cell = [](const F& t, const I& n) {  // ⌊t·n⌋ clamped to [0, n − 1]
+        const F c = lane::select(t > F(0.f), lane::select(t < F(1.f), t, F(1.f)), F(0.f));
+        const F x = lane::floor(c * lane::to_float(n));
+        return lane::min(detail::whole_to_int<F>(x), n - I(1));
+    };
+    return piecewise_2d_cell_pdf<F>(d, cell(p.x, d.nu), cell(p.y, d.nv));
+}
+}  // namespace pellucid
