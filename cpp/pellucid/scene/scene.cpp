@@ -61,7 +61,7 @@ float refine_sphere_t(const ShapeRecord& s, const Ray& ray, float t_kernel) {
     return std::isfinite(t) ? float(t) : t_kernel;
 }
 
-void fill_sphere(const ShapeRecord& s, const Ray& ray, const RayHit& h, SurfaceInteraction& si) {
+void fill_sphere(const ShapeRecord& s, const Ray& ray, const RayHit& h, SurfaceInteraction& si, bool with_uv) {
     Point3f hit = ray.o + h.t * ray.d;
     Vec3f n = hit - s.center;
     float len = length(n);
@@ -75,9 +75,13 @@ void fill_sphere(const ShapeRecord& s, const Ray& ray, const RayHit& h, SurfaceI
     // in object space (unit length), R⁻¹ = Rᵀ for the orthogonal R.
     const Mat3f& R = s.rotation;
     const Vec3f l = glm::transpose(R) * n;
-    float phi = std::atan2(l.y, l.x);
-    if (phi < 0.f) phi += 2.f * kPi;
-    si.uv = Vec2f(phi * kInv2Pi, safe_acos(l.z) * kInvPi);
+    if (with_uv) {
+        float phi = std::atan2(l.y, l.x);
+        if (phi < 0.f) phi += 2.f * kPi;
+        si.uv = Vec2f(phi * kInv2Pi, safe_acos(l.z) * kInvPi);
+    } else {
+        si.uv = Vec2f(0.f);
+    }
     // ∂p/∂u = 2π·r·(−l.y, l.x, 0), ∂p/∂v = π·r·(cos θ cos φ, cos θ sin φ, −sin θ), mapped by R.
     const float st = std::sqrt(l.x * l.x + l.y * l.y);
     Vec3f dpdu_l, dpdv_l;
@@ -103,7 +107,7 @@ bool Scene::intersect(const Ray& ray, SurfaceInteraction& si) const {
     RayHit h;
     h.t = ray.tmax;
     if (!accel.intersect(ray, h)) return false;
-    fill_hit(ray, h, si);
+    fill_hit(ray, h, si, true);
     return true;
 }
 
@@ -112,12 +116,12 @@ void Scene::intersect_packet(int n, const Ray* const* rays, SurfaceInteraction* 
     accel.intersect_packet(n, rays, h);
     for (int i = 0; i < n; ++i) {
         hit[i] = h[i].hit();
-        if (hit[i]) fill_hit(*rays[i], h[i], si[i]);
+        if (hit[i]) fill_hit(*rays[i], h[i], si[i], has_textures);
     }
 }
 
 // Not inlined, so that single rays and packets fill hit records with the same instructions.
-[[gnu::noinline]] void Scene::fill_hit(const Ray& ray, const RayHit& h, SurfaceInteraction& si) const {
+[[gnu::noinline]] void Scene::fill_hit(const Ray& ray, const RayHit& h, SurfaceInteraction& si, bool with_uv) const {
     const ShapeRecord& s = shapes[h.geom_id];
     if (s.kind == ShapeRecord::Kind::Mesh) {
         fill_triangle(meshes[s.mesh_index], h, si);
@@ -125,7 +129,7 @@ void Scene::intersect_packet(int n, const Ray* const* rays, SurfaceInteraction* 
     } else {
         RayHit refined = h;
         refined.t = refine_sphere_t(s, ray, h.t);
-        fill_sphere(s, ray, refined, si);
+        fill_sphere(s, ray, refined, si, with_uv);
         si.t = refined.t;
     }
     si.wo = -ray.d;

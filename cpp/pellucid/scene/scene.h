@@ -69,7 +69,8 @@ public:
     bool intersect(const Ray& ray, SurfaceInteraction& si) const;
     bool occluded(const Ray& ray) const { return accel.occluded(ray); }
     /// intersect() for n ≤ EmbreeScene::kPacketSize rays traced as one packet; hit[i] says whether
-    /// si[i] was filled. Thread-safe.
+    /// si[i] was filled. The path tracer's call: in a scene without textures (has_textures false)
+    /// nothing reads uv, and a sphere's is left 0. Thread-safe.
     void intersect_packet(int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) const;
     /// occluded() for n ≤ EmbreeScene::kPacketSize rays traced as one packet.
     void occluded_packet(int n, const Ray* const* rays, bool* occluded) const {
@@ -153,7 +154,8 @@ public:
 
 private:
     BSDF textured_bsdf(const SurfaceInteraction& si) const;
-    /// The hit record of a kernel hit (the one place intersect and intersect_packet fill it).
-    void fill_hit(const Ray& ray, const RayHit& h, SurfaceInteraction& si) const;
+    /// The hit record of a kernel hit (the one place intersect and intersect_packet fill it). Without
+    /// with_uv a sphere's uv (an atan2 and an acos) is left 0.
+    void fill_hit(const Ray& ray, const RayHit& h, SurfaceInteraction& si, bool with_uv) const;
 };
 }  // namespace pellucid
