@@ -91,10 +91,15 @@ inline I load_int_as(const int32_t* p) {
     if constexpr (std::is_same_v<I, int32_t>) return *p;
     else return I::load_unaligned(p);
 }
+/// How a packet's mask is read from bools (simd/packet.h specialises it for its masks).
+template <class M>
+struct MaskLoad {
+    static M load(const bool* p) { return M::load_unaligned(p); }
+};
 template <class M>
 inline M load_mask_as(const bool* p) {
     if constexpr (std::is_same_v<M, bool>) return *p;
-    else return M::load_unaligned(p);
+    else return MaskLoad<M>::load(p);
 }
 }  // namespace lane
 }  // namespace pellucid

@@ -8,6 +8,7 @@
 // namespaces); it converts from float implicitly, so `2.f * x` reads as for floats; and it has every
 // function the models need, including atan2 and pow (Highway 1.0.3 has neither).
 #pragma once
+#include <cstring>
 #include <type_traits>
 
 #include <xsimd/xsimd.hpp>
@@ -115,8 +116,63 @@ template <class A>
 inline void store(float* p, const FP<A>& x) { x.store_unaligned(p); }
 template <class A>
 inline void store(int32_t* p, const IP<A>& x) { x.store_unaligned(p); }
+// Masks to and from bool arrays (the kernel's per-lane flags). xsimd 8.1 converts them one lane at
+// a time through a float buffer, which took 6 % of a render; these widen or narrow the bytes in
+// registers. A bool in memory is the byte 0 or 1.
 template <class A>
-inline void store(bool* p, const MP<A>& m) { m.store_unaligned(p); }
+inline void store(bool* p, const MP<A>& m) {
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) {
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm_maskz_set1_epi8(__mmask16(m.data), 1));
+        return;
+    }
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_same_v<A, xsimd::avx2>) {
+        const __m256i one = _mm256_srli_epi32(_mm256_castps_si256(m), 31);
+        const __m128i w = _mm_packus_epi32(_mm256_castsi256_si128(one), _mm256_extracti128_si256(one, 1));
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(w, w));
+        return;
+    }
+#endif
+#if defined(__SSE4_2__)
+    if constexpr (std::is_same_v<A, xsimd::sse4_2>) {
+        const __m128i one = _mm_srli_epi32(_mm_castps_si128(m), 31);
+        const __m128i w = _mm_packus_epi32(one, one);
+        const int32_t bytes = _mm_cvtsi128_si32(_mm_packus_epi16(w, w));
+        std::memcpy(p, &bytes, 4);
+        return;
+    }
+#endif
+    m.store_unaligned(p);
+}
 }  // namespace lane
+
+template <class A>
+struct lane::MaskLoad<xsimd::batch_bool<float, A>> {
+    static xsimd::batch_bool<float, A> load(const bool* p) {
+#if defined(__AVX512BW__) && defined(__AVX512VL__)
+        if constexpr (std::is_base_of_v<xsimd::avx512f, A>) {
+            const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+            return xsimd::batch_bool<float, A>(_mm_test_epi8_mask(b, b));
+        }
+#endif
+#if defined(__AVX2__)
+        if constexpr (std::is_same_v<A, xsimd::avx2>) {
+            const __m256i v = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
+            return xsimd::batch_bool<float, A>(_mm256_castsi256_ps(_mm256_cmpgt_epi32(v, _mm256_setzero_si256())));
+        }
+#endif
+#if defined(__SSE4_2__)
+        if constexpr (std::is_same_v<A, xsimd::sse4_2>) {
+            int32_t bytes;
+            std::memcpy(&bytes, p, 4);
+            const __m128i v = _mm_cvtepu8_epi32(_mm_cvtsi32_si128(bytes));
+            return xsimd::batch_bool<float, A>(_mm_castsi128_ps(_mm_cmpgt_epi32(v, _mm_setzero_si128())));
+        }
+#endif
+        return xsimd::batch_bool<float, A>::load_unaligned(p);
+    }
+};
 
 }  // namespace pellucid
