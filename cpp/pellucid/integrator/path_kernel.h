@@ -189,6 +189,21 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 for (int i = 0; i < W; ++i)
                     if (active[i] && pending_exit[i]) si[i] = exit_si[i], hit[i] = true;
 
+            // A vertex's random numbers (path_services::randoms' layout: u0–u2 for NEE, u3–u5 for
+            // the BSDF, u6 for roulette). The independent sampler's come straight from the lane's
+            // PCG32 stream, in the order randoms() draws them.
+            auto draw_randoms = [&](int i, int depth) {
+                const bool rr = depth >= ps.rr_depth;
+                if (ps.sampler != SamplerType::Independent) {
+                    VertexRandoms r;
+                    path_services::randoms(sampler[i], depth, a.nee[i], rr, &r);
+                    for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
+                    return;
+                }
+                PCG32& g = sampler[i].stream();
+                const int k0 = a.nee[i] ? 0 : 3, k1 = rr ? 7 : 6;
+                for (int k = k0; k < k1; ++k) a.u[k][i] = g.next_float();
+            };
             // One lane at a time: what has no packet form yet.
             for (int i = 0; i < W; ++i) {
                 a.fast[i] = a.goes_on[i] = a.nee[i] = a.nee_ok[i] = a.s_ok[i] = a.delta[i] = a.plight[i] = false;
@@ -207,9 +222,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     a.goes_on[i] = true;
                     a.nee[i] = ps.use_nee;
                     const int depth = int(a.depth[i]);
-                    VertexRandoms r;
-                    path_services::randoms(sampler[i], depth, a.nee[i], depth >= ps.rr_depth, &r);
-                    for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
+                    draw_randoms(i, depth);
                     continue;
                 }
                 if (ps.media) {
@@ -233,9 +246,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                             load_vertex(i, h);  // no surface: zero normal and error bound
                             a.goes_on[i] = true;
                             a.nee[i] = ps.use_nee && ps.medium_nee;
-                            VertexRandoms r;
-                            path_services::randoms(sampler[i], depth, a.nee[i], depth >= ps.rr_depth, &r);
-                            for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
+                            draw_randoms(i, depth);
                             continue;
                         }
                     }
@@ -288,9 +299,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 if (flags == BxDFFlags::None) continue;
                 a.goes_on[i] = true;
                 a.nee[i] = ps.use_nee && is_non_specular(flags);
-                VertexRandoms r;
-                path_services::randoms(sampler[i], depth, a.nee[i], depth >= ps.rr_depth, &r);
-                for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
+                draw_randoms(i, depth);
             }
 
             // Escaped rays: the radiance of the lights at infinity (light table), MIS-weighted, for

@@ -39,7 +39,9 @@ public:
         m_state += init_state;
         next_u32();
     }
-    uint32_t next_u32() {
+    // Always inlined: the path tracer's SIMD kernels draw the independent sampler's numbers
+    // themselves, and each must hold its own copy (no shared out-of-line symbol).
+    [[gnu::always_inline]] uint32_t next_u32() {
         uint64_t old = m_state;
         m_state = old * 0x5851f42d4c957f2dULL + m_inc;
         uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
@@ -47,7 +49,9 @@ public:
         return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31));
     }
     /// Uniform float in [0, 1).
-    float next_float() { return std::min(float(next_u32()) * 0x1p-32f, kOneMinusEpsilon); }  // std::min inlines; std::fmin is a libm call
+    [[gnu::always_inline]] float next_float() {
+        return std::min(float(next_u32()) * 0x1p-32f, kOneMinusEpsilon);  // std::min inlines; std::fmin is a libm call
+    }
     Vec2f next_2d() {
         float a = next_float();
         return Vec2f(a, next_float());

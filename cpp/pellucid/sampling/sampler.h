@@ -189,6 +189,9 @@ public:
                            : 0) {}
 
     SamplerType type() const { return m_type; }
+    /// The sample's PCG32 stream: every number of the independent sampler (get_1d and get_2d
+    /// draw from it in turn), and the Sobol sampler's past kMaxSobolDims.
+    PCG32& stream() { return m_rng; }
     /// Next dimension to be handed out.
     int dimension() const { return m_dim; }
 
