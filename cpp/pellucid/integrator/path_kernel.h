@@ -339,11 +339,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 // constant environment or an environment map sample it together; the shadow ray
                 // ends at the sphere's point (spawn_ray_to) or leaves toward the environment
                 // (spawn_ray).
+                {  // the pick, for every lane at once (pick_light_lanes; lanes without NEE ignore it)
+                    F sel;
+                    const IntT<F> li = pick_light_lanes<F>(ps.lights, LD(a.u[0]), &sel);
+                    lane::store(a.light, li);
+                    ST(a.lsel, sel);
+                }
                 bool any_packet = false;
                 for (int i = 0; i < W; ++i) {
-                    a.light[i] = 0;
                     if (!a.goes_on[i] || !a.nee[i]) continue;
-                    a.light[i] = path_services::pick_light(ps, a.u[0][i], &a.lsel[i]);
                     a.plight[i] = ps.lights.kind[size_t(a.light[i])] != LightTable::kNone;
                     any_packet = any_packet || a.plight[i];
                 }

@@ -223,7 +223,10 @@ bool sample_light(const PathSetup& ps, const SurfaceInteraction& si, float u_sel
     return sample_picked_light(ps, si, li, pmf, u, out, light_pdf, shadow);
 }
 
-int32_t pick_light(const PathSetup& ps, float u_sel, float* pmf) { return int32_t(ps.scene->sample_light(u_sel, pmf)); }
+int32_t pick_light(const PathSetup& ps, float u_sel, float* pmf) {
+    if (ps.emitters.empty()) return pick_light_lanes<float>(ps.lights, u_sel, pmf);
+    return int32_t(ps.scene->sample_light(u_sel, pmf));
+}
 
 bool sample_picked_light(const PathSetup& ps, const SurfaceInteraction& si, int32_t li, float pmf, Vec2f u,
                          LightLiSample* out, float* light_pdf, Ray* shadow) {

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/light/light_table.h"
 
+#include <algorithm>
 #include <cstdint>
 
 #include "pellucid/light/light.h"
@@ -29,6 +30,26 @@ LightTable make_light_table(const std::vector<LightT>& lights, const std::vector
         pool->reserve(n);
         for (const EnvmapLight* e : maps) pool->insert(pool->end(), e->data()->begin(), e->data()->end());
         t.env = std::move(pool);
+    }
+    // The pick: running sums of the probabilities in float, the last set to 1 (u < 1 always
+    // finds a light), and each index's last light of nonzero probability (the first one for the
+    // indices before it).
+    const size_t n = lights.size();
+    t.pick_pmf.assign(n, 0.f);
+    for (size_t i = 0; i < n && i < pmf.size(); ++i) t.pick_pmf[i] = std::max(0.f, pmf[i]);
+    t.pick_cdf.assign(n + 1, 0.f);
+    for (size_t i = 0; i < n; ++i) t.pick_cdf[i + 1] = t.pick_cdf[i] + t.pick_pmf[i];
+    if (n > 0) t.pick_cdf[n] = 1.f;
+    t.pick_nonempty.assign(n, 0);
+    int32_t first = -1, last = -1;
+    for (size_t i = 0; i < n; ++i)
+        if (t.pick_pmf[i] > 0.f) {
+            first = int32_t(i);
+            break;
+        }
+    for (size_t i = 0; i < n; ++i) {
+        if (t.pick_pmf[i] > 0.f) last = int32_t(i);
+        t.pick_nonempty[i] = last >= 0 ? last : std::max(first, 0);
     }
     int32_t pool_at = 0;
     for (size_t i = 0; i < lights.size(); ++i) {

@@ -1,8 +1,8 @@
 // The lights next-event estimation samples as packets when the scene has no emitter table
 // (area.h): sphere area lights, constant environments and environment maps, one row each, read by
-// the light's index with gathers. The light is still picked one lane at a time (Scene::sample_light, whose
-// double-precision CDF stays the one choice); lanes whose light has no row here are sampled one at
-// a time (path_services::sample_light). The scalar sample_li of these lights is the float
+// the light's index with gathers. Each lane picks its light from the table's float running sums of
+// the light probabilities (pick_light_lanes; path_services::pick_light is its float instantiation);
+// lanes whose light has no row here are sampled one at a time (path_services::sample_picked_light). The scalar sample_li of these lights is the float
 // instantiation of the same code (sample_sphere, square_to_uniform_sphere_lanes<F>, envmap_sample).
 // An environment map's row holds its rotation, and its integer row the offsets of its CDFs and
 // texels in one buffer (LightTable::env) that packets gather from, so lanes of different maps mix.
@@ -41,7 +41,34 @@ struct LightTable {
     /// probability with which NEE picks each.
     std::vector<int32_t> infinite;
     std::vector<float> infinite_pmf;
+    /// NEE's choice of a light (pick_light_lanes), by the probabilities `pmf` the table was made with:
+    /// pick_cdf their running sums in float (n + 1 entries, the last 1), pick_pmf the probabilities,
+    /// pick_nonempty[i] the last light at or before i with a nonzero probability.
+    std::vector<float> pick_cdf, pick_pmf;
+    std::vector<int32_t> pick_nonempty;
 };
+
+/// The light NEE samples, for each lane, from u ∈ [0, 1): the largest i with pick_cdf[i] ≤ u (a
+/// branch-free binary search of ⌈log2(n + 1)⌉ gathers; the comparisons of random u are
+/// unpredictable), moved back to a light of nonzero probability where u rounds past the last
+/// one; *pmf receives its probability. Every light's row is in t, lights without a packet form
+/// included; t must have at least one light.
+template <class F>
+inline IntT<F> pick_light_lanes(const LightTable& t, const F& u, F* pmf) {
+    using I = IntT<F>;
+    const int n = int(t.pick_pmf.size());
+    const float* c = t.pick_cdf.data();
+    I base(0);
+    for (int len = n + 1; len > 1;) {
+        const int half = len / 2;
+        const I probe = base + I(half);
+        base = lane::select(lane::int_mask(lane::gather(c, probe) <= u), probe, base);
+        len -= half;
+    }
+    const I i = lane::gather(t.pick_nonempty.data(), lane::min(base, I(n - 1)));
+    *pmf = lane::gather(t.pick_pmf.data(), i);
+    return i;
+}
 
 /// The environment map of row(s) `light` as lanes read it (light_table's rows for kEnvmap).
 template <class F>

@@ -2,7 +2,8 @@
 // environment-map rows (light_table.h): sample_light_table over lanes of mixed kinds (sphere,
 // constant, environment maps of two sizes and rotations, a light with no packet form), each lane's
 // map's density and radiance toward a direction (envmap_pdf, envmap_Le), and the radiance that
-// escaping rays take from the lights at infinity (escaped_radiance), kLaneWidth<F> lanes at a time.
+// escaping rays take from the lights at infinity (escaped_radiance), and NEE's pick of a light
+// (pick_light_lanes), kLaneWidth<F> lanes at a time.
 // Instantiated on float in the test and on each SIMD target's packet in envmap_probe_<target>.cpp
 // (built with that target's flags, exporting only its entry point).
 // SPDX-License-Identifier: Apache-2.0
@@ -21,7 +22,7 @@ struct In {
     const LightTable* lights = nullptr;
     const int32_t* light = nullptr;  ///< per case, a row of `lights`
 };
-constexpr int kOutputs = 20;
+constexpr int kOutputs = 22;
 /// Outputs, one array of n floats per quantity (masks as 0/1), zeroed by the caller.
 struct Out {
     float* v[kOutputs];
@@ -53,6 +54,10 @@ void run(const In& in, Out& out) {
         put(esc.r), put(esc.g), put(esc.b);
         const RGB<F> esc_nee = escaped_radiance<F>(*in.lights, d, false, true, specular, L(in.prev_pdf));
         put(esc_nee.r);
+        // NEE's pick of a light from u[0] (pick_light_lanes).
+        F sel;
+        const IntT<F> picked = pick_light_lanes<F>(*in.lights, L(in.u[0]), &sel);
+        put(lane::to_float(picked)), put(sel);
     }
 }
 }  // namespace pellucid::envmap_probe
