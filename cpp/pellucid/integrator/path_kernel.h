@@ -631,7 +631,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (scene.has_textures && spec_b[i] && !a.in_medium[i] && ray[i].has_differentials)
                         ray[i] = path_services::next_ray(ps, si[i], ray[i], wi, true, trans_b[i], eta_b[i]);
                     else
-                        ray[i] = RayDifferential(Ray{Vec3f(ob[0][i], ob[1][i], ob[2][i]), wi, kInfinity});
+                        ray[i].set(Vec3f(ob[0][i], ob[1][i], ob[2][i]), wi, kInfinity);
                 }
             }
 

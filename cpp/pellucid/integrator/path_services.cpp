@@ -134,7 +134,7 @@ void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t s
            float* fx, float* fy) {
     const Scene& scene = *ps.scene;
     *sampler = Sampler(ps.sampler, uint64_t(y) * uint64_t(scene.width) + uint64_t(x), uint64_t(sample), seed);
-    *ray = camera_sample(scene, splat, x, y, *sampler, fx, fy);
+    camera_sample(scene, splat, x, y, *sampler, fx, fy, ray);
 }
 
 void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) {

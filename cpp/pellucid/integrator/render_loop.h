@@ -107,13 +107,23 @@ inline SamplerType sampler_type(const Scene& scene, const RenderOptions& opts) {
 /// The camera ray of sample `sampler` in pixel (x, y), from the sample's dimensions 0 and 1; (fx, fy)
 /// receives its film position. Splatting films take a uniform position in the pixel, the others an
 /// offset drawn from the filter. Differentials only where textures need footprints.
-inline RayDifferential camera_sample(const Scene& scene, bool splat, int x, int y, Sampler& sampler, float* fx, float* fy) {
+inline void camera_sample(const Scene& scene, bool splat, int x, int y, Sampler& sampler, float* fx, float* fy,
+                          RayDifferential* out) {
     const Vec2f u_px = sampler.get_pixel_2d();
     const Vec2f off = splat ? u_px - Vec2f(0.5f) : sample_filter(scene.filter, u_px);
     *fx = float(x) + 0.5f + off.x;
     *fy = float(y) + 0.5f + off.y;
-    return scene.has_textures ? scene.camera.generate_ray_differential(*fx, *fy)
-                              : RayDifferential(scene.camera.generate_ray(*fx, *fy));
+    if (scene.has_textures) {
+        *out = scene.camera.generate_ray_differential(*fx, *fy);
+    } else {
+        const Ray r = scene.camera.generate_ray(*fx, *fy);
+        out->set(r.o, r.d, r.tmax);
+    }
+}
+inline RayDifferential camera_sample(const Scene& scene, bool splat, int x, int y, Sampler& sampler, float* fx, float* fy) {
+    RayDifferential r;
+    camera_sample(scene, splat, x, y, sampler, fx, fy, &r);
+    return r;
 }
 
 /// Whether an estimate may enter the film: finite, and not negative under SampleValues::NonNegative.

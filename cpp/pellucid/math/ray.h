@@ -21,6 +21,15 @@ struct RayDifferential : Ray {
     Vec3f rx_d{0.f}, ry_d{0.f};
     RayDifferential() = default;
     RayDifferential(const Ray& r) : Ray(r) {}  // NOLINT: a plain ray has no differentials
+    /// Become the plain ray (o, d, tmax) in place. The differentials' fields keep stale values,
+    /// which nothing reads without has_differentials. (Assigning a new RayDifferential builds all
+    /// 80 bytes on the stack and copies them, a store-forwarding stall per 16 bytes.)
+    [[gnu::always_inline]] void set(const Point3f& origin, const Vec3f& dir, float t_max) {
+        o = origin;
+        d = dir;
+        tmax = t_max;
+        has_differentials = false;
+    }
 };
 
 /// Offset a surface point along its geometric normal n, far enough that a ray leaving in direction w
