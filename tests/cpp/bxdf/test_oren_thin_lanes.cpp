@@ -266,3 +266,31 @@ TEST(OrenThinLanes, ACaseChangedInOneLaneIsSeen) {
     EXPECT_TRUE(seen_on);
     EXPECT_TRUE(seen_thin);
 }
+
+TEST(OrenThinLanes, TheThinSlabIsTheSameFromBothSides) {
+    // The slab's two faces are alike: from below, the sample is the mirror image of the one from
+    // above (same weight, pdf and lobe), and at normal incidence the reflected fraction is
+    // R' = 2R/(1 + R), R = ((η − 1)/(η + 1))², for η and 1/η alike.
+    for (float eta : {1.5f, 1.f / 1.5f, 2.42f}) {
+        const ThinDielectric slab(eta, Spectrum(0.9f, 0.5f, 0.2f), Spectrum(0.3f, 0.6f, 1.f));
+        const float R = ((eta - 1.f) / (eta + 1.f)) * ((eta - 1.f) / (eta + 1.f));
+        const auto n = slab.sample({}, Vec3f(0.f, 0.f, 1.f), 0.f, Vec2f(0.5f));
+        ASSERT_TRUE(n);
+        EXPECT_NEAR(n->pdf, 2.f * R / (1.f + R), 1e-6f) << eta;
+        PCG32 rng(3, 4);
+        int differ = 0, samples = 0;
+        for (int i = 0; i < 2000; ++i) {
+            Vec3f wo = square_to_uniform_sphere(rng.next_2d());
+            wo.z = std::fabs(wo.z);
+            const float u = rng.next_float();
+            const auto up = slab.sample({}, wo, u, Vec2f(0.5f)), down = slab.sample({}, Vec3f(wo.x, wo.y, -wo.z), u, Vec2f(0.5f));
+            ASSERT_EQ(bool(up), bool(down));
+            if (!up) continue;
+            ++samples;
+            differ += up->lobe != down->lobe || up->pdf != down->pdf || up->weight != down->weight ||
+                      up->wi != Vec3f(down->wi.x, down->wi.y, -down->wi.z);
+        }
+        EXPECT_EQ(differ, 0) << "η " << eta << ", of " << samples;
+        EXPECT_GT(samples, 1900);
+    }
+}
