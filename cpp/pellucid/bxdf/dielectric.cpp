@@ -46,30 +46,8 @@ ThinDielectric::ThinDielectric(float eta, const Spectrum& r, const Spectrum& t)
     : m_eta(eta > 0.f && std::isfinite(eta) ? eta : 1.f), m_r(r), m_t(t) {}
 
 std::optional<BxDFSample> ThinDielectric::sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
-                                                 const Vec2f&) const {
-    if (wo.z == 0.f) return std::nullopt;
-    float R = fresnel_dielectric(std::fabs(wo.z), m_eta), T = 1.f - R;
-    // Sum over internal bounces (geometric series); R < 1 always since no TIR from outside.
-    if (R < 1.f) {
-        R += T * T * R / (1.f - R * R);
-        T = 1.f - R;
-    }
-    float pr, pt;
-    lobe_probabilities(ctx, R, T, pr, pt);
-    if (!(pr + pt > 0.f)) return std::nullopt;
-    BxDFSample s;
-    if (u_lobe < pr / (pr + pt)) {
-        s.wi = Vec3f(-wo.x, -wo.y, wo.z);
-        s.pdf = pr / (pr + pt);
-        s.weight = m_r * (R / s.pdf);
-        s.lobe = BxDFFlags::SpecularReflection;
-    } else {
-        s.wi = -wo;
-        s.pdf = pt / (pr + pt);
-        s.weight = m_t * (T / s.pdf);
-        s.lobe = BxDFFlags::SpecularTransmission;
-    }
-    return s;
+                                                 const Vec2f& u) const {
+    return to_optional(lanes().sample(ctx, wo, u_lobe, u));
 }
 BxDFFlags ThinDielectric::flags() const {
     return interface_flags(m_eta != 1.f && !m_r.is_black(), !m_t.is_black(), BxDFFlags::Specular);

@@ -126,6 +126,38 @@ private:
     Spectrum m_r, m_t;
 };
 
+/// The thin slab over a lane type F (simd/lane.h): per-lane η, specular reflectance and
+/// transmittance. ThinDielectric (the variant's alternative) is its float instantiation behind the
+/// scalar BxDF API; the path tracer's packets use it directly (a delta form: sample only).
+template <class F>
+struct ThinDielectricT {
+    F eta;
+    RGB<F> r, t;
+
+    /// Reflection with the slab's summed R', else straight through (wi = −wo) with T' = 1 − R'.
+    BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& u_lobe, const V2<F>& /*u*/) const {
+        F R = fresnel_dielectric<F>(lane::abs(wo.z), eta), T = F(1.f) - R;
+        // Sum over internal bounces (geometric series); R < 1 always since no TIR from outside.
+        const auto series = R < F(1.f);
+        R = lane::select(series, R + T * T * R / (F(1.f) - R * R), R);
+        T = lane::select(series, F(1.f) - R, T);
+        const F pr = has_flag(ctx.allowed, BxDFFlags::Reflection) ? R : F(0.f);
+        const F pt = has_flag(ctx.allowed, BxDFFlags::Transmission) ? T : F(0.f);
+        const F sum = pr + pt;
+        const auto reflect = u_lobe < pr / sum;
+        BxDFSampleT<F> s;
+        s.valid = wo.z != F(0.f) && sum > F(0.f);
+        s.wi = lane::select(reflect, V3<F>(lane::neg(wo.x), lane::neg(wo.y), wo.z),
+                            V3<F>(lane::neg(wo.x), lane::neg(wo.y), lane::neg(wo.z)));
+        s.pdf = lane::select(reflect, pr / sum, pt / sum);
+        s.weight = lane::select(reflect, r * (R / s.pdf), t * (T / s.pdf));
+        s.eta = F(1.f);
+        s.lobe = lane::select(lane::int_mask(reflect), IntT<F>(int32_t(BxDFFlags::SpecularReflection)),
+                              IntT<F>(int32_t(BxDFFlags::SpecularTransmission)));
+        return s;
+    }
+};
+
 /// Thin slab (soap bubble, window pane): infinitely many internal bounces summed in closed form,
 /// R' = R + T² R / (1 − R²), T' = 1 − R' (pbrt-v4 §9.5.2 derivation; Mitsuba's thindielectric),
 /// transmission does not bend (wi = −wo) and crosses back into the same medium (no η² scaling).
@@ -138,6 +170,8 @@ public:
     std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe, const Vec2f& u) const;
     BxDFFlags flags() const;
     std::string to_string() const;
+    /// The packet form's parameters (ThinDielectricT<float>).
+    ThinDielectricT<float> lanes() const { return {m_eta, m_r, m_t}; }
 
 private:
     float m_eta;

@@ -40,6 +40,7 @@
 #include "pellucid/bxdf/conductor.h"
 #include "pellucid/bxdf/dielectric.h"
 #include "pellucid/bxdf/lambertian.h"
+#include "pellucid/bxdf/oren_nayar.h"
 #include "pellucid/bxdf/plastic.h"
 #include "pellucid/integrator/path_services.h"
 #include "pellucid/math/frame.h"
@@ -496,6 +497,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 auto rdiel_q = [&](int k) { return any_rdiel ? LD(a.q[k]) : F(0.f); };
                 const RoughDielectricT<GGXT, F> rdiel = rough_dielectric_lanes<GGXT, F>(is_any_rdiel, rdiel_q);
                 const RoughDielectricT<BeckmannT, F> rdiel_b = rough_dielectric_lanes<BeckmannT, F>(is_any_rdiel, rdiel_q);
+                // Oren–Nayar (classic or EON) and the thin dielectric.
+                const M is_on = fast && kind == F(float(kPacketOrenNayar));
+                const bool any_on = lane::any(is_on);
+                const OrenNayarT<F> oren = oren_nayar_lanes<F>(is_on, [&](int k) { return any_on ? LD(a.q[k]) : F(0.f); });
+                const M is_thin = fast && kind == F(float(kPacketThinDielectric));
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
 
@@ -506,10 +512,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const V3<F> wi_w(LD(a.lwx), LD(a.lwy), LD(a.lwz));
                     const V3<F> wi = frame.to_local(wi_w);
                     const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
-                    // (Of the packet forms the Lambertian, the rough conductors and the plastics have
-                    // lobes NEE can reach.)
-                    const M off =
-                        leak || !(is_lambert || is_rough || is_beckmann || is_plastic || is_plastic_b || is_any_rdiel);
+                    // (Of the packet forms the Lambertian, Oren–Nayar, the rough conductors, the
+                    // plastics and the rough dielectrics have lobes NEE can reach.)
+                    const M off = leak || !(is_lambert || is_on || is_rough || is_beckmann || is_plastic || is_plastic_b ||
+                                            is_any_rdiel);
                     RGB<F> f_fast = lambert.eval(ctx, wo, wi);
                     F pdf_fast = lambert.pdf(ctx, wo, wi);
                     // Each glossy packet form present evaluates on all lanes; its own lanes keep the result.
@@ -518,6 +524,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         f_fast = lane::select(where, form.eval(ctx, wo, wi), f_fast);
                         pdf_fast = lane::select(where, form.pdf(ctx, wo, wi), pdf_fast);
                     };
+                    eval_form(is_on, oren);
                     eval_form(is_rough, rough);
                     eval_form(is_beckmann, beckmann);
                     eval_form(is_plastic, plastic);
@@ -560,6 +567,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         s.eta = lane::select(where, d.eta, s.eta);
                         s.lobe = lane::select(di, d.lobe, s.lobe);
                     };
+                    if (any_on) merge(is_on, oren.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_mirror)) merge(is_mirror, metal.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_rough)) merge(is_rough, rough.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_beckmann)) merge(is_beckmann, beckmann.sample(ctx, wo, u_lobe, u2));
@@ -571,6 +579,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         const SmoothDielectricT<F> diel{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
                                                         RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};
                         merge(is_dielectric, diel.sample(ctx, wo, u_lobe, u2));
+                    }
+                    if (lane::any(is_thin)) {
+                        const ThinDielectricT<F> thin{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
+                                                      RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};
+                        merge(is_thin, thin.sample(ctx, wo, u_lobe, u2));
                     }
                     const V3<F> wi_w = frame.to_world(s.wi);
                     const M ok_fast = s.valid && s.pdf > F(0.f) && !is_black(s.weight) && s.wi.z != F(0.f) &&

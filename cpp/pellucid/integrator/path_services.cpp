@@ -43,6 +43,7 @@ bool packet_conductor(const BxDF& b, int32_t* kind, float* q) {
 }
 
 static_assert(kRoughDielectricParams <= kPacketParams, "a rough dielectric's parameters fit a material's");
+static_assert(kOrenNayarParams <= kPacketParams, "Oren–Nayar's parameters fit a material's");
 static_assert(kPlasticParams <= kPacketParams, "a plastic's parameters fit a material's packet parameters");
 
 /// A plastic's packet form and parameters (plastic_packet_params): smooth, or rough over GGX or
@@ -109,6 +110,14 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
             const SmoothDielectricT<float> p = d->lanes();
             q[0] = p.eta;
             for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
+        } else if (const ThinDielectric* t = std::get_if<ThinDielectric>(&b)) {
+            ps.packet_kind[m] = kPacketThinDielectric;
+            const ThinDielectricT<float> p = t->lanes();
+            q[0] = p.eta;
+            for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
+        } else if (const OrenNayar* o = std::get_if<OrenNayar>(&b)) {
+            ps.packet_kind[m] = kPacketOrenNayar;
+            oren_nayar_packet_params(o->lanes(), q);
         } else if (!packet_conductor(b, &ps.packet_kind[m], q) &&
                    !packet_plastic(b, &ps.packet_kind[m], q, &ps.coat_tables) &&
                    !packet_rough_dielectric(b, &ps.packet_kind[m], q)) {

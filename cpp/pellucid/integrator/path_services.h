@@ -35,6 +35,8 @@ enum PacketKind : int32_t {
     kPacketPlasticBeckmann = 7,  ///< rough plastic over Beckmann (RoughPlasticT<F, BeckmannT<F>>)
     kPacketRoughDielectric = 8,  ///< GGX rough dielectric without multiple scattering (RoughDielectricT)
     kPacketRoughDielectricBeckmann = 9,
+    kPacketThinDielectric = 11,  ///< ThinDielectricT (a delta form; parameters as the smooth dielectric's)
+    kPacketOrenNayar = 12,       ///< classic or EON Oren–Nayar (OrenNayarT, oren_nayar_packet_params)
 };
 constexpr int kPacketParams = 12;
 
@@ -52,7 +54,8 @@ struct PathSetup {
     /// kBSDFLane (the lane goes through BSDF, one at a time).
     std::vector<int32_t> packet_kind;
     /// Per material, kPacketParams floats: the packet form's parameters (Lambertian: reflectance;
-    /// smooth dielectric: η, reflectance, transmittance; conductors: η, k, specular_reflectance,
+    /// smooth and thin dielectrics: η, reflectance, transmittance; Oren–Nayar:
+    /// oren_nayar_packet_params; conductors: η, k, specular_reflectance,
     /// then for the rough ones (GGX, Beckmann) αx, αy and 1 for separable shadowing; plastics:
     /// plastic_packet_params), and its BxDFFlags.
     std::vector<float> packet_params;

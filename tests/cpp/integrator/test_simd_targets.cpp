@@ -87,7 +87,8 @@ TEST_P(SimdTargetRender, EveryTargetGivesTheScalarImage) {
     // glass, metals, textures with ray differentials and bump maps (BSDF lanes beside packet
     // Lambertian lanes), plastics (smooth, and GGX rough with the smooth coat in material_balls;
     // with two rough coat tables, linear and coupled, beside a Beckmann one on the BSDF lanes in
-    // the suite's plastics).
+    // the suite's plastics; thin dielectrics beside the rough ones in the suite's glass, classic and
+    // EON Oren–Nayar in its no_twin).
     auto scene = load_scene(GetParam(), 64, 48);
     expect_every_target_gives_the_scalar_image(*scene, GetParam());
 }
@@ -152,6 +153,8 @@ TEST(SimdTargetRender, PacketKindsMatchTheirModels) {
             if (std::holds_alternative<RoughPlastic<Beckmann>>(b)) allowed.insert(kPacketPlasticBeckmann);
             if (std::holds_alternative<RoughDielectric<GGX>>(b)) allowed.insert(kPacketRoughDielectric);
             if (std::holds_alternative<RoughDielectric<Beckmann>>(b)) allowed.insert(kPacketRoughDielectricBeckmann);
+            if (std::holds_alternative<ThinDielectric>(b)) allowed.insert(kPacketThinDielectric);
+            if (std::holds_alternative<OrenNayar>(b)) allowed.insert(kPacketOrenNayar);
             EXPECT_TRUE(allowed.count(ps.packet_kind[m])) << file << ": material " << m << " (BxDF alternative "
                                                            << b.index() << ") has packet kind " << ps.packet_kind[m];
         }
@@ -182,7 +185,8 @@ TEST(SimdTargetRender, SuitePlasticsAreAllPacketForms) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SimdTargetRender,
                          ::testing::Values("cornell_box.json", "veach_mis.json", "env_spheres.json",
-                                           "material_balls.json", "textured_bump.json", "bench/suite/plastics.json"),
+                                           "material_balls.json", "textured_bump.json", "bench/suite/plastics.json",
+                                           "bench/suite/glass.json", "bench/suite/no_twin.json"),
                          [](const auto& info) {
                              const std::string name = info.param.substr(info.param.rfind('/') + 1);
                              return name.substr(0, name.find('.'));
@@ -259,4 +263,30 @@ TEST(SimdTargetRender, RoughDielectricsWithoutMultipleScatteringArePacketForms) 
     EXPECT_EQ(ggx, 1);
     EXPECT_EQ(beckmann, 1);
     EXPECT_EQ(compensated, 1);
+}
+
+TEST(SimdTargetRender, ThinDielectricsAndOrenNayarArePacketForms) {
+    // The suite's thin dielectrics (glass.json, many_materials.json) and its Oren–Nayar materials,
+    // EON and classic (no_twin.json), run as their packet forms: kPacketThinDielectric and
+    // kPacketOrenNayar, with the variant in the parameters.
+    int thin = 0, eon = 0, classic = 0;
+    for (const char* file : {"glass.json", "many_materials.json", "no_twin.json"}) {
+        auto scene = load_desc(read_json_file(std::string(PELLUCID_SOURCE_DIR) + "/bench/suite/" + file));
+        const PathSetup ps = make_path_setup(*scene, 8, 5, true, true, SamplerType::Independent);
+        for (size_t m = 0; m < scene->material_bxdfs.size(); ++m) {
+            const BxDF& b = scene->material_bxdfs[m];
+            if (std::holds_alternative<ThinDielectric>(b)) {
+                ++thin;
+                EXPECT_EQ(ps.packet_kind[m], int32_t(kPacketThinDielectric)) << file << " " << m;
+            }
+            if (const auto* o = std::get_if<OrenNayar>(&b)) {
+                ++(o->lanes().classic ? classic : eon);
+                EXPECT_EQ(ps.packet_kind[m], int32_t(kPacketOrenNayar)) << file << " " << m;
+                EXPECT_EQ(ps.packet_params[kPacketParams * m + 10], o->lanes().classic ? 1.f : 0.f) << file << " " << m;
+            }
+        }
+    }
+    EXPECT_EQ(thin, 2);
+    EXPECT_EQ(eon, 1);
+    EXPECT_EQ(classic, 1);
 }
