@@ -152,6 +152,7 @@ TEST(SimdTargetRender, PacketKindsMatchTheirModels) {
             if (std::holds_alternative<RoughPlastic<Beckmann>>(b)) allowed.insert(kPacketPlasticBeckmann);
             if (std::holds_alternative<RoughDielectric<GGX>>(b)) allowed.insert(kPacketRoughDielectric);
             if (std::holds_alternative<RoughDielectric<Beckmann>>(b)) allowed.insert(kPacketRoughDielectricBeckmann);
+            if (std::holds_alternative<PrincipledBSDF>(b)) allowed.insert(kPacketPrincipled);
             EXPECT_TRUE(allowed.count(ps.packet_kind[m])) << file << ": material " << m << " (BxDF alternative "
                                                            << b.index() << ") has packet kind " << ps.packet_kind[m];
         }
