@@ -99,7 +99,7 @@ PrincipledBSDF::PrincipledBSDF(const PrincipledParams& p) : m_spec(1.f), m_trans
 
 Spectrum PrincipledBSDF::diffuse_sheen(float co, float ci, float cos_d, float w_diffuse, float w_sheen) const {
     return principled_detail::diffuse_sheen<float>(m_base, m_tint, m_roughness, m_flatness, m_sheen, m_sheen_tint, co, ci,
-                                                   cos_d, w_diffuse, w_sheen);
+                                                   cos_d, w_diffuse, w_sheen, true);
 }
 
 // ---- solid ----------------------------------------------------------------------------------

@@ -135,25 +135,33 @@ template <class F>
 inline F g1(const GGXT<F>& d, const V3<F>& v, const V3<F>& h) {
     return lane::select(dot(v, h) * v.z > F(0.f), d.G1(v), F(0.f));
 }
-/// w_diffuse·(diffuse, retro-reflection, flatness) + w_sheen·sheen, as f·ci (header comment).
+/// w_diffuse·(diffuse, retro-reflection, flatness) + w_sheen·sheen, as f·ci (header comment), on
+/// the lanes `where` (a term that no lane of `where` has is not computed).
 template <class F>
 inline RGB<F> diffuse_sheen(const RGB<F>& base, const RGB<F>& tint, const F& roughness, const F& flatness,
                             const F& sheen, const F& sheen_tint, const F& co, const F& ci, const F& cos_d,
-                            const F& w_diffuse, const F& w_sheen) {
+                            const F& w_diffuse, const F& w_sheen, const MaskT<F>& where) {
     const F fo = schlick_weight<F>(co), fi = schlick_weight<F>(ci);
     const F f_d = (F(1.f) - F(0.5f) * fo) * (F(1.f) - F(0.5f) * fi);
     const F rr = F(2.f) * roughness * cos_d * cos_d;
     const F f_r = rr * (fo + fi + fo * fi * (rr - F(1.f)));
-    const F f0 = f_d + f_r;
-    const F fss90 = F(0.5f) * rr;
-    const F fss = (F(1.f) + (fss90 - F(1.f)) * fo) * (F(1.f) + (fss90 - F(1.f)) * fi);
-    const F f_ss = F(1.25f) * (fss * (F(1.f) / (co + ci) - F(0.5f)) + F(0.5f));
-    const F f = lane::select(flatness > F(0.f), f0 + (f_ss - f0) * flatness, f0);
-    const RGB<F> out = base * (w_diffuse * F(kInvPi) * f * ci);
-    const F s = w_sheen * sheen * schlick_weight<F>(lane::abs(cos_d)) * ci;
-    const RGB<F> sh(F(1.f) + (tint.r - F(1.f)) * sheen_tint, F(1.f) + (tint.g - F(1.f)) * sheen_tint,
-                    F(1.f) + (tint.b - F(1.f)) * sheen_tint);
-    return lane::select(sheen > F(0.f) && w_sheen > F(0.f), out + sh * s, out);
+    F f = f_d + f_r;
+    const auto flat = flatness > F(0.f);
+    if (lane::any(where && flat)) {
+        const F fss90 = F(0.5f) * rr;
+        const F fss = (F(1.f) + (fss90 - F(1.f)) * fo) * (F(1.f) + (fss90 - F(1.f)) * fi);
+        const F f_ss = F(1.25f) * (fss * (F(1.f) / (co + ci) - F(0.5f)) + F(0.5f));
+        f = lane::select(flat, f + (f_ss - f) * flatness, f);
+    }
+    RGB<F> out = base * (w_diffuse * F(kInvPi) * f * ci);
+    const auto sheen_on = sheen > F(0.f) && w_sheen > F(0.f);
+    if (lane::any(where && sheen_on)) {
+        const F s = w_sheen * sheen * schlick_weight<F>(lane::abs(cos_d)) * ci;
+        const RGB<F> sh(F(1.f) + (tint.r - F(1.f)) * sheen_tint, F(1.f) + (tint.g - F(1.f)) * sheen_tint,
+                        F(1.f) + (tint.b - F(1.f)) * sheen_tint);
+        out = lane::select(sheen_on, out + sh * s, out);
+    }
+    return out;
 }
 
 /// What the opaque solid needs of the reflection half vector h = (wo + wi)/|wo + wi| of a pair
@@ -253,30 +261,46 @@ struct PrincipledBSDFT {
         p_cc = p_cc * inv_total;
         p_d = p_d * inv_total;
 
-        const F D = spec.D(h);
-        const F G = lane::select(compatible, g1<F>(spec, o, h) * g1<F>(spec, i, h), F(0.f));
-        const F vis = lane::select(compatible, spec.pdf_visible(o, h), F(0.f));
+        // D, G1 and the visible-normal density share their terms (GGXT::pdf_visible, g1).
+        const F D = spec.D(h), G1o = spec.G1(o), G1i = spec.G1(i);
+        const F c_o = dot(o, h), c_i = dot(i, h);
+        const F G = lane::select(compatible, lane::select(c_o * o.z > F(0.f), G1o, F(0.f)) *
+                                                 lane::select(c_i * i.z > F(0.f), G1i, F(0.f)),
+                                 F(0.f));
+        const F vis = lane::select(compatible && c_o > F(0.f), G1o / o.z * D * c_o, F(0.f));
         const F jac = F(1.f) / (F(4.f) * lane::abs(dot_i));
-        // Specular reflection with the blended Fresnel.
+        // Specular reflection with the blended Fresnel (one Schlick weight at wo·h for all three).
         const F one_m = F(1.f) - metallic;
+        const F w = schlick_weight_eta<F>(dot_o, eta);
+        auto schlick_w = [&](const RGB<F>& r0) {
+            return RGB<F>(r0.r + (F(1.f) - r0.r) * w, r0.g + (F(1.f) - r0.g) * w, r0.b + (F(1.f) - r0.b) * w);
+        };
         RGB<F> Fp(one_m * (F(1.f) - spec_tint) * fr);
-        Fp = lane::select(metallic > F(0.f), Fp + schlick<F>(base, dot_o, eta) * metallic, Fp);
-        const F r0 = (eta - F(1.f)) / (eta + F(1.f));
-        Fp = lane::select(spec_tint > F(0.f), Fp + schlick<F>(tint * (r0 * r0), dot_o, eta) * (one_m * spec_tint), Fp);
+        const auto metal = metallic > F(0.f), tinted = spec_tint > F(0.f);
+        if (lane::any(where && metal)) Fp = lane::select(metal, Fp + schlick_w(base) * metallic, Fp);
+        if (lane::any(where && tinted)) {
+            const F r0 = (eta - F(1.f)) / (eta + F(1.f));
+            Fp = lane::select(tinted, Fp + schlick_w(tint * (r0 * r0)) * (one_m * spec_tint), Fp);
+        }
         RGB<F> f = lane::select(compatible && fr > F(0.f), Fp * (D * G / (F(4.f) * co)), RGB<F>(F(0.f)));
         F pdf = p_r * vis * jac;
         // The clear coat.
         const M cc = clearcoat > F(0.f);
-        const F Dc = gtr1<F>(h.z, cc_alpha, cc_log_a2);
-        const F Fc = schlick<F>(F(0.04f), dot_o, eta);
-        const GGXT<F> coat{F(0.25f), F(0.25f), M(false)};
-        const F fc = F(0.25f) * clearcoat * Fc * Dc * (g1<F>(coat, o, h) * g1<F>(coat, i, h)) * ci;
-        f = lane::select(cc && compatible, f + RGB<F>(fc), f);
-        pdf = lane::select(cc, pdf + p_cc * Dc * h.z * jac, pdf);
+        if (lane::any(where && cc)) {
+            const F Dc = gtr1<F>(h.z, cc_alpha, cc_log_a2);
+            const F Fc = F(0.04f) + (F(1.f) - F(0.04f)) * w;
+            const GGXT<F> coat{F(0.25f), F(0.25f), M(false)};
+            const F fc = F(0.25f) * clearcoat * Fc * Dc * (g1<F>(coat, o, h) * g1<F>(coat, i, h)) * ci;
+            f = lane::select(cc && compatible, f + RGB<F>(fc), f);
+            pdf = lane::select(cc, pdf + p_cc * Dc * h.z * jac, pdf);
+        }
         // Diffuse weighted by w_brdf, sheen by 1 − m, both only where w_brdf > 0.
-        const RGB<F> ds =
-            diffuse_sheen<F>(base, tint, roughness, flatness, sheen, sheen_tint, co, ci, dot_i, w_brdf, one_m);
-        f = lane::select(w_brdf > F(0.f), f + ds, f);
+        const M diffuse = w_brdf > F(0.f);
+        if (lane::any(where && diffuse)) {
+            const RGB<F> ds = diffuse_sheen<F>(base, tint, roughness, flatness, sheen, sheen_tint, co, ci, dot_i, w_brdf,
+                                               one_m, where && diffuse);
+            f = lane::select(diffuse, f + ds, f);
+        }
         pdf = pdf + p_d * ci * F(kInvPi);
         EvalPdf out;
         out.f = lane::select(pair, f, RGB<F>(F(0.f)));
@@ -301,16 +325,25 @@ struct PrincipledBSDFT {
         const F total = g_spec + p_cc + p_d;
         const F x = u_lobe * total;
         const M is_d = x < p_d, is_cc = !is_d && x < p_d + p_cc, is_spec = !is_d && !is_cc;
-        // Diffuse: cosine-weighted.
-        const V3<F> wd = square_to_cosine_hemisphere<F>(u);
+        // Each lobe's direction where some lane of `where` chose it. Diffuse: cosine-weighted.
+        const V3<F> up(F(0.f), F(0.f), F(1.f));
+        const V3<F> wd = lane::any(where && is_d) ? square_to_cosine_hemisphere<F>(u) : up;
         // Clear coat: a GTR1 normal, reflected about.
-        const V3<F> mc = principled_gtr1_normal_lanes<F>(cc_alpha, u, where && is_cc);
-        const V3<F> wc = -o + F(2.f) * dot(o, mc) * mc;
+        V3<F> wc = up;
+        M ok_c(false);
+        if (lane::any(where && is_cc)) {
+            const V3<F> mc = principled_gtr1_normal_lanes<F>(cc_alpha, u, where && is_cc);
+            wc = -o + F(2.f) * dot(o, mc) * mc;
+            ok_c = dot(o, mc) > F(0.f) && wc.z > F(0.f);
+        }
         // Specular: a visible normal, reflected about (without transmission the reflection share is 1).
-        const V3<F> ms = spec.sample_visible(o, u);
-        const V3<F> ws = -o + F(2.f) * dot(o, ms) * ms;
-        const M ok_c = dot(o, mc) > F(0.f) && wc.z > F(0.f);
-        const M ok_s = M(gr) && ws.z * o.z > F(0.f);
+        V3<F> ws = up;
+        M ok_s(false);
+        if (lane::any(where && is_spec)) {
+            const V3<F> ms = spec.sample_visible(o, u);
+            ws = -o + F(2.f) * dot(o, ms) * ms;
+            ok_s = M(gr) && ws.z * o.z > F(0.f);
+        }
         const V3<F> wi = lane::select(is_d, wd, lane::select(is_cc, wc, ws));
         const M ok = where && o.z != F(0.f) && total > F(0.f) && (is_d || (is_cc && ok_c) || (is_spec && ok_s));
         const EvalPdf ep = eval_pdf(ctx, o, wi, ok);
