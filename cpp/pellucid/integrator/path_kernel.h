@@ -501,8 +501,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
                     // (Of the packet forms the Lambertian, the rough conductors, the plastics, the rough
                     // dielectrics and the principled BSDF have lobes NEE can reach.)
-                    const M off =
-                        leak || !(is_lambert || is_rough || is_beckmann || is_plastic || is_plastic_b || is_any_rdiel || is_princ);
+                    const M off = leak || !(is_lambert || is_rough || is_beckmann || is_plastic || is_plastic_b ||
+                                            is_any_rdiel || is_princ);
                     RGB<F> f_fast = lambert.eval(ctx, wo, wi);
                     F pdf_fast = lambert.pdf(ctx, wo, wi);
                     // Each glossy packet form present evaluates on all lanes; its own lanes keep the result.
