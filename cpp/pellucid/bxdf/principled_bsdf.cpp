@@ -12,39 +12,35 @@
 namespace pellucid {
 namespace {
 using disney::lerp;
-using disney::schlick_weight;
 using disney::unit;
+using principled_detail::allows;
 float r0_of_eta(float eta) { return sqr((eta - 1.f) / (eta + 1.f)); }
 
-/// Smith G1 of `d` for direction v and microfacet normal h, zero where v sees the back of the
-/// microfacet (wo·h and cos θ of opposite signs).
-float g1(const GGX& d, const Vec3f& v, const Vec3f& h) {
-    if (!(dot(v, h) * v.z > 0.f)) return 0.f;
-    return d.G1(v);
-}
 /// Separable masking–shadowing G1(wo)·G1(wi) (Heitz 2014, eq. 98).
 float g_separable(const GGX& d, const Vec3f& wo, const Vec3f& wi, const Vec3f& h) {
-    return g1(d, wo, h) * g1(d, wi, h);
-}
-
-/// GTR1 (γ = 1, "Berry") distribution of the clear coat, normalised ∫ D cos θh dω = 1 (Burley 2012,
-/// App. B eq. 4), zero below the horizon.
-float gtr1(float cos_h, float alpha) {
-    float a2 = alpha * alpha;
-    float d = (a2 - 1.f) / (kPi * std::log(a2) * (1.f + (a2 - 1.f) * cos_h * cos_h));
-    return d * cos_h > 1e-20f ? d : 0.f;
-}
-/// GTR1 half vector: cos² θh = (1 − α^{2(1−u)})/(1 − α²) (Burley 2012, App. B eq. 5).
-Vec3f sample_gtr1(float alpha, const Vec2f& u) {
-    float a2 = alpha * alpha;
-    float c2 = (1.f - std::pow(a2, 1.f - u.y)) / (1.f - a2);
-    return spherical_direction(safe_sqrt(1.f - c2), safe_sqrt(c2), 2.f * kPi * u.x);
-}
-
-bool allows(const BxDFContext& ctx, BxDFFlags lobe) {
-    return (uint32_t(ctx.allowed) & uint32_t(lobe)) == uint32_t(lobe);
+    const GGXT<float> l = d.lanes();
+    return principled_detail::g1<float>(l, wo, h) * principled_detail::g1<float>(l, wi, h);
 }
 }  // namespace
+
+principled_detail::PrincipledHalf principled_detail::principled_half(const Vec3f& wo, const Vec3f& wi, float eta) {
+    PrincipledHalf out;
+    const Vec3d hh = Vec3d(wo) + Vec3d(wi);
+    const double hl = glm::length(hh);
+    if (!(hl > 0.0)) return out;
+    const Vec3d hd = hh / (hh.z < 0.0 ? -hl : hl);
+    const double dot_od = glm::dot(Vec3d(wo), hd), dot_id = glm::dot(Vec3d(wi), hd);
+    out.h = Vec3f(hd);
+    out.dot_o = float(dot_od), out.dot_i = float(dot_id);
+    out.F = float(fresnel_dielectric_d(dot_od, eta));
+    return out;
+}
+
+Vec3f principled_detail::principled_gtr1_normal(float alpha, const Vec2f& u) {
+    const float a2 = alpha * alpha;
+    const float c2 = (1.f - std::pow(a2, 1.f - u.y)) / (1.f - a2);
+    return spherical_direction(safe_sqrt(1.f - c2), safe_sqrt(c2), 2.f * kPi * u.x);
+}
 
 float PrincipledBSDF::eta_from_specular(float specular) {
     return 2.f / (1.f - std::sqrt(0.08f * std::max(specular, 0.f))) - 1.f;
@@ -55,22 +51,11 @@ Vec2f PrincipledBSDF::alpha_from_roughness(float roughness, float anisotropic) {
     return Vec2f(std::max(1e-3f, r2 / s), std::max(1e-3f, r2 * s));
 }
 
-float PrincipledBSDF::schlick(float r0, float cos_i, float eta) {
-    // Incident side: cos_i ≥ 0 sees η, the other side 1/η. From the denser side Schlick's weight
-    // takes the transmitted cosine (Schlick 1994 is stated for the less dense side).
-    float eta_it = cos_i >= 0.f ? eta : 1.f / eta;
-    float w;
-    if (eta_it > 1.f) {
-        w = schlick_weight(std::fabs(cos_i));
-    } else {
-        float cos_t2 = 1.f - (1.f - cos_i * cos_i) / (eta_it * eta_it);
-        w = schlick_weight(safe_sqrt(cos_t2));
-    }
-    return r0 + (1.f - r0) * w;
-}
+// Incident side: cos_i ≥ 0 sees η, the other side 1/η. From the denser side Schlick's weight takes
+// the transmitted cosine (Schlick 1994 is stated for the less dense side).
+float PrincipledBSDF::schlick(float r0, float cos_i, float eta) { return principled_detail::schlick<float>(r0, cos_i, eta); }
 Spectrum PrincipledBSDF::schlick(const Spectrum& r0, float cos_i, float eta) {
-    float w = schlick(0.f, cos_i, eta);  // the weight (S(0) = F_S)
-    return r0 + (Spectrum(1.f) - r0) * w;
+    return principled_detail::schlick<float>(r0, cos_i, eta);
 }
 
 PrincipledBSDF::PrincipledBSDF(const PrincipledParams& p) : m_spec(1.f), m_trans(1.f) {
@@ -90,6 +75,7 @@ PrincipledBSDF::PrincipledBSDF(const PrincipledParams& p) : m_spec(1.f), m_trans
     m_flatness = unit(p.flatness);
     m_clearcoat = m_thin ? 0.f : unit(p.clearcoat);
     m_cc_alpha = lerp(0.1f, 0.001f, unit(p.clearcoat_gloss));
+    m_cc_log_a2 = std::log(m_cc_alpha * m_cc_alpha);
     m_diff_trans = m_thin ? 0.5f * clamp(std::isfinite(p.diffuse_transmission) ? p.diffuse_transmission : 0.f, 0.f, 2.f)
                           : 0.f;
     // η: given, or from `specular` (header comment); a refracting lobe needs η ≠ 1.
@@ -112,21 +98,8 @@ PrincipledBSDF::PrincipledBSDF(const PrincipledParams& p) : m_spec(1.f), m_trans
 }
 
 Spectrum PrincipledBSDF::diffuse_sheen(float co, float ci, float cos_d, float w_diffuse, float w_sheen) const {
-    float fo = schlick_weight(co), fi = schlick_weight(ci);
-    float f_d = (1.f - 0.5f * fo) * (1.f - 0.5f * fi);
-    float rr = 2.f * m_roughness * cos_d * cos_d;
-    float f_r = rr * (fo + fi + fo * fi * (rr - 1.f));
-    float f = f_d + f_r;
-    if (m_flatness > 0.f) {
-        float fss90 = 0.5f * rr;
-        float fss = (1.f + (fss90 - 1.f) * fo) * (1.f + (fss90 - 1.f) * fi);
-        float f_ss = 1.25f * (fss * (1.f / (co + ci) - 0.5f) + 0.5f);
-        f = lerp(f, f_ss, m_flatness);
-    }
-    Spectrum out = m_base * (w_diffuse * kInvPi * f * ci);
-    if (m_sheen > 0.f && w_sheen > 0.f)
-        out += lerp(Spectrum(1.f), m_tint, m_sheen_tint) * (w_sheen * m_sheen * schlick_weight(std::fabs(cos_d)) * ci);
-    return out;
+    return principled_detail::diffuse_sheen<float>(m_base, m_tint, m_roughness, m_flatness, m_sheen, m_sheen_tint, co, ci,
+                                                   cos_d, w_diffuse, w_sheen, true);
 }
 
 // ---- solid ----------------------------------------------------------------------------------
@@ -135,8 +108,7 @@ PrincipledBSDF::EvalPdf PrincipledBSDF::eval_pdf_solid(const BxDFContext& ctx, c
     EvalPdf out;
     float co = wo.z, ci = wi.z;
     if (co == 0.f || ci == 0.f) return out;
-    // Opaque (no transmission lobe): two-sided, the back is the front mirrored (header comment).
-    if (co < 0.f && !(m_w_bsdf > 0.f)) return eval_pdf_solid(ctx, -wo, -wi);
+    // (With a transmission lobe: the opaque solid is the packet form, PrincipledBSDFT.)
     bool front = co > 0.f;
     bool reflect = co * ci > 0.f;
     // η' = η(wi side)/η(wo side) for transmission.
@@ -197,7 +169,7 @@ PrincipledBSDF::EvalPdf PrincipledBSDF::eval_pdf_solid(const BxDFContext& ctx, c
         out.pdf += p_r * vis * jac;
         if (front) {
             if (m_clearcoat > 0.f) {
-                float Dc = gtr1(h.z, m_cc_alpha);
+                float Dc = principled_detail::gtr1<float>(h.z, m_cc_alpha, m_cc_log_a2);
                 if (compatible) {
                     float Fc = schlick(0.04f, dot_o, m_eta);
                     out.f += Spectrum(0.25f * m_clearcoat * Fc * Dc * g_separable(GGX(0.25f), wo, wi, h) * aci);
@@ -227,11 +199,6 @@ std::optional<BxDFSample> PrincipledBSDF::sample_solid(const BxDFContext& ctx, c
                                                        const Vec2f& u) const {
     float co = wo.z;
     if (co == 0.f) return std::nullopt;
-    if (co < 0.f && !(m_w_bsdf > 0.f)) {  // opaque: the front mirrored (header comment)
-        std::optional<BxDFSample> s = sample_solid(ctx, -wo, u_lobe, u);
-        if (s) s->wi = -s->wi;
-        return s;
-    }
     bool front = co > 0.f;
     bool spec_ok = allows(ctx, BxDFFlags::GlossyReflection) ||
                    (m_w_bsdf > 0.f && allows(ctx, BxDFFlags::GlossyTransmission));
@@ -246,7 +213,7 @@ std::optional<BxDFSample> PrincipledBSDF::sample_solid(const BxDFContext& ctx, c
         s.wi = square_to_cosine_hemisphere(u);
         s.lobe = BxDFFlags::DiffuseReflection;
     } else if (x < p_d + p_cc) {
-        Vec3f m = sample_gtr1(m_cc_alpha, u);
+        Vec3f m = principled_detail::principled_gtr1_normal(m_cc_alpha, u);
         s.wi = reflect(wo, m);
         if (!(dot(wo, m) > 0.f && s.wi.z > 0.f)) return std::nullopt;
         s.lobe = BxDFFlags::GlossyReflection;
@@ -372,13 +339,16 @@ std::optional<BxDFSample> PrincipledBSDF::sample_thin(const BxDFContext& ctx, co
 
 // ---- interface ------------------------------------------------------------------------------
 Spectrum PrincipledBSDF::eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
+    if (has_lanes()) return lanes().eval_pdf(ctx, wo, wi, true).f;
     return (m_thin ? eval_pdf_thin(ctx, wo, wi) : eval_pdf_solid(ctx, wo, wi)).f;
 }
 float PrincipledBSDF::pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
+    if (has_lanes()) return lanes().eval_pdf(ctx, wo, wi, true).pdf;
     return (m_thin ? eval_pdf_thin(ctx, wo, wi) : eval_pdf_solid(ctx, wo, wi)).pdf;
 }
 std::optional<BxDFSample> PrincipledBSDF::sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
                                                  const Vec2f& u) const {
+    if (has_lanes()) return to_optional(lanes().sample(ctx, wo, u_lobe, u, true));
     return m_thin ? sample_thin(ctx, wo, u_lobe, u) : sample_solid(ctx, wo, u_lobe, u);
 }
 

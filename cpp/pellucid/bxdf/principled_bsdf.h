@@ -70,15 +70,317 @@
 // roughness, and the thin diffuse lobes add to the specular ones. With base colours ≤ 0.6 the
 // albedo stays below 1 (tests/cpp/bxdf/bxdf_cases.h; the excess: test_principled_bsdf.cpp).
 // Scene-facing parameters: material/principled.h.
+//
+// Packet form: PrincipledBSDFT<F> writes the opaque solid (no thin sheet, no transmission lobe:
+// w_bsdf = 0, which leaves w_brdf = 1 − m) once over a lane type F (simd/lane.h): specular reflection
+// with the blended Fresnel, clear coat, diffuse with retro-reflection and flatness, and sheen. The
+// path tracer shades such materials with it (kPacketPrincipled, integrator/path_services.h), and
+// PrincipledBSDF's eval, pdf and sample are its float instantiation wherever has_lanes(). The half
+// vector and the dielectric Fresnel (in double) and the clear coat's GTR1 normal (pow, sin, cos) are
+// computed one lane at a time by functions compiled once (principled_half, principled_gtr1_normal),
+// so every lane type gives the same bits; the rest runs on the packet. ln α_c² is a parameter,
+// computed once at construction. The thin sheet and the solid with a transmission lobe keep the
+// scalar code below and run as BSDF lanes; they share the diffuse, sheen, Schlick and GTR1 terms
+// with the packet form (the float instantiations of the templates below).
 #pragma once
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "pellucid/bxdf/bxdf_types.h"
 #include "pellucid/bxdf/microfacet.h"
 #include "pellucid/bxdf/principled.h"
 
 namespace pellucid {
+
+namespace principled_detail {
+/// Both lobe bits allowed (not just one of them).
+constexpr bool allows(const BxDFContext& ctx, BxDFFlags lobe) {
+    return (uint32_t(ctx.allowed) & uint32_t(lobe)) == uint32_t(lobe);
+}
+/// (1 − cos)^5, cos clamped to [0, 1] (Schlick 1994, eq. 15; disney::schlick_weight).
+template <class F>
+inline F schlick_weight(const F& c) {
+    const F m = lane::min(lane::max(F(1.f) - c, F(0.f)), F(1.f)), m2 = m * m;
+    return m2 * m2 * m;
+}
+/// Schlick's weight at an interface of relative IOR eta, for the cosine cos_i between the incident
+/// direction and the microfacet normal: the transmitted cosine from the denser side (1 on total
+/// internal reflection); PrincipledBSDF::schlick is r0 + (1 − r0)·this.
+template <class F>
+inline F schlick_weight_eta(const F& cos_i, const F& eta) {
+    const F eta_it = lane::select(cos_i >= F(0.f), eta, F(1.f) / eta);
+    const F cos_t2 = F(1.f) - (F(1.f) - cos_i * cos_i) / (eta_it * eta_it);
+    return lane::select(eta_it > F(1.f), schlick_weight<F>(lane::abs(cos_i)),
+                        schlick_weight<F>(lane::sqrt(lane::max(F(0.f), cos_t2))));
+}
+template <class F>
+inline F schlick(const F& r0, const F& cos_i, const F& eta) {
+    return r0 + (F(1.f) - r0) * schlick_weight_eta<F>(cos_i, eta);
+}
+template <class F>
+inline RGB<F> schlick(const RGB<F>& r0, const F& cos_i, const F& eta) {
+    const F w = F(0.f) + (F(1.f) - F(0.f)) * schlick_weight_eta<F>(cos_i, eta);
+    return RGB<F>(r0.r + (F(1.f) - r0.r) * w, r0.g + (F(1.f) - r0.g) * w, r0.b + (F(1.f) - r0.b) * w);
+}
+/// GTR1 (γ = 1) of the clear coat (Burley 2012, App. B eq. 4), zero below the horizon; log_a2 = ln α².
+template <class F>
+inline F gtr1(const F& cos_h, const F& alpha, const F& log_a2) {
+    const F a2 = alpha * alpha;
+    const F d = (a2 - F(1.f)) / (F(kPi) * log_a2 * (F(1.f) + (a2 - F(1.f)) * cos_h * cos_h));
+    return lane::select(d * cos_h > F(1e-20f), d, F(0.f));
+}
+/// Smith G1 of d for v and microfacet normal h, zero where v sees the back of the microfacet.
+template <class F>
+inline F g1(const GGXT<F>& d, const V3<F>& v, const V3<F>& h) {
+    return lane::select(dot(v, h) * v.z > F(0.f), d.G1(v), F(0.f));
+}
+/// w_diffuse·(diffuse, retro-reflection, flatness) + w_sheen·sheen, as f·ci (header comment), on
+/// the lanes `where` (a term that no lane of `where` has is not computed).
+template <class F>
+inline RGB<F> diffuse_sheen(const RGB<F>& base, const RGB<F>& tint, const F& roughness, const F& flatness,
+                            const F& sheen, const F& sheen_tint, const F& co, const F& ci, const F& cos_d,
+                            const F& w_diffuse, const F& w_sheen, const MaskT<F>& where) {
+    const F fo = schlick_weight<F>(co), fi = schlick_weight<F>(ci);
+    const F f_d = (F(1.f) - F(0.5f) * fo) * (F(1.f) - F(0.5f) * fi);
+    const F rr = F(2.f) * roughness * cos_d * cos_d;
+    const F f_r = rr * (fo + fi + fo * fi * (rr - F(1.f)));
+    F f = f_d + f_r;
+    const auto flat = flatness > F(0.f);
+    if (lane::any(where && flat)) {
+        const F fss90 = F(0.5f) * rr;
+        const F fss = (F(1.f) + (fss90 - F(1.f)) * fo) * (F(1.f) + (fss90 - F(1.f)) * fi);
+        const F f_ss = F(1.25f) * (fss * (F(1.f) / (co + ci) - F(0.5f)) + F(0.5f));
+        f = lane::select(flat, f + (f_ss - f) * flatness, f);
+    }
+    RGB<F> out = base * (w_diffuse * F(kInvPi) * f * ci);
+    const auto sheen_on = sheen > F(0.f) && w_sheen > F(0.f);
+    if (lane::any(where && sheen_on)) {
+        const F s = w_sheen * sheen * schlick_weight<F>(lane::abs(cos_d)) * ci;
+        const RGB<F> sh(F(1.f) + (tint.r - F(1.f)) * sheen_tint, F(1.f) + (tint.g - F(1.f)) * sheen_tint,
+                        F(1.f) + (tint.b - F(1.f)) * sheen_tint);
+        out = lane::select(sheen_on, out + sh * s, out);
+    }
+    return out;
+}
+
+/// What the opaque solid needs of the reflection half vector h = (wo + wi)/|wo + wi| of a pair
+/// with wo.z, wi.z > 0, computed in double (as the solid's scalar code): h, wo·h and wi·h rounded
+/// to float, and the dielectric Fresnel F_η(wo·h) (double, rounded).
+struct PrincipledHalf {
+    Vec3f h{0.f, 0.f, 1.f};
+    float dot_o = 0.f, dot_i = 0.f, F = 0.f;
+};
+PrincipledHalf principled_half(const Vec3f& wo, const Vec3f& wi, float eta);
+/// The clear coat's GTR1 normal: cos² θh = (1 − α^{2(1−u.y)})/(1 − α²), φ = 2π u.x (Burley 2012,
+/// App. B eq. 5), with libm's pow, cos and sin.
+Vec3f principled_gtr1_normal(float alpha, const Vec2f& u);
+
+/// principled_half over a lane type F, one lane at a time (lanes outside `where`: the default).
+template <class F>
+inline void principled_half_lanes(const V3<F>& wo, const V3<F>& wi, const F& eta, const MaskT<F>& where, V3<F>* h,
+                                  F* dot_o, F* dot_i, F* fr) {
+    if constexpr (std::is_same_v<F, float>) {
+        const PrincipledHalf p = where ? principled_half(wo, wi, eta) : PrincipledHalf{};
+        *h = p.h, *dot_o = p.dot_o, *dot_i = p.dot_i, *fr = p.F;
+    } else {
+        constexpr int W = kLaneWidth<F>;
+        alignas(64) float in[7][W], out[6][W];
+        alignas(64) bool on[W];
+        lane::store(in[0], wo.x), lane::store(in[1], wo.y), lane::store(in[2], wo.z);
+        lane::store(in[3], wi.x), lane::store(in[4], wi.y), lane::store(in[5], wi.z);
+        lane::store(in[6], eta), lane::store(on, where);
+        for (int i = 0; i < W; ++i) {
+            const PrincipledHalf p = on[i] ? principled_half(Vec3f(in[0][i], in[1][i], in[2][i]),
+                                                             Vec3f(in[3][i], in[4][i], in[5][i]), in[6][i])
+                                           : PrincipledHalf{};
+            out[0][i] = p.h.x, out[1][i] = p.h.y, out[2][i] = p.h.z, out[3][i] = p.dot_o, out[4][i] = p.dot_i;
+            out[5][i] = p.F;
+        }
+        auto L = [&](int k) { return lane::load_as<F>(out[k]); };
+        *h = V3<F>(L(0), L(1), L(2)), *dot_o = L(3), *dot_i = L(4), *fr = L(5);
+    }
+}
+/// principled_gtr1_normal over a lane type F, one lane at a time (lanes outside `where`: +z).
+template <class F>
+inline V3<F> principled_gtr1_normal_lanes(const F& alpha, const V2<F>& u, const MaskT<F>& where) {
+    if constexpr (std::is_same_v<F, float>) {
+        return where ? principled_gtr1_normal(alpha, u) : Vec3f(0.f, 0.f, 1.f);
+    } else {
+        constexpr int W = kLaneWidth<F>;
+        alignas(64) float in[3][W], out[3][W];
+        alignas(64) bool on[W];
+        lane::store(in[0], alpha), lane::store(in[1], u.x), lane::store(in[2], u.y), lane::store(on, where);
+        for (int i = 0; i < W; ++i) {
+            const Vec3f m = on[i] ? principled_gtr1_normal(in[0][i], Vec2f(in[1][i], in[2][i])) : Vec3f(0.f, 0.f, 1.f);
+            out[0][i] = m.x, out[1][i] = m.y, out[2][i] = m.z;
+        }
+        return V3<F>(lane::load_as<F>(out[0]), lane::load_as<F>(out[1]), lane::load_as<F>(out[2]));
+    }
+}
+}  // namespace principled_detail
+
+/// The opaque solid principled BSDF over a lane type F (header comment, "Packet form"): per-lane
+/// parameters. PrincipledBSDF::lanes() fills the float instantiation; the path tracer loads a packet
+/// of them per vertex (principled_lanes).
+template <class F>
+struct PrincipledBSDFT {
+    RGB<F> base, tint;  ///< base colour and c_tint
+    F metallic, roughness, spec_tint, sheen, sheen_tint, flatness, clearcoat;
+    F cc_alpha, cc_log_a2;  ///< α_c and ln α_c²
+    F eta, w_brdf;
+    GGXT<F> spec;
+
+    struct EvalPdf {
+        RGB<F> f;
+        F pdf;
+    };
+    /// f·|cos θi| and the density of sample(), on the lanes `where` (others: unspecified). Seen from
+    /// behind, the front mirrored; transmission pairs give 0.
+    EvalPdf eval_pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi, const MaskT<F>& where) const {
+        using namespace principled_detail;
+        using M = MaskT<F>;
+        const M flip = wo.z < F(0.f);
+        const V3<F> o = lane::select(flip, -wo, wo), i = lane::select(flip, -wi, wi);
+        const F co = o.z, ci = i.z;
+        const M pair = wo.z != F(0.f) && wi.z != F(0.f) && co * ci > F(0.f);
+        V3<F> h;
+        F dot_o, dot_i, fr;
+        principled_half_lanes<F>(o, i, eta, where && pair, &h, &dot_o, &dot_i, &fr);
+        const M compatible = dot_o > F(0.f) && dot_i > F(0.f);
+        // Lobe probabilities: the specular group 1 (its reflection share is 1 without transmission),
+        // the clear coat ¼·clearcoat, the diffuse w_brdf.
+        const bool gr = principled_detail::allows(ctx, BxDFFlags::GlossyReflection),
+                   dr = principled_detail::allows(ctx, BxDFFlags::DiffuseReflection);
+        const F g_spec = gr ? F(1.f) : F(0.f);
+        F p_cc = lane::select(M(gr) && clearcoat > F(0.f), F(0.25f) * clearcoat, F(0.f));
+        F p_d = lane::select(M(dr) && w_brdf > F(0.f), w_brdf, F(0.f));
+        const F total = g_spec + p_cc + p_d;
+        const F inv_total = lane::select(total > F(0.f), F(1.f) / lane::select(total > F(0.f), total, F(1.f)), F(0.f));
+        const F p_r = gr ? inv_total : F(0.f);
+        p_cc = p_cc * inv_total;
+        p_d = p_d * inv_total;
+
+        // D, G1 and the visible-normal density share their terms (GGXT::pdf_visible, g1).
+        const F D = spec.D(h), G1o = spec.G1(o), G1i = spec.G1(i);
+        const F c_o = dot(o, h), c_i = dot(i, h);
+        const F G = lane::select(compatible, lane::select(c_o * o.z > F(0.f), G1o, F(0.f)) *
+                                                 lane::select(c_i * i.z > F(0.f), G1i, F(0.f)),
+                                 F(0.f));
+        const F vis = lane::select(compatible && c_o > F(0.f), G1o / o.z * D * c_o, F(0.f));
+        const F jac = F(1.f) / (F(4.f) * lane::abs(dot_i));
+        // Specular reflection with the blended Fresnel (one Schlick weight at wo·h for all three).
+        const F one_m = F(1.f) - metallic;
+        const F w = schlick_weight_eta<F>(dot_o, eta);
+        auto schlick_w = [&](const RGB<F>& r0) {
+            return RGB<F>(r0.r + (F(1.f) - r0.r) * w, r0.g + (F(1.f) - r0.g) * w, r0.b + (F(1.f) - r0.b) * w);
+        };
+        RGB<F> Fp(one_m * (F(1.f) - spec_tint) * fr);
+        const auto metal = metallic > F(0.f), tinted = spec_tint > F(0.f);
+        if (lane::any(where && metal)) Fp = lane::select(metal, Fp + schlick_w(base) * metallic, Fp);
+        if (lane::any(where && tinted)) {
+            const F r0 = (eta - F(1.f)) / (eta + F(1.f));
+            Fp = lane::select(tinted, Fp + schlick_w(tint * (r0 * r0)) * (one_m * spec_tint), Fp);
+        }
+        RGB<F> f = lane::select(compatible && fr > F(0.f), Fp * (D * G / (F(4.f) * co)), RGB<F>(F(0.f)));
+        F pdf = p_r * vis * jac;
+        // The clear coat.
+        const M cc = clearcoat > F(0.f);
+        if (lane::any(where && cc)) {
+            const F Dc = gtr1<F>(h.z, cc_alpha, cc_log_a2);
+            const F Fc = F(0.04f) + (F(1.f) - F(0.04f)) * w;
+            const GGXT<F> coat{F(0.25f), F(0.25f), M(false)};
+            const F fc = F(0.25f) * clearcoat * Fc * Dc * (g1<F>(coat, o, h) * g1<F>(coat, i, h)) * ci;
+            f = lane::select(cc && compatible, f + RGB<F>(fc), f);
+            pdf = lane::select(cc, pdf + p_cc * Dc * h.z * jac, pdf);
+        }
+        // Diffuse weighted by w_brdf, sheen by 1 − m, both only where w_brdf > 0.
+        const M diffuse = w_brdf > F(0.f);
+        if (lane::any(where && diffuse)) {
+            const RGB<F> ds = diffuse_sheen<F>(base, tint, roughness, flatness, sheen, sheen_tint, co, ci, dot_i, w_brdf,
+                                               one_m, where && diffuse);
+            f = lane::select(diffuse, f + ds, f);
+        }
+        pdf = pdf + p_d * ci * F(kInvPi);
+        EvalPdf out;
+        out.f = lane::select(pair, f, RGB<F>(F(0.f)));
+        out.pdf = lane::select(pair, pdf, F(0.f));
+        return out;
+    }
+    RGB<F> eval(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi, const MaskT<F>& where) const {
+        return eval_pdf(ctx, wo, wi, where).f;
+    }
+    /// Mitsuba's lobe choice (header comment) on the lanes `where` (others: not valid).
+    BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& u_lobe, const V2<F>& u,
+                          const MaskT<F>& where) const {
+        using namespace principled_detail;
+        using M = MaskT<F>;
+        const M flip = wo.z < F(0.f);
+        const V3<F> o = lane::select(flip, -wo, wo);
+        const bool gr = principled_detail::allows(ctx, BxDFFlags::GlossyReflection),
+                   dr = principled_detail::allows(ctx, BxDFFlags::DiffuseReflection);
+        const F g_spec = gr ? F(1.f) : F(0.f);
+        const F p_cc = lane::select(M(gr) && clearcoat > F(0.f), F(0.25f) * clearcoat, F(0.f));
+        const F p_d = lane::select(M(dr) && w_brdf > F(0.f), w_brdf, F(0.f));
+        const F total = g_spec + p_cc + p_d;
+        const F x = u_lobe * total;
+        const M is_d = x < p_d, is_cc = !is_d && x < p_d + p_cc, is_spec = !is_d && !is_cc;
+        // Each lobe's direction where some lane of `where` chose it. Diffuse: cosine-weighted.
+        const V3<F> up(F(0.f), F(0.f), F(1.f));
+        const V3<F> wd = lane::any(where && is_d) ? square_to_cosine_hemisphere<F>(u) : up;
+        // Clear coat: a GTR1 normal, reflected about.
+        V3<F> wc = up;
+        M ok_c(false);
+        if (lane::any(where && is_cc)) {
+            const V3<F> mc = principled_gtr1_normal_lanes<F>(cc_alpha, u, where && is_cc);
+            wc = -o + F(2.f) * dot(o, mc) * mc;
+            ok_c = dot(o, mc) > F(0.f) && wc.z > F(0.f);
+        }
+        // Specular: a visible normal, reflected about (without transmission the reflection share is 1).
+        V3<F> ws = up;
+        M ok_s(false);
+        if (lane::any(where && is_spec)) {
+            const V3<F> ms = spec.sample_visible(o, u);
+            ws = -o + F(2.f) * dot(o, ms) * ms;
+            ok_s = M(gr) && ws.z * o.z > F(0.f);
+        }
+        const V3<F> wi = lane::select(is_d, wd, lane::select(is_cc, wc, ws));
+        const M ok = where && o.z != F(0.f) && total > F(0.f) && (is_d || (is_cc && ok_c) || (is_spec && ok_s));
+        const EvalPdf ep = eval_pdf(ctx, o, wi, ok);
+        BxDFSampleT<F> s;
+        s.valid = ok && ep.pdf > F(0.f);
+        s.pdf = ep.pdf;
+        s.weight = ep.f / lane::select(s.valid, ep.pdf, F(1.f));
+        s.wi = lane::select(flip, -wi, wi);
+        s.eta = F(1.f);
+        s.lobe = lane::select(lane::int_mask(is_d), IntT<F>(int32_t(BxDFFlags::DiffuseReflection)),
+                              IntT<F>(int32_t(BxDFFlags::GlossyReflection)));
+        return s;
+    }
+};
+
+/// The path tracer's packet parameters of an opaque solid principled BSDF (kPrincipledParams floats):
+/// 0–2 base, 3–5 c_tint, 6 metallic, 7 roughness, 8 specular_tint, 9 sheen, 10 sheen_tint,
+/// 11 flatness, 12 clearcoat, 13 α_c, 14 ln α_c², 15 η, 16 αx, 17 αy, 18 w_brdf.
+inline constexpr int kPrincipledParams = 19;
+inline void principled_packet_params(const PrincipledBSDFT<float>& l, float* q) {
+    for (int c = 0; c < 3; ++c) q[c] = l.base[c], q[3 + c] = l.tint[c];
+    q[6] = l.metallic, q[7] = l.roughness, q[8] = l.spec_tint, q[9] = l.sheen, q[10] = l.sheen_tint;
+    q[11] = l.flatness, q[12] = l.clearcoat, q[13] = l.cc_alpha, q[14] = l.cc_log_a2, q[15] = l.eta;
+    q[16] = l.spec.ax, q[17] = l.spec.ay, q[18] = l.w_brdf;
+}
+/// The packet form from packet parameters q(k) on the lanes `where`; the other lanes (other models)
+/// get a black diffuse material of α 1.
+template <class F, class Q>
+inline PrincipledBSDFT<F> principled_lanes(const MaskT<F>& where, Q q) {
+    auto at = [&](int k, float other) { return lane::select(where, q(k), F(other)); };
+    return {RGB<F>(at(0, 0.f), at(1, 0.f), at(2, 0.f)),
+            RGB<F>(at(3, 1.f), at(4, 1.f), at(5, 1.f)),
+            at(6, 0.f), at(7, 1.f), at(8, 0.f), at(9, 0.f), at(10, 0.f), at(11, 0.f), at(12, 0.f),
+            at(13, 0.1f), at(14, -4.6051702f), at(15, 1.5f),
+            at(18, 1.f),
+            GGXT<F>{at(16, 1.f), at(17, 1.f), MaskT<F>(false)}};
+}
 
 class PrincipledBSDF {
 public:
@@ -93,6 +395,14 @@ public:
 
     float eta() const { return m_eta; }
     bool thin() const { return m_thin; }
+    /// Whether the model is exactly its packet form: a solid without a transmission lobe.
+    bool has_lanes() const { return !m_thin && !(m_w_bsdf > 0.f); }
+    /// The packet form's parameters (PrincipledBSDFT<float>; meaningful where has_lanes()).
+    PrincipledBSDFT<float> lanes() const {
+        return {m_base,     m_tint,       m_metallic, m_roughness, m_spec_tint, m_sheen,
+                m_sheen_tint, m_flatness, m_clearcoat, m_cc_alpha,  m_cc_log_a2, m_eta,
+                m_w_brdf,   m_spec.lanes()};
+    }
     const GGX& specular_distribution() const { return m_spec; }
     /// The thin sheet's transmission distribution (roughness × (0.65η − 0.35)).
     const GGX& thin_transmission_distribution() const { return m_trans; }
@@ -125,7 +435,7 @@ private:
 
     Spectrum m_base, m_sqrt_base, m_tint;  // base colour, √base, c_tint
     float m_metallic, m_roughness, m_spec_trans, m_spec_tint, m_sheen, m_sheen_tint, m_flatness;
-    float m_clearcoat, m_cc_alpha, m_diff_trans, m_eta;
+    float m_clearcoat, m_cc_alpha, m_cc_log_a2, m_diff_trans, m_eta;
     float m_w_brdf, m_w_bsdf;
     GGX m_spec, m_trans;
     bool m_thin;

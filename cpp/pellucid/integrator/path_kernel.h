@@ -42,6 +42,7 @@
 #include "pellucid/bxdf/lambertian.h"
 #include "pellucid/bxdf/oren_nayar.h"
 #include "pellucid/bxdf/plastic.h"
+#include "pellucid/bxdf/principled_bsdf.h"
 #include "pellucid/integrator/path_services.h"
 #include "pellucid/math/frame.h"
 #include "pellucid/sampling/mis.h"
@@ -502,6 +503,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const bool any_on = lane::any(is_on);
                 const OrenNayarT<F> oren = oren_nayar_lanes<F>(is_on, [&](int k) { return any_on ? LD(a.q[k]) : F(0.f); });
                 const M is_thin = fast && kind == F(float(kPacketThinDielectric));
+                // The opaque solid principled BSDFs.
+                const M is_princ = fast && kind == F(float(kPacketPrincipled));
+                const bool any_princ = lane::any(is_princ);
+                const PrincipledBSDFT<F> princ =
+                    principled_lanes<F>(is_princ, [&](int k) { return any_princ ? LD(a.q[k]) : F(0.f); });
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
 
@@ -513,9 +519,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const V3<F> wi = frame.to_local(wi_w);
                     const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
                     // (Of the packet forms the Lambertian, Oren–Nayar, the rough conductors, the
-                    // plastics and the rough dielectrics have lobes NEE can reach.)
+                    // plastics, the rough dielectrics and the principled BSDF have lobes NEE can reach.)
                     const M off = leak || !(is_lambert || is_on || is_rough || is_beckmann || is_plastic || is_plastic_b ||
-                                            is_any_rdiel);
+                                            is_any_rdiel || is_princ);
                     RGB<F> f_fast = lambert.eval(ctx, wo, wi);
                     F pdf_fast = lambert.pdf(ctx, wo, wi);
                     // Each glossy packet form present evaluates on all lanes; its own lanes keep the result.
@@ -529,7 +535,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     eval_form(is_beckmann, beckmann);
                     eval_form(is_plastic, plastic);
                     eval_form(is_plastic_b, plastic_b);
-                    // The dielectrics evaluate f and pdf together (one half vector, in double, a lane at a time).
+                    // The dielectrics and the principled BSDF evaluate f and pdf together (one half
+                    // vector, in double, a lane at a time).
                     auto eval_dielectric = [&](const M& where, const auto& form) {
                         if (!lane::any(where && nee)) return;
                         const auto ep = form.eval_pdf(ctx, wo, wi, where && nee);
@@ -538,6 +545,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     };
                     eval_dielectric(is_rdiel, rdiel);
                     eval_dielectric(is_rdiel_b, rdiel_b);
+                    eval_dielectric(is_princ, princ);
                     f_fast = lane::select(off, RGB<F>(F(0.f)), f_fast);
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
                     const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
@@ -575,6 +583,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (lane::any(is_plastic_b)) merge(is_plastic_b, plastic_b.sample(ctx, wo, u_lobe, u2));
                     if (lane::any(is_rdiel)) merge(is_rdiel, rdiel.sample(ctx, wo, u_lobe, u2, is_rdiel));
                     if (lane::any(is_rdiel_b)) merge(is_rdiel_b, rdiel_b.sample(ctx, wo, u_lobe, u2, is_rdiel_b));
+                    if (any_princ) merge(is_princ, princ.sample(ctx, wo, u_lobe, u2, is_princ));
                     if (lane::any(is_dielectric)) {
                         const SmoothDielectricT<F> diel{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
                                                         RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};

@@ -79,6 +79,17 @@ bool packet_rough_dielectric(const BxDF& b, int32_t* kind, float* q) {
     if (const auto* r = std::get_if<RoughDielectric<Beckmann>>(&b)) return put(*r, kPacketRoughDielectricBeckmann);
     return false;
 }
+
+static_assert(kPrincipledParams <= kPacketParams, "a principled BSDF's parameters fit a material's");
+/// A principled BSDF's packet form: the opaque solid (has_lanes); its parameters by
+/// principled_packet_params.
+bool packet_principled(const BxDF& b, int32_t* kind, float* q) {
+    const auto* p = std::get_if<PrincipledBSDF>(&b);
+    if (!p || !p->has_lanes()) return false;
+    principled_packet_params(p->lanes(), q);
+    *kind = kPacketPrincipled;
+    return true;
+}
 }  // namespace
 
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type) {
@@ -120,7 +131,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
             oren_nayar_packet_params(o->lanes(), q);
         } else if (!packet_conductor(b, &ps.packet_kind[m], q) &&
                    !packet_plastic(b, &ps.packet_kind[m], q, &ps.coat_tables) &&
-                   !packet_rough_dielectric(b, &ps.packet_kind[m], q)) {
+                   !packet_rough_dielectric(b, &ps.packet_kind[m], q) && !packet_principled(b, &ps.packet_kind[m], q)) {
             continue;
         }
         ps.packet_flags[m] = uint32_t(flags(b));

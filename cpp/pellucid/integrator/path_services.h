@@ -35,10 +35,11 @@ enum PacketKind : int32_t {
     kPacketPlasticBeckmann = 7,  ///< rough plastic over Beckmann (RoughPlasticT<F, BeckmannT<F>>)
     kPacketRoughDielectric = 8,  ///< GGX rough dielectric without multiple scattering (RoughDielectricT)
     kPacketRoughDielectricBeckmann = 9,
+    kPacketPrincipled = 10,  ///< opaque solid principled BSDF, Burley 2015 (PrincipledBSDFT, principled_lanes)
     kPacketThinDielectric = 11,  ///< ThinDielectricT (a delta form; parameters as the smooth dielectric's)
     kPacketOrenNayar = 12,       ///< classic or EON Oren–Nayar (OrenNayarT, oren_nayar_packet_params)
 };
-constexpr int kPacketParams = 12;
+constexpr int kPacketParams = 19;
 
 /// The longest path an unbounded max_depth (-1) allows, in vertices (docs/rendering.md).
 constexpr int kUnboundedDepth = 1 << 16;
@@ -57,7 +58,7 @@ struct PathSetup {
     /// smooth and thin dielectrics: η, reflectance, transmittance; Oren–Nayar:
     /// oren_nayar_packet_params; conductors: η, k, specular_reflectance,
     /// then for the rough ones (GGX, Beckmann) αx, αy and 1 for separable shadowing; plastics:
-    /// plastic_packet_params), and its BxDFFlags.
+    /// plastic_packet_params; principled: principled_packet_params), and its BxDFFlags.
     std::vector<float> packet_params;
     std::vector<uint32_t> packet_flags;
     /// The rough coats' transmittance tables of the packet plastics, one after another

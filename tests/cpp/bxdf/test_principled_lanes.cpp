@@ -1,0 +1,327 @@
+// Lanes equal scalars for the opaque solid principled BSDF's packet form (bxdf/principled_probe.h):
+// on every lane of every SIMD target, eval, pdf and sample give exactly the bits the float
+// instantiation gives for that lane's inputs (a bound of 0 ulp: the library and the probes are built
+// without contraction; the half vector with its Fresnel and the clear coat's GTR1 normal are the
+// float functions' own, called a lane at a time, and the rest uses only IEEE-exact lane operations).
+// The float instantiation, built from packet parameters as the path tracer builds it, in turn gives
+// the bits of the scalar BxDF API (PrincipledBSDF where has_lanes()).
+//
+// Cases: the property suite's principled BSDFs (bxdf_cases.h: its cases and sweeps over metallic,
+// roughness, η and the tints) that are opaque solids, and a few more (η = 1, where the dielectric
+// Fresnel vanishes; the glossiest clear coat; tinted sheen and specular), one material per lane at
+// random so every packet mixes materials; lanes of other models and partially masked packets;
+// directions on, near and below the horizon, at the normal, in the mirror direction and straight
+// through; u at 0, 1/2 and 1 − 2⁻²⁴; both transport modes and glossy-only, diffuse-only and
+// transmission-only contexts.
+//
+// Renders: bench/suite/principled.json, whose four opaque solids are packet forms beside a glass and
+// a thin sheet on BSDF lanes, gives the scalar target's image bit for bit on every SIMD target.
+// SPDX-License-Identifier: Apache-2.0
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "bxdf/bxdf_cases.h"
+#include "bxdf/principled_probe.h"
+#include "pellucid/api.h"
+#include "pellucid/integrator/path_services.h"
+#include "pellucid/integrator/simd_target.h"
+#include "pellucid/scene/json_io.h"
+#include "pellucid/sampling/rng.h"
+#include "pellucid/sampling/warp.h"
+
+using namespace pellucid;
+
+namespace pellucid::principled_probe {
+#ifdef PELLUCID_PRINCIPLED_PROBE_AVX512
+void run_avx512(const In& in, Out& out);
+#endif
+#ifdef PELLUCID_PRINCIPLED_PROBE_AVX2
+void run_avx2(const In& in, Out& out);
+#endif
+#ifdef PELLUCID_PRINCIPLED_PROBE_SSE4
+void run_sse4(const In& in, Out& out);
+#endif
+}  // namespace pellucid::principled_probe
+
+namespace {
+constexpr int kP = kPrincipledParams;
+
+/// The property suite's principled BSDFs that have a packet form (opaque solids), and a few more.
+std::vector<PrincipledBSDF> materials() {
+    std::vector<PrincipledBSDF> m;
+    using test::BxDFCases;
+    auto add = [&](const PrincipledBSDF& b) {
+        if (b.has_lanes()) m.push_back(b);
+    };
+    for (const auto& c : BxDFCases<PrincipledBSDF>::cases()) add(c.bxdf);
+    for (const auto& b : BxDFCases<PrincipledBSDF>::sweep()) add(b);
+    PrincipledParams p;
+    p.variant = PrincipledVariant::Burley2015;
+    p.base_color = Spectrum(0.2f, 0.5f, 0.9f);
+    p.roughness = 0.35f;
+    p.anisotropic = 0.6f;
+    p.sheen = 0.8f;
+    p.sheen_tint = 0.7f;
+    p.specular_tint = 0.6f;
+    p.metallic = 0.4f;
+    p.clearcoat = 0.7f;
+    p.clearcoat_gloss = 1.f;  // α_c = 0.001
+    add(PrincipledBSDF(p));
+    p.eta = 1.f;  // F_η = 0: no specular reflection value, but its lobe is still sampled
+    add(PrincipledBSDF(p));
+    p.eta = 0.f;
+    p.specular = 0.9f;
+    p.flatness = 1.f;
+    p.metallic = 0.f;
+    p.roughness = 0.f;
+    add(PrincipledBSDF(p));
+    p.specular_transmission = 0.7f;  // metallic 1 leaves no transmission lobe: an opaque solid
+    p.metallic = 1.f;
+    add(PrincipledBSDF(p));
+    return m;
+}
+
+struct Cases {
+    static constexpr int kN = 16384;
+    std::vector<PrincipledBSDF> mats = materials();
+    std::vector<float> params;  // kP per material
+    std::vector<float> q[kP], a[9];
+    std::vector<int> mat;  // -1: a lane of another model
+    std::vector<int32_t> kind;
+    std::unique_ptr<bool[]> active{new bool[kN]};
+    principled_probe::In in;
+
+    Cases() {
+        params.resize(mats.size() * kP);
+        for (size_t m = 0; m < mats.size(); ++m) principled_packet_params(mats[m].lanes(), &params[m * kP]);
+        PCG32 rng(9, 31);
+        for (auto& v : q) v.resize(kN);
+        for (auto& v : a) v.resize(kN);
+        mat.resize(kN);
+        kind.resize(kN);
+        auto dir = [&](int i, int at) {
+            const Vec3f w = square_to_uniform_sphere(Vec2f(rng.next_float(), rng.next_float()));
+            for (int c = 0; c < 3; ++c) a[at + c][size_t(i)] = w[c];
+        };
+        const float us[] = {0.f, 0.5f, kOneMinusEpsilon, 1e-7f};
+        for (int i = 0; i < kN; ++i) {
+            const size_t k = size_t(i);
+            mat[k] = i % 13 == 5 ? -1 : int(rng.next_u32() % uint32_t(mats.size()));
+            dir(i, 0), dir(i, 3);
+            float *wo[3] = {&a[0][k], &a[1][k], &a[2][k]}, *wi[3] = {&a[3][k], &a[4][k], &a[5][k]};
+            switch (i % 11) {  // edge cases
+                case 1: *wo[2] = 0.f; break;                                             // wo on the horizon
+                case 2: *wi[2] = 1e-7f; break;                                           // wi grazing
+                case 3: *wo[0] = -*wi[0], *wo[1] = -*wi[1], *wo[2] = *wi[2]; break;      // the mirror direction
+                case 4: *wo[0] = *wo[1] = 0.f, *wo[2] = 1.f; break;                      // wo at the normal
+                case 5: *wi[2] = -std::fabs(*wi[2]), *wo[2] = std::fabs(*wo[2]); break;  // a transmission pair
+                case 6: *wo[2] = -std::fabs(*wo[2]), *wi[2] = -std::fabs(*wi[2]); break; // from behind
+                case 7: *wo[2] = 1e-7f; break;                                           // wo grazing
+                case 8: *wi[0] = -*wo[0], *wi[1] = -*wo[1], *wi[2] = -*wo[2]; break;     // straight through
+                case 9: *wo[2] = -1e-6f, *wi[2] = -std::fabs(*wi[2]); break;             // grazing from behind
+                default: break;
+            }
+            for (int c = 0; c < 3; ++c) a[6 + c][k] = i % 7 < 4 ? us[(i / 7 + c) % 4] : rng.next_float();
+            for (int p = 0; p < kP; ++p) q[p][k] = mat[k] >= 0 ? params[size_t(mat[k]) * kP + size_t(p)] : 1e6f + float(p);
+            kind[k] = mat[k] < 0 ? 0 : 1;
+            active[i] = (i / 16) % 3 != 1 || i % 5 != 0;  // every third packet partially masked
+        }
+        in.n = kN;
+        for (int p = 0; p < kP; ++p) in.q[p] = q[p].data();
+        for (int c = 0; c < 3; ++c) in.wo[c] = a[c].data(), in.wi[c] = a[3 + c].data(), in.u[c] = a[6 + c].data();
+        in.kind = kind.data();
+        in.active = active.get();
+    }
+    Vec3f wo(int i) const { return Vec3f(a[0][size_t(i)], a[1][size_t(i)], a[2][size_t(i)]); }
+    Vec3f wi(int i) const { return Vec3f(a[3][size_t(i)], a[4][size_t(i)], a[5][size_t(i)]); }
+};
+
+struct Outputs {
+    std::vector<float> storage[principled_probe::kOutputs];
+    principled_probe::Out out;
+    Outputs() {
+        for (int k = 0; k < principled_probe::kOutputs; ++k) {
+            storage[k].assign(Cases::kN, 0.f);
+            out.v[k] = storage[k].data();
+        }
+    }
+    float at(int k, int i) const { return storage[k][size_t(i)]; }
+};
+
+bool same_bits(float x, float y) { return std::memcmp(&x, &y, sizeof x) == 0 || (std::isnan(x) && std::isnan(y)); }
+
+void expect_equal(const Outputs& scalar, const Outputs& packet, const char* target) {
+    size_t differ = 0, compared = 0;
+    for (int k = 0; k < principled_probe::kOutputs; ++k)
+        for (int i = 0; i < Cases::kN; ++i, ++compared)
+            if (!same_bits(scalar.at(k, i), packet.at(k, i))) {
+                if (++differ <= 5)
+                    ADD_FAILURE() << target << ": output " << k << " case " << i << ": scalar " << scalar.at(k, i)
+                                  << ", packet " << packet.at(k, i);
+            }
+    EXPECT_EQ(differ, 0u) << target << ": of " << compared;
+}
+}  // namespace
+
+TEST(PrincipledLanes, TheGridIsCovered) {
+    const Cases cases;
+    EXPECT_GE(cases.mats.size(), 50u);
+    // Every lobe of the model is present in some material.
+    bool metal = false, coat = false, sheen = false, tint = false;
+    for (const auto& m : cases.mats) {
+        const PrincipledBSDFT<float> l = m.lanes();
+        metal = metal || l.metallic > 0.f;
+        coat = coat || l.clearcoat > 0.f;
+        sheen = sheen || (l.sheen > 0.f && l.sheen_tint > 0.f);
+        tint = tint || l.spec_tint > 0.f;
+    }
+    EXPECT_TRUE(metal && coat && sheen && tint);
+}
+
+TEST(PrincipledLanes, FloatInstantiationIsTheScalarBxDF) {
+    // The float instantiation from packet parameters gives the scalar API's bits: eval, pdf and
+    // sample in each context, case by case; many cases sample each lobe.
+    const Cases cases;
+    Outputs scalar;
+    principled_probe::run<float>(cases.in, scalar.out);
+    size_t compared = 0, differ = 0, diffuse = 0, glossy = 0, nonzero = 0;
+    auto check = [&](float x, float y, int k, int i) {
+        ++compared;
+        if (!same_bits(x, y) && ++differ <= 5)
+            ADD_FAILURE() << "output " << k << " case " << i << ": packet form " << x << ", BxDF " << y;
+    };
+    for (int i = 0; i < Cases::kN; ++i) {
+        if (cases.mat[size_t(i)] < 0 || !cases.active[i]) continue;
+        const PrincipledBSDF& b = cases.mats[size_t(cases.mat[size_t(i)])];
+        const Vec3f wo = cases.wo(i), wi = cases.wi(i);
+        const Vec2f u(cases.a[7][size_t(i)], cases.a[8][size_t(i)]);
+        for (int c = 0; c < principled_probe::kContexts; ++c) {
+            const BxDFContext ctx{principled_probe::kMode[c], principled_probe::kAllowed[c]};
+            const int k0 = c * principled_probe::kPerContext;
+            const Spectrum f = b.eval(ctx, wo, wi);
+            nonzero += !f.is_black();
+            for (int ch = 0; ch < 3; ++ch) check(scalar.at(k0 + ch, i), f[ch], k0 + ch, i);
+            check(scalar.at(k0 + 3, i), b.pdf(ctx, wo, wi), k0 + 3, i);
+            const auto s = b.sample(ctx, wo, cases.a[6][size_t(i)], u);
+            check(scalar.at(k0 + 4, i), s ? 1.f : 0.f, k0 + 4, i);
+            if (!s) continue;
+            (has_flag(s->lobe, BxDFFlags::Diffuse) ? diffuse : glossy) += 1;
+            for (int ch = 0; ch < 3; ++ch) check(scalar.at(k0 + 5 + ch, i), s->wi[ch], k0 + 5 + ch, i);
+            for (int ch = 0; ch < 3; ++ch) check(scalar.at(k0 + 8 + ch, i), s->weight[ch], k0 + 8 + ch, i);
+            check(scalar.at(k0 + 11, i), s->pdf, k0 + 11, i);
+            check(scalar.at(k0 + 12, i), s->eta, k0 + 12, i);
+            check(scalar.at(k0 + 13, i), float(uint32_t(s->lobe)), k0 + 13, i);
+        }
+    }
+    EXPECT_EQ(differ, 0u) << "of " << compared;
+    EXPECT_GT(diffuse, size_t(Cases::kN) / 4);
+    EXPECT_GT(glossy, size_t(Cases::kN));
+    EXPECT_GT(nonzero, size_t(Cases::kN));
+}
+
+TEST(PrincipledLanes, EveryTargetEveryLane) {
+    const Cases cases;
+    Outputs scalar;
+    principled_probe::run<float>(cases.in, scalar.out);
+    int targets = 0;
+    for (SimdTarget t : available_simd_targets()) {
+        Outputs packet;
+        switch (t) {
+#ifdef PELLUCID_PRINCIPLED_PROBE_AVX512
+            case SimdTarget::AVX512: principled_probe::run_avx512(cases.in, packet.out); break;
+#endif
+#ifdef PELLUCID_PRINCIPLED_PROBE_AVX2
+            case SimdTarget::AVX2: principled_probe::run_avx2(cases.in, packet.out); break;
+#endif
+#ifdef PELLUCID_PRINCIPLED_PROBE_SSE4
+            case SimdTarget::SSE4: principled_probe::run_sse4(cases.in, packet.out); break;
+#endif
+            default: continue;
+        }
+        ++targets;
+        expect_equal(scalar, packet, to_string(t).c_str());
+    }
+    RecordProperty("targets", targets);
+}
+
+TEST(PrincipledLanes, ACaseChangedInOneLaneIsSeen) {
+    // The comparison itself: another clear coat in one lane must change that lane's outputs only.
+    Cases cases;
+    Outputs a, b;
+    principled_probe::run<float>(cases.in, a.out);
+    int lane = 0;
+    while (!(cases.kind[size_t(lane)] == 1 && cases.active[lane] && cases.wo(lane).z > 0.1f && cases.wi(lane).z > 0.1f &&
+             cases.q[12][size_t(lane)] > 0.f))
+        ++lane;
+    const_cast<float*>(cases.in.q[12])[lane] *= 0.5f;
+    principled_probe::run<float>(cases.in, b.out);
+    size_t differ = 0;
+    for (int k = 0; k < principled_probe::kOutputs; ++k)
+        for (int i = 0; i < Cases::kN; ++i) {
+            const bool d = !same_bits(a.at(k, i), b.at(k, i));
+            differ += d;
+            if (d) {
+                EXPECT_EQ(i, lane);
+            }
+        }
+    EXPECT_GT(differ, 0u);
+}
+
+namespace {
+std::shared_ptr<const Scene> load_suite_scene(const char* file, int width, int height) {
+    SceneDesc desc = read_json_file(std::string(PELLUCID_SOURCE_DIR) + "/bench/suite/" + file);
+    Node film = *desc.root.find("film");
+    film.set("width", Node::number(width, true));
+    film.set("height", Node::number(height, true));
+    desc.root.set("film", film);
+    return load_desc(desc);
+}
+}  // namespace
+
+TEST(SimdTargetRenderPrincipled, SuiteSceneOpaqueSolidsArePacketForms) {
+    // The opaque solids of the suite's principled scenes run as kPacketPrincipled; the glass and
+    // the thin sheet stay BSDF lanes.
+    for (const char* file : {"principled.json", "many_materials.json"}) {
+        auto scene = load_suite_scene(file, 16, 16);
+        const PathSetup ps = make_path_setup(*scene, 8, 5, true, true, SamplerType::Independent);
+        int packet = 0, lanes = 0;
+        for (size_t m = 0; m < scene->material_bxdfs.size(); ++m) {
+            const auto* b = std::get_if<PrincipledBSDF>(&scene->material_bxdfs[m]);
+            if (!b) continue;
+            const bool mine = ps.packet_kind[m] == int32_t(kPacketPrincipled);
+            EXPECT_EQ(mine, b->has_lanes()) << file << " " << m;
+            (mine ? packet : lanes) += 1;
+        }
+        EXPECT_GE(packet, 3) << file;
+        if (std::string(file) == "principled.json") EXPECT_EQ(lanes, 2);
+    }
+}
+
+TEST(SimdTargetRenderPrincipled, EveryTargetGivesTheScalarImage) {
+    auto scene = load_suite_scene("principled.json", 64, 48);
+    for (const char* sampler : {"independent", "sobol"}) {
+        RenderOptions o;
+        o.spp = 3;
+        o.seed = 5;
+        o.threads = 2;
+        o.sampler = sampler;
+        set_simd_target(SimdTarget::Scalar);
+        const RenderResult ref = render(*scene, o);
+        for (SimdTarget t : available_simd_targets()) {
+            if (t == SimdTarget::Scalar) continue;
+            set_simd_target(t);
+            const RenderResult r = render(*scene, o);
+            ASSERT_EQ(r.image.data.size(), ref.image.data.size());
+            size_t differ = 0;
+            for (size_t i = 0; i < r.image.data.size(); ++i)
+                differ += std::memcmp(&r.image.data[i], &ref.image.data[i], sizeof(float)) != 0;
+            EXPECT_EQ(differ, 0u) << sampler << " " << to_string(t);
+            EXPECT_EQ(r.stats.samples, ref.stats.samples);
+        }
+        set_simd_target(std::nullopt);
+    }
+}
