@@ -45,6 +45,8 @@ STAGES: List[Tuple[str, str, str]] = [
                          r"path_services::occluded|next_ray|spawn_ray"),
     ("media, subsurface", r"", r"(?i)medium|phase|bssrdf|subsurface|searchlight|grid"),
     ("lights, emission", r"", r"(?i)light|escaped|emitted|envmap|emitter|infinite_hit|square_to_uniform_sphere"),
+    # A packet form the compiler left out of line (its symbol names the SIMD batch) is packet code.
+    ("packet kernel (packet BSDFs, MIS, roulette, bookkeeping)", r"", r"xsimd::batch"),
     ("BSDFs one lane at a time", r"", r"(?i)bsdf|bxdf|microfacet|beckmann|ggx|plastic|dielectric|conductor|principled|"
                                       r"fresnel|erfinv|lambert|oren|kulla|coat|sheen|disney|path_services::randoms"),
     ("packet kernel (packet BSDFs, MIS, roulette, bookkeeping)", r"", r"render_tile_kernel"),
