@@ -25,6 +25,7 @@
 #include "pellucid/integrator/simd_target.h"
 #include "pellucid/sampling/rng.h"
 #include "pellucid/sampling/warp.h"
+#include "support/probe_outputs.h"
 
 using namespace pellucid;
 
@@ -129,30 +130,11 @@ struct Cases {
     Vec3f wi(int i) const { return Vec3f(a[3][size_t(i)], a[4][size_t(i)], a[5][size_t(i)]); }
 };
 
-struct Outputs {
-    std::vector<float> storage[probe::kOutputs];
-    probe::Out out;
-    Outputs() {
-        for (int k = 0; k < probe::kOutputs; ++k) {
-            storage[k].assign(Cases::kN, 0.f);
-            out.v[k] = storage[k].data();
-        }
-    }
-    float at(int k, int i) const { return storage[k][size_t(i)]; }
-};
-
-bool same_bits(float x, float y) { return std::memcmp(&x, &y, sizeof x) == 0 || (std::isnan(x) && std::isnan(y)); }
+using Outputs = test::ProbeOutputs<probe::Out, probe::kOutputs, Cases::kN>;
+using test::same_bits;
 
 void expect_equal(const Outputs& scalar, const Outputs& packet, const char* target) {
-    size_t differ = 0, compared = 0;
-    for (int k = 0; k < probe::kOutputs; ++k)
-        for (int i = 0; i < Cases::kN; ++i, ++compared)
-            if (!same_bits(scalar.at(k, i), packet.at(k, i))) {
-                if (++differ <= 5)
-                    ADD_FAILURE() << target << ": output " << k << " case " << i << ": scalar " << scalar.at(k, i)
-                                  << ", packet " << packet.at(k, i);
-            }
-    EXPECT_EQ(differ, 0u) << target << ": of " << compared;
+    EXPECT_EQ(test::count_differing(scalar, packet, target), 0u) << target;
 }
 }  // namespace
 

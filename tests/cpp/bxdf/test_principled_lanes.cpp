@@ -32,6 +32,7 @@
 #include "pellucid/scene/json_io.h"
 #include "pellucid/sampling/rng.h"
 #include "pellucid/sampling/warp.h"
+#include "support/probe_outputs.h"
 
 using namespace pellucid;
 
@@ -140,30 +141,11 @@ struct Cases {
     Vec3f wi(int i) const { return Vec3f(a[3][size_t(i)], a[4][size_t(i)], a[5][size_t(i)]); }
 };
 
-struct Outputs {
-    std::vector<float> storage[principled_probe::kOutputs];
-    principled_probe::Out out;
-    Outputs() {
-        for (int k = 0; k < principled_probe::kOutputs; ++k) {
-            storage[k].assign(Cases::kN, 0.f);
-            out.v[k] = storage[k].data();
-        }
-    }
-    float at(int k, int i) const { return storage[k][size_t(i)]; }
-};
-
-bool same_bits(float x, float y) { return std::memcmp(&x, &y, sizeof x) == 0 || (std::isnan(x) && std::isnan(y)); }
+using Outputs = test::ProbeOutputs<principled_probe::Out, principled_probe::kOutputs, Cases::kN>;
+using test::same_bits;
 
 void expect_equal(const Outputs& scalar, const Outputs& packet, const char* target) {
-    size_t differ = 0, compared = 0;
-    for (int k = 0; k < principled_probe::kOutputs; ++k)
-        for (int i = 0; i < Cases::kN; ++i, ++compared)
-            if (!same_bits(scalar.at(k, i), packet.at(k, i))) {
-                if (++differ <= 5)
-                    ADD_FAILURE() << target << ": output " << k << " case " << i << ": scalar " << scalar.at(k, i)
-                                  << ", packet " << packet.at(k, i);
-            }
-    EXPECT_EQ(differ, 0u) << target << ": of " << compared;
+    EXPECT_EQ(test::count_differing(scalar, packet, target), 0u) << target;
 }
 }  // namespace
 
@@ -259,16 +241,9 @@ TEST(PrincipledLanes, ACaseChangedInOneLaneIsSeen) {
         ++lane;
     const_cast<float*>(cases.in.q[12])[lane] *= 0.5f;
     principled_probe::run<float>(cases.in, b.out);
-    size_t differ = 0;
-    for (int k = 0; k < principled_probe::kOutputs; ++k)
-        for (int i = 0; i < Cases::kN; ++i) {
-            const bool d = !same_bits(a.at(k, i), b.at(k, i));
-            differ += d;
-            if (d) {
-                EXPECT_EQ(i, lane);
-            }
-        }
-    EXPECT_GT(differ, 0u);
+    const std::vector<int> changed = test::differing_cases(a, b);
+    EXPECT_FALSE(changed.empty());
+    for (int i : changed) EXPECT_EQ(i, lane);
 }
 
 namespace {

@@ -22,6 +22,7 @@
 #include "pellucid/integrator/simd_target.h"
 #include "pellucid/light/light.h"
 #include "pellucid/sampling/rng.h"
+#include "support/probe_outputs.h"
 
 using namespace pellucid;
 
@@ -87,28 +88,8 @@ struct Cases {
     }
 };
 
-struct Outputs {
-    std::vector<float> s[envmap_probe::kOutputs];
-    envmap_probe::Out out;
-    Outputs() {
-        for (int k = 0; k < envmap_probe::kOutputs; ++k) {
-            s[k].assign(Cases::kN, 0.f);
-            out.v[k] = s[k].data();
-        }
-    }
-};
-
-bool same_bits(float x, float y) { return std::memcmp(&x, &y, sizeof x) == 0 || (std::isnan(x) && std::isnan(y)); }
-
-size_t count_differ(const Outputs& x, const Outputs& y, const char* what) {
-    size_t differ = 0;
-    for (int k = 0; k < envmap_probe::kOutputs; ++k)
-        for (int i = 0; i < Cases::kN; ++i)
-            if (!same_bits(x.s[k][size_t(i)], y.s[k][size_t(i)]) && ++differ <= 5)
-                ADD_FAILURE() << what << ": output " << k << " case " << i << ": " << x.s[k][size_t(i)] << " vs "
-                              << y.s[k][size_t(i)];
-    return differ;
-}
+using Outputs = test::ProbeOutputs<envmap_probe::Out, envmap_probe::kOutputs, Cases::kN>;
+using test::same_bits;
 }  // namespace
 
 TEST(EnvmapLanes, EveryTargetEveryLaneEqualsTheFloatInstantiation) {
@@ -118,7 +99,7 @@ TEST(EnvmapLanes, EveryTargetEveryLaneEqualsTheFloatInstantiation) {
     size_t env_valid = 0;
     for (int i = 0; i < Cases::kN; ++i)
         env_valid += cases.active[i] && (cases.light[size_t(i)] == kEnvA || cases.light[size_t(i)] == kEnvB) &&
-                     scalar.s[0][size_t(i)] == 1.f;
+                     scalar.at(0, i) == 1.f;
     EXPECT_GT(env_valid, size_t(Cases::kN) / 5);  // the probe sampled the maps
     int targets = 0;
     for (SimdTarget t : available_simd_targets()) {
@@ -136,7 +117,7 @@ TEST(EnvmapLanes, EveryTargetEveryLaneEqualsTheFloatInstantiation) {
             default: continue;
         }
         ++targets;
-        EXPECT_EQ(count_differ(scalar, packet, to_string(t).c_str()), 0u) << to_string(t);
+        EXPECT_EQ(test::count_differing(scalar, packet, to_string(t).c_str()), 0u) << to_string(t);
     }
     RecordProperty("targets", targets);
 }
@@ -149,14 +130,9 @@ TEST(EnvmapLanes, ACaseChangedInOneLaneIsSeen) {
     ASSERT_EQ(cases.light[40], kEnvB);
     const_cast<float*>(cases.in.u[0])[40] = 0.37f;
     envmap_probe::run<float>(cases.in, y.out);
-    size_t differ = 0;
-    for (int k = 0; k < envmap_probe::kOutputs; ++k)
-        for (int i = 0; i < Cases::kN; ++i)
-            if (!same_bits(x.s[k][size_t(i)], y.s[k][size_t(i)])) {
-                ++differ;
-                EXPECT_EQ(i, 40);
-            }
-    EXPECT_GT(differ, 0u);
+    const std::vector<int> changed = test::differing_cases(x, y);
+    EXPECT_FALSE(changed.empty());
+    for (int i : changed) EXPECT_EQ(i, 40);
 }
 
 TEST(EnvmapLanes, FloatInstantiationIsTheScalarLight) {
@@ -172,7 +148,7 @@ TEST(EnvmapLanes, FloatInstantiationIsTheScalarLight) {
         const size_t li = size_t(cases.light[size_t(i)]);
         const Vec3f d(cases.a[2][size_t(i)], cases.a[3][size_t(i)], cases.a[4][size_t(i)]);
         const Vec2f u(cases.a[0][size_t(i)], cases.a[1][size_t(i)]);
-        auto at = [&](int k) { return o.s[k][size_t(i)]; };
+        auto at = [&](int k) { return o.at(k, i); };
         if (const auto* e = std::get_if<EnvmapLight>(&cases.lights[li])) {
             const auto s = e->sample_li(ctx, u);
             ASSERT_EQ(at(0) == 1.f, s.has_value()) << i;

@@ -21,6 +21,7 @@
 #include "pellucid/light/light.h"
 #include "pellucid/sampling/rng.h"
 #include "simd/lane_probe.h"
+#include "support/probe_outputs.h"
 
 using namespace pellucid;
 
@@ -120,29 +121,11 @@ struct Cases {
     }
 };
 
-struct Outputs {
-    std::vector<float> storage[probe::kOutputs];
-    probe::Out out;
-    Outputs() {
-        for (int k = 0; k < probe::kOutputs; ++k) {
-            storage[k].assign(Cases::kN, 0.f);
-            out.v[k] = storage[k].data();
-        }
-    }
-};
-
-bool same_bits(float x, float y) { return std::memcmp(&x, &y, sizeof x) == 0 || (std::isnan(x) && std::isnan(y)); }
+using Outputs = test::ProbeOutputs<probe::Out, probe::kOutputs, Cases::kN>;
+using test::same_bits;
 
 void expect_equal(const Outputs& scalar, const Outputs& packet, const char* target) {
-    size_t differ = 0, compared = 0;
-    for (int k = 0; k < probe::kOutputs; ++k)
-        for (int i = 0; i < Cases::kN; ++i, ++compared)
-            if (!same_bits(scalar.storage[k][size_t(i)], packet.storage[k][size_t(i)])) {
-                if (++differ <= 5)
-                    ADD_FAILURE() << target << ": output " << k << " case " << i << ": scalar "
-                                  << scalar.storage[k][size_t(i)] << ", packet " << packet.storage[k][size_t(i)];
-            }
-    EXPECT_EQ(differ, 0u) << target << ": of " << compared;
+    EXPECT_EQ(test::count_differing(scalar, packet, target), 0u) << target;
 }
 }  // namespace
 
@@ -183,14 +166,7 @@ TEST(LanesEqualScalars, ACaseChangedInOneLaneIsSeen) {
     probe::run<float>(cases.in, a.out);
     const_cast<float*>(cases.in.albedo[0])[37] += 0.25f;
     probe::run<float>(cases.in, b.out);
-    size_t differ = 0;
-    for (int k = 0; k < probe::kOutputs; ++k)
-        for (int i = 0; i < Cases::kN; ++i) {
-            const bool d = !same_bits(a.storage[k][size_t(i)], b.storage[k][size_t(i)]);
-            differ += d;
-            if (d) {
-                EXPECT_EQ(i, 37);
-            }
-        }
-    EXPECT_GT(differ, 0u);
+    const std::vector<int> changed = test::differing_cases(a, b);
+    EXPECT_FALSE(changed.empty());
+    for (int i : changed) EXPECT_EQ(i, 37);
 }
