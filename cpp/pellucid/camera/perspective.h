@@ -11,6 +11,7 @@
 #pragma once
 #include <string>
 
+#include "pellucid/math/lane_types.h"
 #include "pellucid/math/ray.h"
 #include "pellucid/math/transform.h"
 
@@ -23,9 +24,18 @@ public:
     PerspectiveCamera(const Transform& to_world, float fov_x_deg, int width, int height);
 
     /// Ray through film position (x, y) in pixels, (0, 0) = top-left corner of the image.
-    Ray generate_ray(float x, float y) const {
-        Vec3f d(m_tan_x * (1.f - 2.f * x * m_inv_w), m_tan_y * (1.f - 2.f * y * m_inv_h), 1.f);
-        return Ray{m_origin, normalize(m_to_world.vector(d)), kInfinity};
+    Ray generate_ray(float x, float y) const { return Ray{m_origin, direction<float>(x, y), kInfinity}; }
+    /// The unit direction of generate_ray(x, y), over a lane type F (math/lane_types.h): the path
+    /// kernel starts a packet's camera rays at once.
+    template <class F>
+    V3<F> direction(const F& x, const F& y) const {
+        const F cx = F(m_tan_x) * (F(1.f) - F(2.f) * x * F(m_inv_w)), cy = F(m_tan_y) * (F(1.f) - F(2.f) * y * F(m_inv_h));
+        // to_world · (cx, cy, 1, 0), summed as GLM's mat4 · vec4 sums: (m₀x + m₁y) + (m₂z + m₃w).
+        const Mat4f& m = m_to_world.matrix();
+        auto row = [&](int r) {
+            return (F(m[0][r]) * cx + F(m[1][r]) * cy) + (F(m[2][r]) * F(1.f) + F(m[3][r]) * F(0.f));
+        };
+        return normalize(V3<F>(row(0), row(1), row(2)));
     }
     /// The same ray with its differentials toward the neighbouring pixels (x+1, y) and (x, y+1).
     RayDifferential generate_ray_differential(float x, float y) const {

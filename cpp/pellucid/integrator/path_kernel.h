@@ -46,6 +46,8 @@
 #include "pellucid/integrator/path_services.h"
 #include "pellucid/math/frame.h"
 #include "pellucid/sampling/mis.h"
+#include "pellucid/scene/hit_lanes.h"
+#include "pellucid/scene/scene.h"
 
 namespace pellucid {
 
@@ -90,6 +92,22 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     int32_t exit_ss[W]{};
     SurfaceInteraction exit_si[W];
     bool hit[W], active[W], blocked[W];
+    // Hit records: the kernel's hits, and which lanes have a full SurfaceInteraction in si (the
+    // others only their vertex, as packets: hit_lanes.h), with each hit's material and light.
+    RayHit rh[W];
+    bool full[W];
+    uint32_t mat_of[W]{};
+    int32_t light_of[W]{};
+    // Without media, subsurface scattering or textures, a hit on a sphere or a flat-shaded triangle
+    // whose material has a packet form and emits nothing needs no more than its vertex.
+    const bool vertex_lanes = !(ps.media || ps.subsurface || scene.has_textures);
+    struct alignas(64) VertexInputs {
+        float ox[W], oy[W], oz[W], dx[W], dy[W], dz[W], t[W];  // a sphere's: the ray, the refined t
+        float cx[W], cy[W], cz[W], r[W], rot[9][W];            // centre, radius, rotation (columns)
+        float p0[3][W], p1[3][W], p2[3][W], b1[W], b2[W];       // a flat triangle's corners, barycentrics
+        float ng[3][W], fs[3][W], ft[3][W], fn[3][W];           // and its normal and shading frame
+        bool sphere[W], tri[W], flip[W];
+    } hv{};
     struct alignas(64) Arrays {
         float Lr[W], Lg[W], Lb[W], br[W], bg[W], bb[W];
         float prev_pdf[W], eta_scale[W], depth[W];
@@ -105,6 +123,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         bool fast[W], goes_on[W], nee[W];
         bool esc[W];                   // the ray escaped: the lights at infinity, as a packet
         float edx[W], edy[W], edz[W];  // its direction
+        bool cam[W];                   // the lane's path starts: its camera ray through (cfx, cfy) is due
+        float cfx[W], cfy[W];
         bool in_medium[W];   // this vertex is a collision in a medium (the phase function scatters)
         bool crossing[W];    // the ray crossed a null boundary: the path goes on unchanged
         bool at_exit[W];     // this vertex is a BSSRDF's exit point (its exit lobe scatters)
@@ -141,6 +161,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     auto ST = [](float* p, const F& v) { lane::store(p, v); };
     auto SM = [](bool* p, const M& v) { lane::store(p, v); };
     uint64_t bad = 0;
+    bool any_cam = false;  // some lane's camera ray is due (Arrays::cam)
 
     for (int64_t p0 = 0; p0 < n_pixels; p0 += chunk_pixels) {
         const int64_t n_paths = std::min(chunk_pixels, n_pixels - p0) * n_samples;
@@ -160,8 +181,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             int x, y;
             pixel_xy(k, &x, &y);
             path_of[i] = k;
-            path_services::start(ps, splat, x, y, job.s0 + int(k % n_samples), job.seed, &sampler[i], &ray[i], &done[k].fx,
-                                 &done[k].fy);
+            if (scene.has_textures) {  // camera rays with differentials, one at a time
+                path_services::start(ps, splat, x, y, job.s0 + int(k % n_samples), job.seed, &sampler[i], &ray[i],
+                                     &done[k].fx, &done[k].fy);
+            } else {  // the ray follows for all such lanes at once (camera_rays)
+                path_services::start_sample(ps, splat, x, y, job.s0 + int(k % n_samples), job.seed, &sampler[i],
+                                            &done[k].fx, &done[k].fy);
+                a.cam[i] = true, a.cfx[i] = done[k].fx, a.cfy[i] = done[k].fy;
+                any_cam = true;
+            }
             a.Lr[i] = a.Lg[i] = a.Lb[i] = 0.f;
             a.br[i] = a.bg[i] = a.bb[i] = 1.f;
             a.prev_pdf[i] = 0.f;
@@ -178,7 +206,19 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             pending_exit[i] = false;
             active[i] = true;
         };
+        // The camera rays of the lanes start() left without one, as a packet.
+        auto camera_rays = [&]() {
+            if (!any_cam) return;
+            any_cam = false;
+            const V3<F> d = scene.camera.direction<F>(LD(a.cfx), LD(a.cfy));
+            alignas(64) float b[3][W];
+            ST(b[0], d.x), ST(b[1], d.y), ST(b[2], d.z);
+            const Point3f o = scene.camera.origin();
+            for (int i = 0; i < W; ++i)
+                if (a.cam[i]) ray[i].set(o, Vec3f(b[0][i], b[1][i], b[2][i]), kInfinity), a.cam[i] = false;
+        };
         for (int i = 0; i < W; ++i) start(i);
+        camera_rays();
         for (;;) {
             bool any = false;
             for (int i = 0; i < W; ++i) {
@@ -186,7 +226,82 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 ray_ptr[i] = active[i] && !pending_exit[i] ? &ray[i] : nullptr;  // idle lanes hold no ray
             }
             if (!any) break;
-            path_services::trace(scene, W, ray_ptr, si, hit);
+            path_services::trace_hits(scene, W, ray_ptr, rh, hit);
+            // Hit records: full ones one lane at a time (Scene::fill_hit), then the vertices of the
+            // lanes that need no more, as packets (the same templates fill_hit uses, so the same bits).
+            bool any_sphere = false, any_tri = false;
+            for (int i = 0; i < W; ++i) {
+                hv.sphere[i] = hv.tri[i] = false;
+                full[i] = true;
+                if (!hit[i]) continue;
+                const RayHit& h = rh[i];
+                const ShapeRecord& s = scene.shapes[h.geom_id];
+                mat_of[i] = s.face_materials.empty() ? s.material : s.face_materials[h.prim_id];
+                light_of[i] = s.light;
+                const TriangleMesh* mesh = s.kind == ShapeRecord::Kind::Mesh ? &scene.meshes[s.mesh_index] : nullptr;
+                if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane || (mesh && mesh->flat.empty())) {
+                    scene.fill_hit(ray[i], h, si[i], scene.has_textures);
+                    continue;
+                }
+                full[i] = false;
+                const Ray& r = ray[i];
+                a.wox[i] = -r.d.x, a.woy[i] = -r.d.y, a.woz[i] = -r.d.z;
+                if (mesh) {
+                    const uint32_t* idx = &mesh->indices[3 * size_t(h.prim_id)];
+                    for (int c = 0; c < 3; ++c) {
+                        hv.p0[c][i] = mesh->positions[idx[0]][c];
+                        hv.p1[c][i] = mesh->positions[idx[1]][c];
+                        hv.p2[c][i] = mesh->positions[idx[2]][c];
+                    }
+                    hv.b1[i] = h.u, hv.b2[i] = h.v;
+                    const FlatTriangle& f = mesh->flat[h.prim_id];
+                    for (int c = 0; c < 3; ++c)
+                        hv.ng[c][i] = f.ng[c], hv.fs[c][i] = f.shading.s[c], hv.ft[c][i] = f.shading.t[c],
+                        hv.fn[c][i] = f.shading.n[c];
+                    hv.tri[i] = any_tri = true;
+                } else {
+                    hv.ox[i] = r.o.x, hv.oy[i] = r.o.y, hv.oz[i] = r.o.z;
+                    hv.dx[i] = r.d.x, hv.dy[i] = r.d.y, hv.dz[i] = r.d.z;
+                    hv.t[i] = refine_sphere_t(s, r, h.t);
+                    hv.cx[i] = s.center.x, hv.cy[i] = s.center.y, hv.cz[i] = s.center.z, hv.r[i] = s.radius;
+                    for (int c = 0; c < 9; ++c) hv.rot[c][i] = s.rotation[c / 3][c % 3];
+                    hv.flip[i] = s.flip_normals;
+                    hv.sphere[i] = any_sphere = true;
+                }
+            }
+            if (any_sphere || any_tri) {
+                auto V = [&](const float (&c)[3][W]) { return V3<F>(LD(c[0]), LD(c[1]), LD(c[2])); };
+                HitVertexT<F> v;
+                if (any_tri)
+                    v = flat_triangle_vertex<F>(V(hv.p0), V(hv.p1), V(hv.p2), LD(hv.b1), LD(hv.b2), V(hv.ng),
+                                                FrameT<F>(V(hv.fs), V(hv.ft), V(hv.fn)));
+                if (any_sphere) {
+                    auto col = [&](int k) { return V3<F>(LD(hv.rot[3 * k]), LD(hv.rot[3 * k + 1]), LD(hv.rot[3 * k + 2])); };
+                    SphereTangentsT<F> tangents;
+                    const HitVertexT<F> sv = sphere_vertex<F>(
+                        V3<F>(LD(hv.ox), LD(hv.oy), LD(hv.oz)), V3<F>(LD(hv.dx), LD(hv.dy), LD(hv.dz)), LD(hv.t),
+                        V3<F>(LD(hv.cx), LD(hv.cy), LD(hv.cz)), LD(hv.r), Mat3T<F>{col(0), col(1), col(2)}, LM(hv.flip),
+                        &tangents);
+                    if (!any_tri) {
+                        v = sv;
+                    } else {
+                        const M sph = LM(hv.sphere);
+                        v.p = lane::select(sph, sv.p, v.p);
+                        v.p_error = lane::select(sph, sv.p_error, v.p_error);
+                        v.ng = lane::select(sph, sv.ng, v.ng);
+                        v.shading = FrameT<F>(lane::select(sph, sv.shading.s, v.shading.s),
+                                              lane::select(sph, sv.shading.t, v.shading.t),
+                                              lane::select(sph, sv.shading.n, v.shading.n));
+                    }
+                }
+                // Lanes with full records overwrite theirs (load_vertex) where their paths go on.
+                ST(a.px, v.p.x), ST(a.py, v.p.y), ST(a.pz, v.p.z);
+                ST(a.pex, v.p_error.x), ST(a.pey, v.p_error.y), ST(a.pez, v.p_error.z);
+                ST(a.ngx, v.ng.x), ST(a.ngy, v.ng.y), ST(a.ngz, v.ng.z);
+                ST(a.sx, v.shading.s.x), ST(a.sy, v.shading.s.y), ST(a.sz, v.shading.s.z);
+                ST(a.tx, v.shading.t.x), ST(a.ty, v.shading.t.y), ST(a.tz, v.shading.t.z);
+                ST(a.nx, v.shading.n.x), ST(a.ny, v.shading.n.y), ST(a.nz, v.shading.n.z);
+            }
             if (ps.subsurface)
                 for (int i = 0; i < W; ++i)
                     if (active[i] && pending_exit[i]) si[i] = exit_si[i], hit[i] = true;
@@ -277,7 +392,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     continue;
                 }
                 const SurfaceInteraction& h = si[i];
-                if (h.light_id >= 0) {
+                if (light_of[i] >= 0) {  // (a full record)
                     const Spectrum Le = path_services::emitted(ps, h, prev, ray[i].d, a.specular[i], &a.le_pdf[i]);
                     a.Ler[i] = Le.r;
                     a.Leg[i] = Le.g;
@@ -285,14 +400,14 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 }
                 const int depth = int(a.depth[i]);
                 if (depth >= ps.max_depth) continue;
-                load_vertex(i, h);
+                if (full[i]) load_vertex(i, h);
                 BxDFFlags flags;
-                if (const int32_t kind = ps.packet_kind[h.material_id]; kind != kBSDFLane) {
+                if (const int32_t kind = ps.packet_kind[mat_of[i]]; kind != kBSDFLane) {
                     a.fast[i] = true;
                     a.kind[i] = float(kind);
-                    const float* q = &ps.packet_params[kPacketParams * size_t(h.material_id)];
+                    const float* q = &ps.packet_params[kPacketParams * size_t(mat_of[i])];
                     for (int k = 0; k < kPacketParams; ++k) a.q[k][i] = q[k];
-                    flags = BxDFFlags(ps.packet_flags[h.material_id]);
+                    flags = BxDFFlags(ps.packet_flags[mat_of[i]]);
                     // Delta bounces carry ray differentials on from the hit's footprint.
                     if (scene.has_textures) path_services::footprint(ps, si[i], ray[i]);
                 } else {
@@ -379,8 +494,13 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             // One lane at a time again: lights without a table, and the BSDF lanes.
             for (int i = 0; i < W; ++i) {
                 if (!a.goes_on[i]) continue;
-                const SurfaceInteraction& h = si[i];
+                SurfaceInteraction& h = si[i];
                 if (a.nee[i] && ps.emitters.empty() && !a.plight[i]) {
+                    if (!full[i]) {  // what light sampling reads of the vertex
+                        h.p = Vec3f(a.px[i], a.py[i], a.pz[i]);
+                        h.p_error = Vec3f(a.pex[i], a.pey[i], a.pez[i]);
+                        h.ng = Vec3f(a.ngx[i], a.ngy[i], a.ngz[i]);
+                    }
                     LightLiSample ls;
                     const Vec2f u(a.u[1][i], a.u[2][i]);
                     a.nee_ok[i] = ps.lights.any ? path_services::sample_picked_light(ps, h, a.light[i], a.lsel[i], u, &ls,
@@ -692,6 +812,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
                 start(i);
             }
+            camera_rays();
         }
         for (int64_t k = 0; k < n_paths; k += n_samples) {
             int x, y;

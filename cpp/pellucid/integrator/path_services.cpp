@@ -157,9 +157,29 @@ void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t s
     camera_sample(scene, splat, x, y, *sampler, fx, fy, ray);
 }
 
+void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, float* fx,
+                  float* fy) {
+    const Scene& scene = *ps.scene;
+    *sampler = Sampler(ps.sampler, uint64_t(y) * uint64_t(scene.width) + uint64_t(x), uint64_t(sample), seed);
+    film_position(scene, splat, x, y, *sampler, fx, fy);
+}
+
 void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) {
     if (n == 1) hit[0] = rays[0] && scene.intersect(*rays[0], si[0]);
     else scene.intersect_packet(n, rays, si, hit);
+}
+
+void trace_hits(const Scene& scene, int n, const Ray* const* rays, RayHit* h, bool* hit) {
+    if (n == 1) {
+        h[0] = RayHit{};
+        if (rays[0]) {
+            h[0].t = rays[0]->tmax;
+            scene.accel.intersect(*rays[0], h[0]);
+        }
+    } else {
+        scene.accel.intersect_packet(n, rays, h);
+    }
+    for (int i = 0; i < n; ++i) hit[i] = rays[i] && h[i].hit();
 }
 
 void occluded(const Scene& scene, int n, const Ray* const* rays, bool* blocked) {

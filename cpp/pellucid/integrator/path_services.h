@@ -93,8 +93,13 @@ namespace path_services {
 /// Start sample `sample` of pixel (x, y): its sampler, its camera ray and its film position.
 void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, RayDifferential* ray,
            float* fx, float* fy);
+/// start() without the camera ray (PerspectiveCamera::direction through (fx, fy) gives it).
+void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, float* fx,
+                  float* fy);
 /// Trace n ≤ 16 rays (one Embree packet when n > 1); a null rays[i] is an inactive lane (no hit).
 void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit);
+/// trace() without the hit records: the kernel's hits (Scene::fill_hit or hit_lanes.h make them records).
+void trace_hits(const Scene& scene, int n, const Ray* const* rays, RayHit* h, bool* hit);
 void occluded(const Scene& scene, int n, const Ray* const* rays, bool* blocked);
 /// Radiance from the lights at infinity seen along the escaping direction d, MIS-weighted.
 Spectrum escaped(const PathSetup& ps, const LightSampleContext& prev, const Vec3f& d, bool specular, float prev_pdf);

@@ -100,19 +100,19 @@ inline SamplerType sampler_type(const Scene& scene, const RenderOptions& opts) {
     return opts.sampler.empty() ? scene.sampler : parse_sampler_type(opts.sampler, "sampler");
 }
 
-/// The per-sample loop every integrator instantiates with its own estimator Li(ray, sampler): every
-/// (pixel, sample index, seed) has its own Sampler (sampling/sampler.h), so images are bit-identical
-/// for any thread count. Rejected samples (NaN, infinite, or negative under SampleValues::NonNegative)
-/// are counted and kept out of the film.
-/// The camera ray of sample `sampler` in pixel (x, y), from the sample's dimensions 0 and 1; (fx, fy)
-/// receives its film position. Splatting films take a uniform position in the pixel, the others an
-/// offset drawn from the filter. Differentials only where textures need footprints.
-inline void camera_sample(const Scene& scene, bool splat, int x, int y, Sampler& sampler, float* fx, float* fy,
-                          RayDifferential* out) {
+/// The film position of sample `sampler` in pixel (x, y), from the sample's dimensions 0 and 1:
+/// splatting films take a uniform position in the pixel, the others an offset drawn from the filter.
+inline void film_position(const Scene& scene, bool splat, int x, int y, Sampler& sampler, float* fx, float* fy) {
     const Vec2f u_px = sampler.get_pixel_2d();
     const Vec2f off = splat ? u_px - Vec2f(0.5f) : sample_filter(scene.filter, u_px);
     *fx = float(x) + 0.5f + off.x;
     *fy = float(y) + 0.5f + off.y;
+}
+/// The camera ray of sample `sampler` in pixel (x, y), through its film position (film_position),
+/// which (fx, fy) receives. Differentials only where textures need footprints.
+inline void camera_sample(const Scene& scene, bool splat, int x, int y, Sampler& sampler, float* fx, float* fy,
+                          RayDifferential* out) {
+    film_position(scene, splat, x, y, sampler, fx, fy);
     if (scene.has_textures) {
         *out = scene.camera.generate_ray_differential(*fx, *fy);
     } else {

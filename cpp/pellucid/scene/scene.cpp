@@ -5,25 +5,30 @@
 #include <cmath>
 #include <sstream>
 
+#include "pellucid/scene/hit_lanes.h"
+
 namespace pellucid {
 namespace {
 void fill_triangle(const TriangleMesh& m, const RayHit& h, SurfaceInteraction& si) {
     uint32_t i0 = m.indices[3 * h.prim_id], i1 = m.indices[3 * h.prim_id + 1], i2 = m.indices[3 * h.prim_id + 2];
     const Point3f &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
     float b1 = h.u, b2 = h.v, b0 = 1.f - b1 - b2;
-    si.p = b0 * p0 + b1 * p1 + b2 * p2;
-    // Barycentric interpolation error bound (pbrt-v4 §6.8.5, eq. 6.31).
-    si.p_error = gamma(7) * (abs(b0 * p0) + abs(b1 * p1) + abs(b2 * p2));
     si.uv = m.uvs.empty() ? Vec2f(b1 + b2, b2) : b0 * m.uvs[i0] + b1 * m.uvs[i1] + b2 * m.uvs[i2];
     si.dndu = si.dndv = Vec3f(0.f);
     if (!m.flat.empty()) {  // flat shading: every other quantity is constant over the triangle
         const FlatTriangle& f = m.flat[h.prim_id];
+        const HitVertexT<float> v = flat_triangle_vertex<float>(p0, p1, p2, b1, b2, f.ng, f.shading);
+        si.p = v.p;
+        si.p_error = v.p_error;
         si.ng = f.ng;
         si.dpdu = f.dpdu;
         si.dpdv = f.dpdv;
         si.shading = f.shading;
         return;
     }
+    si.p = b0 * p0 + b1 * p1 + b2 * p2;
+    // Barycentric interpolation error bound (pbrt-v4 §6.8.5, eq. 6.31).
+    si.p_error = gamma(7) * (abs(b0 * p0) + abs(b1 * p1) + abs(b2 * p2));
     const FlatTriangle f = m.flat_triangle(h.prim_id);
     si.ng = f.ng;
     si.dpdu = f.dpdu;
@@ -48,8 +53,8 @@ void fill_triangle(const TriangleMesh& m, const RayHit& h, SurfaceInteraction& s
     si.shading = Frame::from_xz(si.dpdu, ns);
 }
 
-/// The root of |o + t·d − c|² = r² nearest the kernel's t, in double: the hit then does not depend
-/// on how the kernel rounded (Embree's single-ray and packet sphere tests differ in the last bits).
+}  // namespace
+
 float refine_sphere_t(const ShapeRecord& s, const Ray& ray, float t_kernel) {
     const Vec3d o = Vec3d(ray.o) - Vec3d(s.center), d(ray.d);
     const double a = glm::dot(d, d), b = glm::dot(o, d), c = glm::dot(o, o) - double(s.radius) * s.radius;
@@ -61,20 +66,22 @@ float refine_sphere_t(const ShapeRecord& s, const Ray& ray, float t_kernel) {
     return std::isfinite(t) ? float(t) : t_kernel;
 }
 
+namespace {
+
+/// A sphere's rotation as columns (hit_lanes.h).
+Mat3T<float> columns(const Mat3f& R) { return {R[0], R[1], R[2]}; }
+
 void fill_sphere(const ShapeRecord& s, const Ray& ray, const RayHit& h, SurfaceInteraction& si, bool with_uv) {
-    Point3f hit = ray.o + h.t * ray.d;
-    Vec3f n = hit - s.center;
-    float len = length(n);
-    n = len > 0.f ? n / len : s.rotation[2];
-    // Re-project onto the surface; the remaining error is a few ulps of |p| (pbrt-v4 §6.8.5).
-    si.p = s.center + s.radius * n;
-    si.p_error = gamma(5) * (abs(si.p) + abs(s.center)) + Vec3f(gamma(5) * s.radius);
-    si.ng = s.flip_normals ? -n : n;
-    // The parameterisation is the unit sphere's in object space, (sin θ cos φ, sin θ sin φ, cos θ)
-    // with u = φ/2π, v = θ/π, carried to world by to_world (as Mitsuba 3's sphere): l is the hit
-    // in object space (unit length), R⁻¹ = Rᵀ for the orthogonal R.
-    const Mat3f& R = s.rotation;
-    const Vec3f l = glm::transpose(R) * n;
+    SphereTangentsT<float> tan;
+    const HitVertexT<float> v =
+        sphere_vertex<float>(ray.o, ray.d, h.t, s.center, s.radius, columns(s.rotation), s.flip_normals, &tan);
+    si.p = v.p;
+    si.p_error = v.p_error;
+    si.ng = v.ng;
+    si.shading = v.shading;
+    si.dpdu = tan.dpdu;
+    si.dpdv = tan.dpdv;
+    const Vec3f& l = tan.local;  // the hit in object space (unit length)
     if (with_uv) {
         float phi = std::atan2(l.y, l.x);
         if (phi < 0.f) phi += 2.f * kPi;
@@ -82,24 +89,10 @@ void fill_sphere(const ShapeRecord& s, const Ray& ray, const RayHit& h, SurfaceI
     } else {
         si.uv = Vec2f(0.f);
     }
-    // ∂p/∂u = 2π·r·(−l.y, l.x, 0), ∂p/∂v = π·r·(cos θ cos φ, cos θ sin φ, −sin θ), mapped by R.
-    const float st = std::sqrt(l.x * l.x + l.y * l.y);
-    Vec3f dpdu_l, dpdv_l;
-    if (st > 1e-6f) {
-        dpdu_l = (2.f * kPi * s.radius) * Vec3f(-l.y, l.x, 0.f);
-        dpdv_l = (kPi * s.radius) * Vec3f(l.z * l.x / st, l.z * l.y / st, -st);
-    } else {  // at a pole φ is undefined and ∂p/∂u vanishes: take the directions at φ = 0, lengths at the equator
-        dpdu_l = (2.f * kPi * s.radius) * Vec3f(0.f, 1.f, 0.f);
-        dpdv_l = (kPi * s.radius) * Vec3f(l.z, 0.f, 0.f);
-    }
-    si.dpdu = R * dpdu_l;
-    si.dpdv = R * dpdv_l;
     // n = (p − c)/r, so ∂n/∂u = (∂p/∂u)/r (negated with the normal when it is flipped).
     float sgn = s.flip_normals ? -1.f : 1.f;
     si.dndu = (sgn / s.radius) * si.dpdu;
     si.dndv = (sgn / s.radius) * si.dpdv;
-    // s = ∂p/∂u made perpendicular to the normal, t = n × s (Mitsuba 3's initialize_sh_frame).
-    si.shading = Frame::from_xz(si.dpdu, si.ng);
 }
 }  // namespace
 

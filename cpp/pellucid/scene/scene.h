@@ -152,10 +152,17 @@ public:
     uint32_t updates = 0;     ///< parameter updates applied
     uint32_t bvh_builds = 0;  ///< times `accel` was built: 1 when loaded, +1 per update that moved geometry
 
+    /// The hit record of a kernel hit (the one place intersect and intersect_packet fill it; the path
+    /// kernel's packet vertices are hit_lanes.h's, as here). Without with_uv a sphere's uv (an atan2
+    /// and an acos) is left 0.
+    void fill_hit(const Ray& ray, const RayHit& h, SurfaceInteraction& si, bool with_uv) const;
+
 private:
     BSDF textured_bsdf(const SurfaceInteraction& si) const;
-    /// The hit record of a kernel hit (the one place intersect and intersect_packet fill it). Without
-    /// with_uv a sphere's uv (an atan2 and an acos) is left 0.
-    void fill_hit(const Ray& ray, const RayHit& h, SurfaceInteraction& si, bool with_uv) const;
 };
+
+/// The root of |o + t·d − c|² = r² nearest the kernel's t for the sphere s, in double: the hit then
+/// does not depend on how the kernel rounded (Embree's single-ray and packet sphere tests differ in
+/// the last bits).
+float refine_sphere_t(const ShapeRecord& s, const Ray& ray, float t_kernel);
 }  // namespace pellucid
