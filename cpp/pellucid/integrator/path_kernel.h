@@ -322,11 +322,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 for (int k = k0; k < k1; ++k) a.u[k][i] = g.next_float();
             };
             // One lane at a time: what has no packet form yet.
+            for (bool* f : {a.fast, a.goes_on, a.nee, a.nee_ok, a.s_ok, a.delta, a.plight, a.in_medium, a.crossing, a.at_exit,
+                            a.to_exit, a.esc})
+                SM(f, M(false));
+            for (float* f : {a.Ler, a.Leg, a.Leb, a.le_pdf, a.kind}) ST(f, F(0.f));
             for (int i = 0; i < W; ++i) {
-                a.fast[i] = a.goes_on[i] = a.nee[i] = a.nee_ok[i] = a.s_ok[i] = a.delta[i] = a.plight[i] = false;
-                a.in_medium[i] = a.crossing[i] = a.at_exit[i] = a.to_exit[i] = a.esc[i] = false;
-                a.Ler[i] = a.Leg[i] = a.Leb[i] = a.le_pdf[i] = 0.f;
-                a.kind[i] = 0.f;
                 if (!active[i]) continue;
                 const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]), Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
                 if (pending_exit[i]) {
@@ -406,7 +406,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     a.fast[i] = true;
                     a.kind[i] = float(kind);
                     const float* q = &ps.packet_params[kPacketParams * size_t(mat_of[i])];
-                    for (int k = 0; k < kPacketParams; ++k) a.q[k][i] = q[k];
+                    for (int k = 0, n = ps.packet_count[mat_of[i]]; k < n; ++k) a.q[k][i] = q[k];
                     flags = BxDFFlags(ps.packet_flags[mat_of[i]]);
                     // Delta bounces carry ray differentials on from the hit's footprint.
                     if (scene.has_textures) path_services::footprint(ps, si[i], ray[i]);

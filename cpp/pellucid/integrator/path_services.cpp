@@ -92,6 +92,24 @@ bool packet_principled(const BxDF& b, int32_t* kind, float* q) {
 }
 }  // namespace
 
+int packet_param_count(int32_t kind) {
+    switch (kind) {
+        case kPacketLambertian: return 3;
+        case kPacketSmoothDielectric:
+        case kPacketThinDielectric: return 7;
+        case kPacketSmoothConductor: return 9;
+        case kPacketRoughConductor:
+        case kPacketRoughConductorBeckmann: return 12;
+        case kPacketPlastic:
+        case kPacketPlasticBeckmann: return kPlasticParams;
+        case kPacketRoughDielectric:
+        case kPacketRoughDielectricBeckmann: return kRoughDielectricParams;
+        case kPacketPrincipled: return kPrincipledParams;
+        case kPacketOrenNayar: return kOrenNayarParams;
+        default: return 0;
+    }
+}
+
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type) {
     PathSetup ps;
     ps.scene = &scene;
@@ -136,6 +154,8 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
         }
         ps.packet_flags[m] = uint32_t(flags(b));
     }
+    ps.packet_count.resize(n);
+    for (size_t m = 0; m < n; ++m) ps.packet_count[m] = packet_param_count(ps.packet_kind[m]);
     std::vector<float> pmf(scene.lights.size());
     for (size_t i = 0; i < pmf.size(); ++i) pmf[i] = scene.light_pmf(i);
     ps.emitters = make_emitter_table(scene.lights, pmf);

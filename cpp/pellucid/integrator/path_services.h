@@ -40,6 +40,8 @@ enum PacketKind : int32_t {
     kPacketOrenNayar = 12,       ///< classic or EON Oren–Nayar (OrenNayarT, oren_nayar_packet_params)
 };
 constexpr int kPacketParams = 19;
+/// How many parameters the packet form of `kind` reads (0 for kBSDFLane).
+int packet_param_count(int32_t kind);
 
 /// The longest path an unbounded max_depth (-1) allows, in vertices (docs/rendering.md).
 constexpr int kUnboundedDepth = 1 << 16;
@@ -60,6 +62,10 @@ struct PathSetup {
     /// then for the rough ones (GGX, Beckmann) αx, αy and 1 for separable shadowing; plastics:
     /// plastic_packet_params; principled: principled_packet_params), and its BxDFFlags.
     std::vector<float> packet_params;
+    /// Per material, how many of its kPacketParams its packet form reads (packet_param_count); a
+    /// lane copies only those (the forms of other kinds ignore the lane's values: they select their
+    /// own lanes' parameters).
+    std::vector<int32_t> packet_count;
     std::vector<uint32_t> packet_flags;
     /// The rough coats' transmittance tables of the packet plastics, one after another
     /// (RoughCoatTable::values; a plastic's parameters hold its table's offset).
