@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/geometry/mesh.h"
 
+#include "pellucid/geometry/hit_lanes.h"
+
 #include <cmath>
 
 #include "pellucid/util/error.h"
@@ -18,27 +20,14 @@ float TriangleMesh::triangle_area(size_t tri) const {
 
 FlatTriangle TriangleMesh::flat_triangle(size_t tri) const {
     const uint32_t i0 = indices[3 * tri], i1 = indices[3 * tri + 1], i2 = indices[3 * tri + 2];
-    const Point3f &p0 = positions[i0], &p1 = positions[i1], &p2 = positions[i2];
+    // Without uvs the triangle's own (0,0), (1,0), (1,1) parameterise it.
+    const TriangleTangentsT<float> t = triangle_tangents<float>(
+        positions[i0], positions[i1], positions[i2], uvs.empty() ? Vec2f(0, 0) : uvs[i0],
+        uvs.empty() ? Vec2f(1, 0) : uvs[i1], uvs.empty() ? Vec2f(1, 1) : uvs[i2]);
     FlatTriangle f;
-    f.ng = normalize(cross(p1 - p0, p2 - p0));
-    // dp/du, dp/dv from the uv parameterisation (pbrt-v4 §6.5.3); without uvs the triangle's own
-    // (0,0), (1,0), (1,1).
-    const Vec2f uv0 = uvs.empty() ? Vec2f(0, 0) : uvs[i0], uv1 = uvs.empty() ? Vec2f(1, 0) : uvs[i1],
-                uv2 = uvs.empty() ? Vec2f(1, 1) : uvs[i2];
-    const Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
-    const Vec3f dp02 = p0 - p2, dp12 = p1 - p2;
-    const float det = duv02.x * duv12.y - duv02.y * duv12.x;
-    const bool degenerate_uv = std::fabs(det) < 1e-9f;
-    if (!degenerate_uv) {
-        const float inv = 1.f / det;
-        f.dpdu = (duv12.y * dp02 - duv02.y * dp12) * inv;
-        f.dpdv = (duv02.x * dp12 - duv12.x * dp02) * inv;
-    }
-    if (degenerate_uv || length2(cross(f.dpdu, f.dpdv)) == 0.f) {
-        const Frame fr = Frame::from_z(f.ng);
-        f.dpdu = fr.s;
-        f.dpdv = fr.t;
-    }
+    f.ng = t.ng;
+    f.dpdu = t.dpdu;
+    f.dpdv = t.dpdv;
     f.shading = Frame::from_xz(f.dpdu, f.ng);
     return f;
 }

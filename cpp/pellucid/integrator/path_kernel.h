@@ -46,8 +46,7 @@
 #include "pellucid/integrator/path_services.h"
 #include "pellucid/math/frame.h"
 #include "pellucid/sampling/mis.h"
-#include "pellucid/scene/hit_lanes.h"
-#include "pellucid/scene/scene.h"
+#include "pellucid/scene/hit_packets.h"
 
 namespace pellucid {
 
@@ -93,21 +92,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     SurfaceInteraction exit_si[W];
     bool hit[W], active[W], blocked[W];
     // Hit records: the kernel's hits, and which lanes have a full SurfaceInteraction in si (the
-    // others only their vertex, as packets: hit_lanes.h), with each hit's material and light.
+    // others only their vertex, as packets: scene/hit_packets.h), with each hit's material and light.
     RayHit rh[W];
     bool full[W];
     uint32_t mat_of[W]{};
     int32_t light_of[W]{};
-    // Without media, subsurface scattering or textures, a hit on a sphere or a flat-shaded triangle
-    // whose material has a packet form and emits nothing needs no more than its vertex.
+    // Without media, subsurface scattering or textures, a hit on a sphere or a triangle whose
+    // material has a packet form and emits nothing needs no more than its vertex.
     const bool vertex_lanes = !(ps.media || ps.subsurface || scene.has_textures);
-    struct alignas(64) VertexInputs {
-        float ox[W], oy[W], oz[W], dx[W], dy[W], dz[W], t[W];  // a sphere's: the ray, the refined t
-        float cx[W], cy[W], cz[W], r[W], rot[9][W];            // centre, radius, rotation (columns)
-        float p0[3][W], p1[3][W], p2[3][W], b1[W], b2[W];       // a flat triangle's corners, barycentrics
-        float ng[3][W], fs[3][W], ft[3][W], fn[3][W];           // and its normal and shading frame
-        bool sphere[W], tri[W], flip[W];
-    } hv{};
+    HitVertexInputs<W> hv{};
     struct alignas(64) Arrays {
         float Lr[W], Lg[W], Lb[W], br[W], bg[W], bb[W];
         float prev_pdf[W], eta_scale[W], depth[W];
@@ -229,72 +222,25 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             path_services::trace_hits(scene, W, ray_ptr, rh, hit);
             // Hit records: full ones one lane at a time (Scene::fill_hit), then the vertices of the
             // lanes that need no more, as packets (the same templates fill_hit uses, so the same bits).
-            bool any_sphere = false, any_tri = false;
+            hv.clear();
             for (int i = 0; i < W; ++i) {
-                hv.sphere[i] = hv.tri[i] = false;
                 full[i] = true;
                 if (!hit[i]) continue;
                 const RayHit& h = rh[i];
                 const ShapeRecord& s = scene.shapes[h.geom_id];
                 mat_of[i] = s.face_materials.empty() ? s.material : s.face_materials[h.prim_id];
                 light_of[i] = s.light;
-                const TriangleMesh* mesh = s.kind == ShapeRecord::Kind::Mesh ? &scene.meshes[s.mesh_index] : nullptr;
-                if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane || (mesh && mesh->flat.empty())) {
+                if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane) {
                     scene.fill_hit(ray[i], h, si[i], scene.has_textures);
                     continue;
                 }
                 full[i] = false;
-                const Ray& r = ray[i];
-                a.wox[i] = -r.d.x, a.woy[i] = -r.d.y, a.woz[i] = -r.d.z;
-                if (mesh) {
-                    const uint32_t* idx = &mesh->indices[3 * size_t(h.prim_id)];
-                    for (int c = 0; c < 3; ++c) {
-                        hv.p0[c][i] = mesh->positions[idx[0]][c];
-                        hv.p1[c][i] = mesh->positions[idx[1]][c];
-                        hv.p2[c][i] = mesh->positions[idx[2]][c];
-                    }
-                    hv.b1[i] = h.u, hv.b2[i] = h.v;
-                    const FlatTriangle& f = mesh->flat[h.prim_id];
-                    for (int c = 0; c < 3; ++c)
-                        hv.ng[c][i] = f.ng[c], hv.fs[c][i] = f.shading.s[c], hv.ft[c][i] = f.shading.t[c],
-                        hv.fn[c][i] = f.shading.n[c];
-                    hv.tri[i] = any_tri = true;
-                } else {
-                    hv.ox[i] = r.o.x, hv.oy[i] = r.o.y, hv.oz[i] = r.o.z;
-                    hv.dx[i] = r.d.x, hv.dy[i] = r.d.y, hv.dz[i] = r.d.z;
-                    hv.t[i] = refine_sphere_t(s, r, h.t);
-                    hv.cx[i] = s.center.x, hv.cy[i] = s.center.y, hv.cz[i] = s.center.z, hv.r[i] = s.radius;
-                    for (int c = 0; c < 9; ++c) hv.rot[c][i] = s.rotation[c / 3][c % 3];
-                    hv.flip[i] = s.flip_normals;
-                    hv.sphere[i] = any_sphere = true;
-                }
+                a.wox[i] = -ray[i].d.x, a.woy[i] = -ray[i].d.y, a.woz[i] = -ray[i].d.z;
+                fetch_hit_vertex(scene, ray[i], h, i, hv);
             }
-            if (any_sphere || any_tri) {
-                auto V = [&](const float (&c)[3][W]) { return V3<F>(LD(c[0]), LD(c[1]), LD(c[2])); };
-                HitVertexT<F> v;
-                if (any_tri)
-                    v = flat_triangle_vertex<F>(V(hv.p0), V(hv.p1), V(hv.p2), LD(hv.b1), LD(hv.b2), V(hv.ng),
-                                                FrameT<F>(V(hv.fs), V(hv.ft), V(hv.fn)));
-                if (any_sphere) {
-                    auto col = [&](int k) { return V3<F>(LD(hv.rot[3 * k]), LD(hv.rot[3 * k + 1]), LD(hv.rot[3 * k + 2])); };
-                    SphereTangentsT<F> tangents;
-                    const HitVertexT<F> sv = sphere_vertex<F>(
-                        V3<F>(LD(hv.ox), LD(hv.oy), LD(hv.oz)), V3<F>(LD(hv.dx), LD(hv.dy), LD(hv.dz)), LD(hv.t),
-                        V3<F>(LD(hv.cx), LD(hv.cy), LD(hv.cz)), LD(hv.r), Mat3T<F>{col(0), col(1), col(2)}, LM(hv.flip),
-                        &tangents);
-                    if (!any_tri) {
-                        v = sv;
-                    } else {
-                        const M sph = LM(hv.sphere);
-                        v.p = lane::select(sph, sv.p, v.p);
-                        v.p_error = lane::select(sph, sv.p_error, v.p_error);
-                        v.ng = lane::select(sph, sv.ng, v.ng);
-                        v.shading = FrameT<F>(lane::select(sph, sv.shading.s, v.shading.s),
-                                              lane::select(sph, sv.shading.t, v.shading.t),
-                                              lane::select(sph, sv.shading.n, v.shading.n));
-                    }
-                }
+            if (hv.any()) {
                 // Lanes with full records overwrite theirs (load_vertex) where their paths go on.
+                const HitVertexT<F> v = hit_vertices<F>(hv);
                 ST(a.px, v.p.x), ST(a.py, v.p.y), ST(a.pz, v.p.z);
                 ST(a.pex, v.p_error.x), ST(a.pey, v.p_error.y), ST(a.pez, v.p_error.z);
                 ST(a.ngx, v.ng.x), ST(a.ngy, v.ng.y), ST(a.ngz, v.ng.z);

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "pellucid/scene/hit_lanes.h"
+#include "pellucid/geometry/hit_lanes.h"
 
 namespace pellucid {
 namespace {
@@ -26,21 +26,23 @@ void fill_triangle(const TriangleMesh& m, const RayHit& h, SurfaceInteraction& s
         si.shading = f.shading;
         return;
     }
-    si.p = b0 * p0 + b1 * p1 + b2 * p2;
-    // Barycentric interpolation error bound (pbrt-v4 §6.8.5, eq. 6.31).
-    si.p_error = gamma(7) * (abs(b0 * p0) + abs(b1 * p1) + abs(b2 * p2));
-    const FlatTriangle f = m.flat_triangle(h.prim_id);
-    si.ng = f.ng;
-    si.dpdu = f.dpdu;
-    si.dpdv = f.dpdv;
-    Normal3f ns = si.ng;
-    const Normal3f n = m.normals.empty() ? Normal3f(0.f) : b0 * m.normals[i0] + b1 * m.normals[i1] + b2 * m.normals[i2];
+    // Interpolated vertex normals (a mesh with normals that are not all equal per triangle).
+    const Vec2f uv0 = m.uvs.empty() ? Vec2f(0, 0) : m.uvs[i0], uv1 = m.uvs.empty() ? Vec2f(1, 0) : m.uvs[i1],
+                uv2 = m.uvs.empty() ? Vec2f(1, 1) : m.uvs[i2];
+    const TriangleTangentsT<float> tri = triangle_tangents<float>(p0, p1, p2, uv0, uv1, uv2);
+    const Normal3f zero(0.f);  // (a mesh never given its flat table has no normals either)
+    const Normal3f &n0 = m.normals.empty() ? zero : m.normals[i0], &n1 = m.normals.empty() ? zero : m.normals[i1],
+                   &n2 = m.normals.empty() ? zero : m.normals[i2];
+    const HitVertexT<float> v = smooth_triangle_vertex<float>(p0, p1, p2, b1, b2, tri, n0, n1, n2);
+    si.p = v.p;
+    si.p_error = v.p_error;
+    si.ng = v.ng;
+    si.shading = v.shading;
+    si.dpdu = tri.dpdu;
+    si.dpdv = tri.dpdv;
+    // ∂n/∂u, ∂n/∂v of the interpolated normal, by the same uv solve as dp/du (pbrt-v4 §6.5.3).
+    const Vec3f n = b0 * n0 + b1 * n1 + b2 * n2;
     if (length2(n) > 0.f) {
-        ns = normalize(n);
-        if (dot(ns, si.ng) < 0.f) si.ng = -si.ng;  // geometric normal follows the shading side
-        // ∂n/∂u, ∂n/∂v of the interpolated normal, by the same uv solve as dp/du (pbrt-v4 §6.5.3).
-        const Vec2f uv0 = m.uvs.empty() ? Vec2f(0, 0) : m.uvs[i0], uv1 = m.uvs.empty() ? Vec2f(1, 0) : m.uvs[i1],
-                    uv2 = m.uvs.empty() ? Vec2f(1, 1) : m.uvs[i2];
         const Vec2f duv02 = uv0 - uv2, duv12 = uv1 - uv2;
         const float det = duv02.x * duv12.y - duv02.y * duv12.x;
         if (std::fabs(det) >= 1e-9f) {
@@ -50,7 +52,6 @@ void fill_triangle(const TriangleMesh& m, const RayHit& h, SurfaceInteraction& s
             si.dndv = (duv02.x * dn12 - duv12.x * dn02) * inv;
         }
     }
-    si.shading = Frame::from_xz(si.dpdu, ns);
 }
 
 }  // namespace

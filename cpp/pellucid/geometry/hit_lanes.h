@@ -1,8 +1,8 @@
 // The vertex of a hit record — point, error bound, geometric normal and shading frame — written
-// once over a lane type F (simd/lane.h) for the two shapes whose vertex needs no per-hit solve: the
-// analytic sphere and the triangle of a flat-shaded mesh (TriangleMesh::flat). Scene::fill_hit
-// builds every such record with the float instantiation, and the path kernel builds the vertices of
-// a whole packet of hits with the packet's, so both carry the same bits.
+// once over a lane type F (simd/lane.h) for the analytic sphere, the triangle of a flat-shaded mesh
+// (TriangleMesh::flat) and the triangle with interpolated vertex normals. Scene::fill_hit and
+// TriangleMesh::flat_triangle build theirs with the float instantiation, and the path kernel builds
+// the vertices of a whole packet of hits with the packet's, so both carry the same bits.
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include "pellucid/math/constants.h"
@@ -40,6 +40,53 @@ inline HitVertexT<F> flat_triangle_vertex(const V3<F>& p0, const V3<F>& p1, cons
     v.p_error = F(gamma(7)) * (abs(b0 * p0) + abs(b1 * p1) + abs(b2 * p2));
     v.ng = ng;
     v.shading = shading;
+    return v;
+}
+
+/// A triangle's constants: its unit geometric normal (p₁ − p₀) × (p₂ − p₀), and ∂p/∂u, ∂p/∂v from its
+/// uv parameterisation (pbrt-v4 §6.5.3), or, where that is degenerate, the tangents of from_z(ng).
+template <class F>
+struct TriangleTangentsT {
+    V3<F> ng, dpdu, dpdv;
+};
+template <class F>
+inline TriangleTangentsT<F> triangle_tangents(const V3<F>& p0, const V3<F>& p1, const V3<F>& p2, const V2<F>& uv0,
+                                              const V2<F>& uv1, const V2<F>& uv2) {
+    TriangleTangentsT<F> f;
+    f.ng = normalize(cross(p1 - p0, p2 - p0));
+    const F du02 = uv0.x - uv2.x, dv02 = uv0.y - uv2.y, du12 = uv1.x - uv2.x, dv12 = uv1.y - uv2.y;
+    const V3<F> dp02 = p0 - p2, dp12 = p1 - p2;
+    const F det = du02 * dv12 - dv02 * du12;
+    const auto regular = !(lane::abs(det) < F(1e-9f));
+    const F inv = F(1.f) / lane::select(regular, det, F(1.f));
+    f.dpdu = (dv12 * dp02 - dv02 * dp12) * inv;
+    f.dpdv = (du02 * dp12 - du12 * dp02) * inv;
+    const auto fallback = !regular || length2(cross(f.dpdu, f.dpdv)) == F(0.f);
+    if (lane::any(fallback)) {
+        const FrameT<F> fr = FrameT<F>::from_z(f.ng);
+        f.dpdu = lane::select(fallback, fr.s, f.dpdu);
+        f.dpdv = lane::select(fallback, fr.t, f.dpdv);
+    }
+    return f;
+}
+
+/// A hit at barycentrics (b1, b2) of a triangle with vertex normals n₀, n₁, n₂: the shading normal
+/// is their interpolation, normalised (the geometric normal turns to its side), and the frame's s is
+/// ∂p/∂u made perpendicular to it. Where the interpolated normal vanishes, the geometric normal
+/// shades.
+template <class F>
+inline HitVertexT<F> smooth_triangle_vertex(const V3<F>& p0, const V3<F>& p1, const V3<F>& p2, const F& b1, const F& b2,
+                                            const TriangleTangentsT<F>& tri, const V3<F>& n0, const V3<F>& n1,
+                                            const V3<F>& n2) {
+    const F b0 = F(1.f) - b1 - b2;
+    HitVertexT<F> v;
+    v.p = b0 * p0 + b1 * p1 + b2 * p2;
+    v.p_error = F(gamma(7)) * (abs(b0 * p0) + abs(b1 * p1) + abs(b2 * p2));
+    const V3<F> n = b0 * n0 + b1 * n1 + b2 * n2;
+    const auto has = length2(n) > F(0.f);
+    const V3<F> ns = lane::select(has, normalize(n), tri.ng);
+    v.ng = lane::select(has && dot(ns, tri.ng) < F(0.f), -tri.ng, tri.ng);
+    v.shading = FrameT<F>::from_xz(tri.dpdu, ns);
     return v;
 }
 
