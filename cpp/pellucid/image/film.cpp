@@ -3,12 +3,14 @@
 #include "pellucid/image/film.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <type_traits>
+
+#include <xsimd/xsimd.hpp>
 
 #include "pellucid/util/error.h"
 
@@ -24,19 +26,6 @@
 namespace pellucid {
 
 namespace {
-constexpr int kMaxTaps = 2 * 16 + 1;  // filters are limited to a 16-pixel radius (registry.cpp)
-
-/// The tap rows of the first sample of the pair this thread is splatting: a pixel's samples arrive
-/// one after another, so the second sample finds its partner's taps here instead of evaluating them
-/// again (the same numbers; the lookup checks film, pixel and sample count).
-struct TapCache {
-    uint64_t film = 0;  ///< Film::m_id, 0 = empty
-    size_t pixel = 0;
-    uint64_t n = 0;     ///< the pixel's sample count after the cached sample
-    float wx[kMaxTaps], wy[kMaxTaps];
-};
-thread_local TapCache t_taps;
-
 /// Four doubles: (Σw, Σw·L) of a target pixel, or one of its pair sums. (GCC notes that a vector
 /// return changes the ABI between the clones; these helpers are internal and always inlined.)
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -47,7 +36,6 @@ inline D4 load4(const double* p) {
     return v;
 }
 inline void store4(double* p, D4 v) { std::memcpy(p, &v, sizeof v); }
-std::atomic<uint64_t> g_film_ids{0};
 
 /// A box of radius ½ gives each sample weight 1 in its own pixel and 0 elsewhere: splatting with it
 /// is filter sampling.
@@ -55,13 +43,75 @@ bool is_one_pixel_box(const Filter& f) {
     const auto* b = std::get_if<BoxFilter>(&f);
     return b && b->radius == 0.5f;
 }
+
+/// Four floats: one tap of the four rows of eval_filter_taps4 (SSE2 or NEON, one IEEE operation per
+/// element).
+typedef float F4 __attribute__((vector_size(16)));
+inline F4 load_f4(const float* p) {
+    F4 v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+
+void gaussian_taps4(const GaussianFilter& g, const float x0[4], int n, float (*w)[4]) {
+    // Each row starts at its middle tap c, at xc = x0 + c, and walks outwards: right with the ratio
+    // e(x + 1)/e(x) = exp(−(2x + 1)k), left with e(x − 1)/e(x) = exp(−(1 − 2x)k), each ratio shrinking
+    // by q = exp(−2k) a step. The product of the two first ratios is q, so each row takes two
+    // exponentials, e(xc) and the right ratio; the eight go through xsimd's exp in as many batches
+    // as this build's baseline batch needs.
+    using B = xsimd::batch<float>;
+    static_assert(B::size <= 16, "xsimd batch wider than 16 floats");
+    const int c = n / 2;
+    alignas(64) float arg[16] = {};
+    float xc[4];
+    for (int r = 0; r < 4; ++r) {
+        xc[r] = x0[r] + float(c);
+        arg[r] = -xc[r] * xc[r] * g.m_k;
+        arg[4 + r] = -(2.f * xc[r] + 1.f) * g.m_k;
+    }
+    for (int i = 0; i < 8; i += int(B::size)) xsimd::exp(B::load_aligned(arg + i)).store_aligned(arg + i);
+    const F4 x = load_f4(x0), zero = {0.f, 0.f, 0.f, 0.f};
+    const F4 q = zero + g.m_q, bias = zero + g.m_bias, radius = zero + g.m_radius;
+    auto tap = [&](int i, F4 e) {
+        const F4 xi = x + float(i);
+        const F4 v = e - bias;
+        const F4 kept = zero < v ? v : zero;                       // std::max(0, v)
+        const F4 out = (xi < radius) & (-xi < radius) ? kept : zero;  // |x| < r (false for NaN, as fabs)
+        std::memcpy(w[i], &out, sizeof out);
+    };
+    const F4 ec = load_f4(arg);
+    F4 e = ec, ratio = load_f4(arg + 4);
+    for (int i = c; i < n; ++i) {
+        tap(i, e);
+        e *= ratio;
+        ratio *= q;
+    }
+    ratio = q / load_f4(arg + 4);  // exp(−(1 − 2xc)k)
+    e = ec * ratio;
+    ratio *= q;
+    for (int i = c - 1; i >= 0; --i) {
+        tap(i, e);
+        e *= ratio;
+        ratio *= q;
+    }
+}
 }  // namespace
+
+void eval_filter_taps4(const Filter& f, const float x0[4], int n, float (*w)[4]) {
+    std::visit([&](const auto& k) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(k)>, GaussianFilter>) {
+            gaussian_taps4(k, x0, n, w);
+        } else {
+            for (int i = 0; i < n; ++i)
+                for (int r = 0; r < 4; ++r) w[i][r] = k.eval(x0[r] + float(i));
+        }
+    }, f);
+}
 
 Film::Film(int width, int height, std::optional<Filter> splat)
     : m_width(width), m_height(height), m_splat(std::move(splat)) {
     if (m_splat && is_one_pixel_box(*m_splat)) m_splat.reset();
     if (m_splat) {
-        m_id = g_film_ids.fetch_add(1, std::memory_order_relaxed) + 1;
         // Pixel centres px + ½ within the radius r of a sample in [x, x + 1) satisfy
         // |px − x| <= ⌈r − ½⌉.
         m_margin = std::max(0, int(std::ceil(filter_radius(*m_splat) - 0.5f)));
@@ -89,92 +139,85 @@ void Film::splat_pixel(int x, int y, const FilmSample* s, int n) {
     }
     if (n <= 0) return;
     const int m = std::min(m_margin, 16), n_taps = 2 * m + 1;
-    const size_t src_index = size_t(y) * m_width + x;
-    SplatSource& src = m_sources[src_index];
-    // Row and column weights of the two samples of a pair (film.h): `a` the first, `b` the second.
-    float ax[kMaxTaps], ay[kMaxTaps], bx[kMaxTaps], by[kMaxTaps];
-    auto taps = [&](float sx, float sy, float* wx, float* wy) {
-        eval_filter_taps(*m_splat, float(x - m) + 0.5f - sx, n_taps, wx);
-        eval_filter_taps(*m_splat, float(y - m) + 0.5f - sy, n_taps, wy);
+    SplatSource& src = m_sources[size_t(y) * m_width + x];
+    // The column and row weights of the two samples of a pair (film.h), `a` the first, `b` the
+    // second, tap by tap: w[t] = (a's column weight, a's row weight, b's column, b's row).
+    float w[kMaxFilterTaps][4];
+    const float ox = float(x - m) + 0.5f, oy = float(y - m) + 0.5f;
+    auto taps = [&](float afx, float afy, float bfx, float bfy) {
+        const float x0[4] = {ox - afx, oy - afy, ox - bfx, oy - bfy};
+        eval_filter_taps4(*m_splat, x0, n_taps, w);
     };
-    TapCache& cache = t_taps;
     int i = 0;
     if (src.n % 2 == 1) {
-        // The pixel's last sample waits for its partner: s[0] completes the pair. Its taps are in
-        // this thread's cache when that sample was splatted just before; else they are evaluated again.
-        if (cache.film == m_id && cache.pixel == src_index && cache.n == src.n) {
-            std::copy(cache.wx, cache.wx + n_taps, ax);
-            std::copy(cache.wy, cache.wy + n_taps, ay);
-        } else {
-            taps(src.last_fx, src.last_fy, ax, ay);
-        }
-        taps(s[0].fx, s[0].fy, bx, by);
-        accumulate(x, y, m, ax, ay, src.last_l, false, bx, by, s[0].L);
+        // The pixel's last sample waits for its partner: s[0] completes the pair. Its weights are
+        // evaluated again, in the same call as s[0]'s (the same numbers as when it was splatted).
+        taps(src.last_fx, src.last_fy, s[0].fx, s[0].fy);
+        accumulate(x, y, m, w, src.last_l, false, s[0].L);
         src.n += 1;
         i = 1;
     }
     for (; i + 1 < n; i += 2) {  // whole pairs: both samples and their difference in one pass
-        taps(s[i].fx, s[i].fy, ax, ay);
-        taps(s[i + 1].fx, s[i + 1].fy, bx, by);
+        taps(s[i].fx, s[i].fy, s[i + 1].fx, s[i + 1].fy);
         const float la[3] = {s[i].L[0], s[i].L[1], s[i].L[2]};
-        accumulate(x, y, m, ax, ay, la, true, bx, by, s[i + 1].L);
+        accumulate(x, y, m, w, la, true, s[i + 1].L);
         src.n += 2;
     }
     if (i < n) {  // the first sample of a pair whose partner comes later
-        taps(s[i].fx, s[i].fy, bx, by);
-        accumulate(x, y, m, nullptr, nullptr, nullptr, false, bx, by, s[i].L);
+        taps(s[i].fx, s[i].fy, s[i].fx, s[i].fy);
+        accumulate(x, y, m, w, nullptr, false, s[i].L);
         src.n += 1;
         src.last_fx = s[i].fx;
         src.last_fy = s[i].fy;
         for (int k = 0; k < 3; ++k) src.last_l[k] = s[i].L[k];
-        cache.film = m_id;
-        cache.pixel = src_index;
-        cache.n = src.n;
-        std::copy(bx, bx + n_taps, cache.wx);
-        std::copy(by, by + n_taps, cache.wy);
     }
 }
 
-// Adds sample b (taps bx, by, value L) to the sums of every target pixel; with a partner a (taps ax,
-// ay, value la; ax null for none) also the pair's differences, and a itself first if add_a. The
-// sums are updated in the order a, then b, so a pair gives the bits of two single calls.
-PELLUCID_FILM_CLONES void Film::accumulate(int x, int y, int m, const float* ax, const float* ay, const float* la, bool add_a, const float* bx,
-                      const float* by, const Spectrum& L) {
-    // Targets with a nonzero weight inside the film: columns x + i0 .. x + i1, rows y + j0 .. y + j1
-    // (a filter's support is an interval, so zero taps lie only at the ends of a row).
-    const bool pair = ax != nullptr;
-    auto nz = [](const float* w, int k) { return w && w[k] > 0.f; };
-    int i0 = -m, i1 = m, j0 = -m, j1 = m;
-    while (i0 < i1 && !nz(bx, i0 + m) && !nz(ax, i0 + m)) ++i0;
-    while (i1 > i0 && !nz(bx, i1 + m) && !nz(ax, i1 + m)) --i1;
-    while (j0 < j1 && !nz(by, j0 + m) && !nz(ay, j0 + m)) ++j0;
-    while (j1 > j0 && !nz(by, j1 + m) && !nz(ay, j1 + m)) --j1;
+// Adds sample b (weights w[·][2], w[·][3], value L) to the sums of every target pixel; with a
+// partner a (weights w[·][0], w[·][1], value la; la null for none) also the pair's differences, and
+// a itself first if add_a. The sums are updated in the order a, then b, so a pair gives the bits of
+// two single calls.
+PELLUCID_FILM_CLONES void Film::accumulate(int x, int y, int m, const float (*w)[4], const float* la, bool add_a,
+                                           const Spectrum& L) {
+    // The weights as doubles (exact), so that each target's weight is one product.
+    double wd[kMaxFilterTaps][4];
+    for (int t = 0; t <= 2 * m; ++t)
+        for (int r = 0; r < 4; ++r) wd[t][r] = double(w[t][r]);
+    // Targets inside the film, columns x + i0 .. x + i1, rows y + j0 .. y + j1, that may have a
+    // nonzero weight. A sample in [x, x + 1) has a zero tap at one end of its row or the other for
+    // about half the offsets (with σ = ½: every offset), so the end taps are tested, without a
+    // branch; a zero weight inside the block adds w·(1, L) = 0, which leaves a finite sum's bits as
+    // they are. (Without a partner, w[·][0..1] repeat b's weights.)
+    auto nz = [&](int t, int axis) { return int(w[t][axis] > 0.f) | int(w[t][2 + axis] > 0.f); };
+    int i0 = -m + (1 - nz(0, 0)), i1 = m - (1 - nz(2 * m, 0));
+    int j0 = -m + (1 - nz(0, 1)), j1 = m - (1 - nz(2 * m, 1));
     i0 = std::max(i0, -x), i1 = std::min(i1, m_width - 1 - x);
     j0 = std::max(j0, -y), j1 = std::min(j1, m_height - 1 - y);
+    const bool pair = la != nullptr;
     // (1, L) and (1, L_a): w·l4 is (w, wL), and its pair difference (Δw, Δ(wL)). Four doubles at a
     // time (a GCC/Clang vector: one AVX2 register, or two SSE2/NEON ones; the same IEEE operation
     // per element either way).
     const D4 l4 = {1.0, double(L[0]), double(L[1]), double(L[2])};
     if (!pair) {
         for (int j = j0; j <= j1; ++j) {
-            const double wyj = by[j + m];
+            const double wyj = wd[j + m][3];
             SplatSums* sums = &m_sums[size_t(y + j) * m_width + x];
             for (int i = i0; i <= i1; ++i) {
-                const double w = double(bx[i + m]) * wyj;
-                store4(sums[i].v, load4(sums[i].v) + l4 * w);
+                const double wb = wd[i + m][2] * wyj;
+                store4(sums[i].v, load4(sums[i].v) + l4 * wb);
             }
         }
         return;
     }
     const D4 lp4 = {1.0, double(la[0]), double(la[1]), double(la[2])};
     for (int j = j0; j <= j1; ++j) {
-        const double wyj = by[j + m], pyj = ay[j + m];
+        const double wyj = wd[j + m][3], pyj = wd[j + m][1];
         const size_t row = size_t(y + j) * m_width + x;
         SplatSums* sums = &m_sums[row];
         SplatPairSums* pairs = &m_pair_sums[row];
         for (int i = i0; i <= i1; ++i) {
-            const double w = double(bx[i + m]) * wyj, wp = double(ax[i + m]) * pyj;
-            const D4 b = l4 * w, a = lp4 * wp;
+            const double wb = wd[i + m][2] * wyj, wa = wd[i + m][0] * pyj;
+            const D4 b = l4 * wb, a = lp4 * wa;
             D4 t = load4(sums[i].v);
             if (add_a) t += a;
             store4(sums[i].v, t + b);

@@ -27,7 +27,14 @@
 // samples, as after every complete pass). Pixels with fewer than 2 samples report 0, as with filter
 // sampling. Pairs cost what the i.i.d. sums cost (the first sample of a pair updates only Σ w and
 // Σ wL); successive differences (von Neumann et al. 1941) would use about a third more of the
-// information but cost 40 % more per splat (measured: 96 ns against 70 ns). Tests: tests/cpp/image/test_film_splat.cpp.
+// information but cost about 40 % more per splat.
+//
+// Cost. A pair of samples is added in one pass over its target pixels: the column and row weights
+// of both samples come from one eval_filter_taps4 call (four rows side by side, one vector exp;
+// image/filter.h), and each target's sums are loaded, updated and stored once for the pair. The
+// renderer splats 2 samples per pixel and pass, so a pair is what splat_pixel receives. With the
+// suite's Gaussian (σ = ½, 4 taps per axis and sample) this costs about 37 ns a sample on one core
+// of our 2-core machine (weights 30 %, sums 70 %). Tests: tests/cpp/image/test_film_splat.cpp.
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <cstdint>
@@ -77,7 +84,8 @@ public:
     /// Without a splat filter (splats() false) it is add_sample(x, y, L).
     void splat(int x, int y, float fx, float fy, const Spectrum& L);
     /// The n samples taken inside pixel (x, y), in order: the same sums, bit for bit, as n calls of
-    /// splat(), but each pair of samples is added in one pass over its target pixels.
+    /// splat(), but each pair of samples is added in one pass over its target pixels. Sample values
+    /// must be finite (the renderer drops the others first).
     void splat_pixel(int x, int y, const FilmSample* s, int n);
 
     /// Per-pixel estimate, float RGB.
@@ -108,11 +116,12 @@ private:
     };
     // A splatting film keeps three arrays, so that the first sample of a pair touches only the
     // 32 bytes of SplatSums in each target pixel, and both are laid out as 4-vectors (Σw first,
-    // then the three channels) that the compiler updates with packed arithmetic.
-    struct SplatSums {             // as a target: sums over the samples splatted here
+    // then the three channels) that the compiler updates with packed arithmetic; aligned to their
+    // size, so that no vector straddles a cache line.
+    struct alignas(32) SplatSums {  // as a target: sums over the samples splatted here
         double v[4] = {0, 0, 0, 0};  ///< Σ w, Σ w L (channels 0..2)
     };
-    struct SplatPairSums {          // sums over the pairs of samples within each source pixel
+    struct alignas(64) SplatPairSums {  // sums over the pairs of samples within each source pixel
         double sq[4] = {0, 0, 0, 0};  ///< Σ Δw², Σ Δ(wL)² (Δ = second − first)
         double cr[4] = {0, 0, 0, 0};  ///< Σ Δw·Δw (unused: sq[0]), Σ Δ(wL)·Δw
     };
@@ -120,15 +129,13 @@ private:
         uint64_t n = 0;
         float last_fx = 0, last_fy = 0, last_l[3] = {0, 0, 0};
     };
-    void accumulate(int x, int y, int m, const float* ax, const float* ay, const float* la, bool add_a, const float* bx,
-                    const float* by, const Spectrum& L);
+    void accumulate(int x, int y, int m, const float (*w)[4], const float* la, bool add_a, const Spectrum& L);
     // Estimate and variance of pixel i, channel k.
     void pixel_stats(size_t i, double mean[3], double var[3]) const;
 
     int m_width, m_height;
     std::optional<Filter> m_splat;
     int m_margin = 0;
-    uint64_t m_id = 0;  ///< unique per splatting Film: the key of splat()'s per-thread tap cache
     std::vector<Pixel> m_pixels;      // filter sampling
     std::vector<SplatSums> m_sums;          // splatting
     std::vector<SplatPairSums> m_pair_sums;

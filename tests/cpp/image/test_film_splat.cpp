@@ -9,8 +9,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <functional>
 #include <string>
 #include <vector>
@@ -112,37 +116,157 @@ TEST(FilmSplat, VarianceIsThePairFormula) {
     }
 }
 
+namespace {
+// The film's sums written out the plainest way, one sample at a time over every target pixel of
+// its (2m + 1)² block (zero weights included: adding w·(1, L) = 0 leaves a finite sum's bits
+// unchanged), with the operations of film.h in their order: per target, Σ(w, wL) += w·(1, L); the
+// second sample b of a pair (a, b) of a source pixel then adds d·d and d·Δw to the pair sums, with
+// d = w_b(1, L_b) − w_a(1, L_a). The weights are the film's own taps (eval_filter_taps).
+struct ReferenceFilm {
+    int w, h, m;
+    Filter filter;
+    std::vector<double> sum, sq, cr;  // 4 per pixel
+    std::vector<uint64_t> n;
+    std::vector<std::array<float, 5>> last;  // fx, fy, L of each pixel's waiting sample
+    ReferenceFilm(int w_, int h_, const Filter& f)
+        : w(w_), h(h_), m(int(std::ceil(filter_radius(f) - 0.5f))), filter(f), sum(size_t(4 * w * h)),
+          sq(size_t(4 * w * h)), cr(size_t(4 * w * h)), n(size_t(w * h)), last(size_t(w * h)) {}
+    void rows(int x, int y, float fx, float fy, float* wx, float* wy) const {
+        eval_filter_taps(filter, float(x - m) + 0.5f - fx, 2 * m + 1, wx);
+        eval_filter_taps(filter, float(y - m) + 0.5f - fy, 2 * m + 1, wy);
+    }
+    void splat(int x, int y, float fx, float fy, const Spectrum& L) {
+        const size_t src = size_t(y) * w + x;
+        float bx[64], by[64], ax[64], ay[64];
+        rows(x, y, fx, fy, bx, by);
+        const bool second = n[src] % 2 == 1;
+        if (second) rows(x, y, last[src][0], last[src][1], ax, ay);
+        for (int j = -m; j <= m; ++j)
+            for (int i = -m; i <= m; ++i) {
+                if (x + i < 0 || x + i >= w || y + j < 0 || y + j >= h) continue;
+                double* s = &sum[4 * (size_t(y + j) * w + x + i)];
+                const double wb = double(bx[i + m]) * double(by[j + m]);
+                const double b[4] = {1.0 * wb, double(L[0]) * wb, double(L[1]) * wb, double(L[2]) * wb};
+                for (int k = 0; k < 4; ++k) s[k] = s[k] + b[k];
+                if (!second) continue;
+                const double wa = double(ax[i + m]) * double(ay[j + m]);
+                const double a[4] = {1.0 * wa, double(last[src][2]) * wa, double(last[src][3]) * wa,
+                                     double(last[src][4]) * wa};
+                double* q = &sq[4 * (size_t(y + j) * w + x + i)];
+                double* c = &cr[4 * (size_t(y + j) * w + x + i)];
+                const double d0 = b[0] - a[0];
+                for (int k = 0; k < 4; ++k) {
+                    const double d = b[k] - a[k];
+                    q[k] = q[k] + d * d;
+                    c[k] = c[k] + d * d0;
+                }
+            }
+        n[src] += 1;
+        last[src] = {fx, fy, L[0], L[1], L[2]};
+    }
+    // Film::mean() and Film::variance(), pixel_stats's formulas.
+    void images(Image& mean, Image& var) const {
+        mean = Image(w, h, 3), var = Image(w, h, 3);
+        for (size_t p = 0; p < size_t(w) * h; ++p) {
+            const double* s = &sum[4 * p];
+            const double* q = &sq[4 * p];
+            const double* c = &cr[4 * p];
+            const double W = s[0];
+            for (int k = 0; k < 3; ++k) {
+                double mk = 0.0, vk = 0.0;
+                if (W > 0.0) {
+                    const double scale = n[p] > 1 ? double(n[p]) / (2.0 * double(n[p] / 2)) / (W * W) : 0.0;
+                    const double r = s[k + 1] / W;
+                    mk = r;
+                    vk = std::max(0.0, q[k + 1] - 2.0 * r * c[k + 1] + r * r * q[0]) * scale;
+                }
+                mean.data[3 * p + k] = float(mk);
+                var.data[3 * p + k] = float(vk);
+            }
+        }
+    }
+};
+
+// A splatting film's eleven sums per pixel, as its state file stores them (docs/rendering.md, "Film
+// state files": Σ wL[3], Σ w, Σ Δ(wL)²[3], Σ Δ(wL)Δw[3], Σ Δw², then n and the waiting sample).
+std::vector<double> film_sums(const Film& f, const Filter& filter, const std::string& name) {
+    const std::string path = (std::filesystem::temp_directory_path() / ("pellucid_test_film_splat_" + name)).string();
+    save_film_state(path, FilmState{f, filter, 0, 0, "independent", "", 0, 0.0});
+    std::ifstream in(path, std::ios::binary);
+    const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::filesystem::remove(path);
+    const size_t record = 11 * 8 + 8 + 5 * 4, pixels = size_t(f.width()) * f.height();
+    EXPECT_GE(data.size(), pixels * record + 8);
+    std::vector<double> sums(11 * pixels);
+    const char* p = data.data() + data.size() - 8 - pixels * record;
+    for (size_t i = 0; i < pixels; ++i) std::memcpy(&sums[11 * i], p + i * record, 11 * 8);
+    return sums;
+}
+std::vector<double> reference_sums(const ReferenceFilm& r) {
+    std::vector<double> sums;
+    for (size_t i = 0; i < r.n.size(); ++i) {
+        const double* s = &r.sum[4 * i];
+        const double* q = &r.sq[4 * i];
+        const double* c = &r.cr[4 * i];
+        for (double v : {s[1], s[2], s[3], s[0], q[1], q[2], q[3], c[1], c[2], c[3], q[0]}) sums.push_back(v);
+    }
+    return sums;
+}
+size_t count_differing(const std::vector<double>& a, const std::vector<double>& b) {
+    size_t differ = a.size() == b.size() ? 0 : 1;
+    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) differ += std::memcmp(&a[i], &b[i], 8) != 0;
+    return differ;
+}
+
+size_t count_differing(const Image& a, const Image& b) {
+    size_t differ = 0;
+    for (size_t i = 0; i < a.data.size(); ++i) differ += std::memcmp(&a.data[i], &b.data[i], 4) != 0;
+    return differ;
+}
+}  // namespace
+
 TEST(FilmSplat, PixelRunsEqualSingleSplats) {
     // Film::splat_pixel (the renderer's path) adds a pixel's samples pair by pair in one pass; it
-    // must give the sums of one splat() per sample bit for bit: runs of 1 to 5 samples, so pairs
-    // start inside a run, span two runs of one pixel, and span runs of different pixels (the second
-    // sample then re-evaluates its partner's taps), with a Gaussian reaching 2 pixels.
-    const Filter filter(GaussianFilter(0.5f, true));
-    Film a(5, 4, filter), b(5, 4, filter);
-    ASSERT_EQ(a.splat_margin(), 2);
-    PCG32 rng(7, 3);
-    const int runs[] = {1, 2, 3, 5, 4, 1, 1, 2};
-    for (int pass = 0; pass < 3; ++pass)
-        for (int y = 0; y < 4; ++y)
-            for (int x = 0; x < 5; ++x) {
-                const int n = runs[(x + 3 * y + pass) % 8];
-                std::vector<FilmSample> s(static_cast<size_t>(n));
-                for (FilmSample& e : s) {
-                    e.fx = float(x) + rng.next_float();
-                    e.fy = float(y) + rng.next_float();
-                    e.L = Spectrum(rng.next_float(), 3.f * rng.next_float(), 0.25f);
-                    a.splat(x, y, e.fx, e.fy, e.L);
+    // must give, bit for bit, the sums (and so the mean and variance images) of one splat() per
+    // sample and those of the reference above:
+    // runs of 1 to 5 samples, so pairs start inside a run, span two runs of one pixel, and span runs
+    // of different pixels (the second sample re-evaluates its partner's taps), on a 5×4 film whose
+    // pixels all lie within the filter's reach of its border, with Gaussians (shifted or not)
+    // reaching 2 pixels, a tent and a box of radius 1.5.
+    const Filter filters[] = {GaussianFilter(0.5f, true), GaussianFilter(0.5f), GaussianFilter(0.7f, true),
+                              TentFilter{1.f}, BoxFilter{1.5f}};
+    for (const Filter& filter : filters) {
+        Film a(5, 4, filter), b(5, 4, filter);
+        ReferenceFilm ref(5, 4, filter);
+        PCG32 rng(7, 3);
+        const int runs[] = {1, 2, 3, 5, 4, 1, 1, 2};
+        for (int pass = 0; pass < 3; ++pass)
+            for (int y = 0; y < 4; ++y)
+                for (int x = 0; x < 5; ++x) {
+                    const int n = runs[(x + 3 * y + pass) % 8];
+                    std::vector<FilmSample> s(static_cast<size_t>(n));
+                    for (FilmSample& e : s) {
+                        e.fx = float(x) + rng.next_float();
+                        e.fy = float(y) + rng.next_float();
+                        e.L = Spectrum(rng.next_float(), 3.f * rng.next_float(), 0.25f);
+                        a.splat(x, y, e.fx, e.fy, e.L);
+                        ref.splat(x, y, e.fx, e.fy, e.L);
+                    }
+                    b.splat_pixel(x, y, s.data(), n);
                 }
-                b.splat_pixel(x, y, s.data(), n);
-            }
-    Image ma = a.mean(), mb = b.mean(), va = a.variance(), vb = b.variance();
-    size_t differ = 0;
-    for (size_t i = 0; i < ma.data.size(); ++i)
-        differ += std::memcmp(&ma.data[i], &mb.data[i], 4) != 0 || std::memcmp(&va.data[i], &vb.data[i], 4) != 0;
-    EXPECT_EQ(differ, 0u);
-    for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 5; ++x) EXPECT_EQ(a.samples(x, y), b.samples(x, y));
-    EXPECT_GT(va.data[0], 0.f);
+        // The sums themselves (a one-ulp change in one of them rarely shows in the float images).
+        const std::vector<double> sa = film_sums(a, filter, "a"), sb = film_sums(b, filter, "b"), sr = reference_sums(ref);
+        EXPECT_EQ(count_differing(sa, sb), 0u) << to_string(filter);
+        EXPECT_EQ(count_differing(sa, sr), 0u) << to_string(filter);
+        Image mr, vr;
+        ref.images(mr, vr);
+        const Image ma = a.mean(), mb = b.mean(), va = a.variance(), vb = b.variance();
+        EXPECT_EQ(count_differing(ma, mb) + count_differing(va, vb), 0u) << to_string(filter);
+        EXPECT_EQ(count_differing(ma, mr) + count_differing(va, vr), 0u) << to_string(filter);
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 5; ++x) EXPECT_EQ(a.samples(x, y), b.samples(x, y));
+        EXPECT_GT(va.data[0], 0.f);
+    }
 }
 
 TEST(FilmSplat, SplatsReachTheFilterRadiusOnly) {
@@ -339,10 +463,11 @@ TEST(FilmSplat, BitIdenticalAcrossThreadCounts) {
 }
 
 // A row of splat weights (eval_filter_taps, which the Gaussian computes with two exponentials and a
-// recurrence) equals the filter's profile, including the cut at the radius. The reference is the
-// profile in double precision at the same float abscissa; the bound, 4e-6 relative to the
-// unshifted Gaussian (+1e-9 absolute), covers float exp's error of about |argument|·2^-24 (the argument reaches (2·4σ+1)/(2σ²) in the
-// ratio term) compounded over the row's steps, and is far below anything a wrong recurrence gives.
+// recurrence outwards from the middle tap) equals the filter's profile, including the cut at the
+// radius. The reference is the profile in double precision at the same float abscissa; the bound,
+// 4e-6 relative to the unshifted Gaussian (+1e-9 absolute), covers float exp's error of about
+// |argument|·2^-24 compounded over the row's steps, and is far below anything a wrong recurrence
+// gives (test_filter.cpp bounds the error on a dense grid).
 TEST(FilmSplat, FilterTapsEqualTheFilterProfile) {
     const Filter filters[] = {GaussianFilter(0.5f), GaussianFilter(0.3f), GaussianFilter(1.2f),
                               GaussianFilter(0.5f, true), GaussianFilter(1.2f, true), TentFilter{1.5f}, BoxFilter{0.5f}};
