@@ -10,8 +10,7 @@
 #include <iterator>
 #include <type_traits>
 
-#include <xsimd/xsimd.hpp>
-
+#include "pellucid/simd/packet.h"
 #include "pellucid/util/error.h"
 
 // The sums are 4-vectors of doubles: x86-64 builds also compile the accumulation for AVX2 and pick it at
@@ -57,10 +56,11 @@ void gaussian_taps4(const GaussianFilter& g, const float x0[4], int n, float (*w
     // Each row starts at its middle tap c, at xc = x0 + c, and walks outwards: right with the ratio
     // e(x + 1)/e(x) = exp(−(2x + 1)k), left with e(x − 1)/e(x) = exp(−(1 − 2x)k), each ratio shrinking
     // by q = exp(−2k) a step. The product of the two first ratios is q, so each row takes two
-    // exponentials, e(xc) and the right ratio; the eight go through xsimd's exp in as many batches
-    // as this build's baseline batch needs.
-    using B = xsimd::batch<float>;
-    static_assert(B::size <= 16, "xsimd batch wider than 16 floats");
+    // exponentials, e(xc) and the right ratio; the eight go through the vector exp (lane::exp) in as
+    // many baseline packets as they fill.
+    using B = NativePacket;
+    constexpr int kB = kLaneWidth<B>;
+    static_assert(kB <= 16, "a baseline packet wider than 16 floats");
     const int c = n / 2;
     alignas(64) float arg[16] = {};
     float xc[4];
@@ -69,7 +69,7 @@ void gaussian_taps4(const GaussianFilter& g, const float x0[4], int n, float (*w
         arg[r] = -xc[r] * xc[r] * g.m_k;
         arg[4 + r] = -(2.f * xc[r] + 1.f) * g.m_k;
     }
-    for (int i = 0; i < 8; i += int(B::size)) xsimd::exp(B::load_aligned(arg + i)).store_aligned(arg + i);
+    for (int i = 0; i < 8; i += kB) lane::store(arg + i, lane::exp(lane::load_as<B>(arg + i)));
     const F4 x = load_f4(x0), zero = {0.f, 0.f, 0.f, 0.f};
     const F4 q = zero + g.m_q, bias = zero + g.m_bias, radius = zero + g.m_radius;
     auto tap = [&](int i, F4 e) {

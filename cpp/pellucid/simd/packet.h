@@ -1,6 +1,8 @@
 // SIMD packets: the lane operations of simd/lane.h on xsimd batches. The one file that includes
-// xsimd; only the per-target translation units (integrator/kernel_*.cpp) include it, each built for
-// its instruction set, so that the rest of the library stays baseline x86-64 (or arm64) code.
+// xsimd. The per-target translation units (integrator/kernel_*.cpp) include it, each built for its
+// instruction set; the rest of the library stays baseline x86-64 (or arm64) code, and the one
+// baseline file that includes it (image/film.cpp, for the filter taps' exponentials) takes the
+// baseline packet, NativePacket, whose results are then the same on every machine.
 // SPDX-License-Identifier: Apache-2.0
 //
 // Why xsimd (Debian's libxsimd-dev 8.1): a batch is a type, so a template over the lane type F
@@ -23,6 +25,9 @@ struct LaneTraits<xsimd::batch<float, A>> {
     using Mask = xsimd::batch_bool<float, A>;
     using Int = xsimd::batch<int32_t, A>;
 };
+
+/// The packet of the instruction set the including translation unit is built for.
+using NativePacket = xsimd::batch<float>;
 
 namespace lane {
 template <class A>
