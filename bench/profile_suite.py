@@ -38,10 +38,11 @@ STAGES: List[Tuple[str, str, str]] = [
     ("ray traversal (Embree)", r"libembree", r""),
     ("textures", r"OpenImageIO|libOpenImageIO", r""),
     ("textures", r"", r"(?i)texture|bump|perturbed_shading_frame|normal_map"),
-    ("film", r"", r"Film::|film_add|FilmSample"),
-    ("camera rays, samplers", r"", r"path_services::start|Camera|Sampler|PCG32|sobol|sample_filter|truncated_gaussian"),
+    ("film", r"", r"Film::|film_add|FilmSample|filter_taps|gaussian_taps"),
+    ("camera rays, samplers", r"", r"path_services::start|Camera|Sampler|PCG32|sobol|sample_filter|truncated_gaussian|film_position"),
     ("hit records", r"", r"fill_hit|fill_packet|fill_triangle|intersect_packet|occluded_packet|Interaction|compute_footprint|"
-                         r"uv_differentials|approximate_dp_dxy|Scene::intersect|Scene::occluded|path_services::trace|"
+                         r"uv_differentials|approximate_dp_dxy|Scene::intersect|Scene::occluded|path_services::trace|refine_sphere_t|"
+                         r"hit_vertices|fetch_hit_vertex|EmbreeScene::intersect|EmbreeScene::occluded|"
                          r"path_services::occluded|next_ray|spawn_ray"),
     ("media, subsurface", r"", r"(?i)medium|phase|bssrdf|subsurface|searchlight|grid"),
     ("lights, emission", r"", r"(?i)light|escaped|emitted|envmap|emitter|infinite_hit|square_to_uniform_sphere"),

@@ -70,6 +70,9 @@ public:
 
     BxDFFlags flags() const { return pellucid::flags(*m_bxdf); }
     const BxDF& bxdf() const { return *m_bxdf; }
+    /// The shading frame (after any bump or normal map) and whether the terminator is softened.
+    const Frame& frame() const { return m_frame; }
+    bool softens() const { return m_soften; }
 
     /// f·|cos θi| for world directions; 0 where the shading and geometric hemispheres disagree
     /// (a light leak through a shading normal). With pdf_out, also pdf(wo_w, wi_w, mode) from the

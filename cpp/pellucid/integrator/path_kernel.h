@@ -9,8 +9,9 @@
 // lane whose path ends takes the tile's next (pixel, sample) at once, so packets stay full.
 //
 // Per vertex, every lane's quantities are packets: throughput, radiance, MIS densities, the
-// shading frame, the roulette. The BSDF is dispatched per lane group: lanes whose material is the
-// packet Lambertian (PathSetup::packet_lambertian) are shaded by LambertianT<F> in one pass; the
+// shading frame, the roulette. The BSDF is dispatched per lane group: the lanes of each packet form
+// present (PathSetup::packet_kind; a textured material's where the BSDF built at its hit has one,
+// PathSetup::textured_packet) are shaded by it in one pass, masked; the
 // other lanes go through BSDF one at a time (path_services.h), as do emission, the samplers and
 // the sampling of lights other than mesh emitters (EmitterTable), spheres, constant environments
 // and environment maps (LightTable), until those have packet forms too. Rays that escape the scene
@@ -97,9 +98,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     bool full[W];
     uint32_t mat_of[W]{};
     int32_t light_of[W]{};
-    // Without media, subsurface scattering or textures, a hit on a sphere or a triangle whose
-    // material has a packet form and emits nothing needs no more than its vertex.
-    const bool vertex_lanes = !(ps.media || ps.subsurface || scene.has_textures);
+    // Without media or subsurface scattering, a hit on a sphere or a triangle whose material has a
+    // packet form and emits nothing needs no more than its vertex; in a scene with textures, unless
+    // the material has a delta lobe (a delta bounce carries the hit's footprint on to the next hit
+    // as ray differentials, Scene::specular_differentials).
+    const bool vertex_lanes = !(ps.media || ps.subsurface);
     HitVertexInputs<W> hv{};
     struct alignas(64) Arrays {
         float Lr[W], Lg[W], Lb[W], br[W], bg[W], bb[W];
@@ -230,7 +233,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const ShapeRecord& s = scene.shapes[h.geom_id];
                 mat_of[i] = s.face_materials.empty() ? s.material : s.face_materials[h.prim_id];
                 light_of[i] = s.light;
-                if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane) {
+                if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane ||
+                    (scene.has_textures && is_specular(BxDFFlags(ps.packet_flags[mat_of[i]])))) {
                     scene.fill_hit(ray[i], h, si[i], scene.has_textures);
                     continue;
                 }
@@ -355,9 +359,22 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     for (int k = 0, n = ps.packet_count[mat_of[i]]; k < n; ++k) a.q[k][i] = q[k];
                     flags = BxDFFlags(ps.packet_flags[mat_of[i]]);
                     // Delta bounces carry ray differentials on from the hit's footprint.
-                    if (scene.has_textures) path_services::footprint(ps, si[i], ray[i]);
+                    if (scene.has_textures && full[i]) path_services::footprint(ps, si[i], ray[i]);
                 } else {
                     flags = path_services::bsdf_begin(ps, si[i], ray[i], &bsdf(i));
+                    // A textured (or bump- or normal-mapped) material whose BSDF here has a packet
+                    // form: its parameters and shading frame go to the packet pass.
+                    float q[kPacketParams];
+                    int32_t form;
+                    if (ps.textured_packet[mat_of[i]] && (form = path_services::packet_form(bsdf(i), q)) != kBSDFLane) {
+                        a.fast[i] = true;
+                        a.kind[i] = float(form);
+                        for (int k = 0, n = packet_param_count(form); k < n; ++k) a.q[k][i] = q[k];
+                        const Frame& f = bsdf(i).frame();
+                        a.sx[i] = f.s.x, a.sy[i] = f.s.y, a.sz[i] = f.s.z;
+                        a.tx[i] = f.t.x, a.ty[i] = f.t.y, a.tz[i] = f.t.z;
+                        a.nx[i] = f.n.x, a.ny[i] = f.n.y, a.nz[i] = f.n.z;
+                    }
                 }
                 if (flags == BxDFFlags::None) continue;
                 a.goes_on[i] = true;

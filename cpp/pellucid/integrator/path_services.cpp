@@ -110,6 +110,42 @@ int packet_param_count(int32_t kind) {
     }
 }
 
+namespace {
+/// The packet form of b and its parameters into q (kPacketParams floats), or kBSDFLane. The rough
+/// plastics' coat tables are appended to `tables`; without tables the plastics have none.
+int32_t packet_form_of(const BxDF& b, float* q, std::vector<float>* tables) {
+    int32_t kind = kBSDFLane;
+    if (const Lambertian* l = std::get_if<Lambertian>(&b)) {
+        for (int c = 0; c < 3; ++c) q[c] = l->albedo()[c];
+        return kPacketLambertian;
+    }
+    if (const SmoothDielectric* d = std::get_if<SmoothDielectric>(&b)) {
+        const SmoothDielectricT<float> p = d->lanes();
+        q[0] = p.eta;
+        for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
+        return kPacketSmoothDielectric;
+    }
+    if (const ThinDielectric* t = std::get_if<ThinDielectric>(&b)) {
+        const ThinDielectricT<float> p = t->lanes();
+        q[0] = p.eta;
+        for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
+        return kPacketThinDielectric;
+    }
+    if (const OrenNayar* o = std::get_if<OrenNayar>(&b)) {
+        oren_nayar_packet_params(o->lanes(), q);
+        return kPacketOrenNayar;
+    }
+    if (packet_conductor(b, &kind, q) || (tables && packet_plastic(b, &kind, q, tables)) ||
+        packet_rough_dielectric(b, &kind, q) || packet_principled(b, &kind, q))
+        return kind;
+    return kBSDFLane;
+}
+}  // namespace
+
+namespace path_services {
+int32_t packet_form(const BSDF& b, float* q) { return b.softens() ? kBSDFLane : packet_form_of(b.bxdf(), q, nullptr); }
+}  // namespace path_services
+
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type) {
     PathSetup ps;
     ps.scene = &scene;
@@ -124,35 +160,23 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.packet_kind.assign(n, kBSDFLane);
     ps.packet_params.assign(kPacketParams * n, 0.f);
     ps.packet_flags.assign(n, 0u);
+    ps.textured_packet.assign(n, 0);
     for (size_t m = 0; m < n; ++m) {
         const MaterialTextures& mt = scene.material_textures[m];
-        if (mt.has_bindings() || mt.perturbs_normal() || !mt.two_sided) continue;
+        if (!mt.two_sided) continue;
         // A subsurface boundary's transmission goes through the probe (subsurface_entry).
         if (std::holds_alternative<SubsurfaceMaterial>(scene.materials[m])) continue;
         const BxDF& b = scene.material_bxdfs[m];
-        float* q = &ps.packet_params[kPacketParams * m];
-        if (const Lambertian* l = std::get_if<Lambertian>(&b)) {
-            ps.packet_kind[m] = kPacketLambertian;
-            for (int c = 0; c < 3; ++c) q[c] = l->albedo()[c];
-        } else if (const SmoothDielectric* d = std::get_if<SmoothDielectric>(&b)) {
-            ps.packet_kind[m] = kPacketSmoothDielectric;
-            const SmoothDielectricT<float> p = d->lanes();
-            q[0] = p.eta;
-            for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
-        } else if (const ThinDielectric* t = std::get_if<ThinDielectric>(&b)) {
-            ps.packet_kind[m] = kPacketThinDielectric;
-            const ThinDielectricT<float> p = t->lanes();
-            q[0] = p.eta;
-            for (int c = 0; c < 3; ++c) q[1 + c] = p.r[c], q[4 + c] = p.t[c];
-        } else if (const OrenNayar* o = std::get_if<OrenNayar>(&b)) {
-            ps.packet_kind[m] = kPacketOrenNayar;
-            oren_nayar_packet_params(o->lanes(), q);
-        } else if (!packet_conductor(b, &ps.packet_kind[m], q) &&
-                   !packet_plastic(b, &ps.packet_kind[m], q, &ps.coat_tables) &&
-                   !packet_rough_dielectric(b, &ps.packet_kind[m], q) && !packet_principled(b, &ps.packet_kind[m], q)) {
+        if (mt.has_bindings() || mt.perturbs_normal()) {
+            // Built at each hit (textures, a bump or normal map): the packet form of the model shades
+            // it where its BSDF there has one (packet_form).
+            float q[kPacketParams];
+            const bool softens = mt.perturbs_normal() && mt.terminator_softening;
+            ps.textured_packet[m] = !softens && packet_form_of(b, q, nullptr) != kBSDFLane;
             continue;
         }
-        ps.packet_flags[m] = uint32_t(flags(b));
+        ps.packet_kind[m] = packet_form_of(b, &ps.packet_params[kPacketParams * m], &ps.coat_tables);
+        if (ps.packet_kind[m] != kBSDFLane) ps.packet_flags[m] = uint32_t(flags(b));
     }
     ps.packet_count.resize(n);
     for (size_t m = 0; m < n; ++m) ps.packet_count[m] = packet_param_count(ps.packet_kind[m]);

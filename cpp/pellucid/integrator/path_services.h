@@ -67,6 +67,9 @@ struct PathSetup {
     /// own lanes' parameters).
     std::vector<int32_t> packet_count;
     std::vector<uint32_t> packet_flags;
+    /// Per material: built at each hit (textured, or with a bump or normal map) and shaded by its
+    /// model's packet form wherever the BSDF built there has one (path_services::packet_form).
+    std::vector<uint8_t> textured_packet;
     /// The rough coats' transmittance tables of the packet plastics, one after another
     /// (RoughCoatTable::values; a plastic's parameters hold its table's offset).
     std::vector<float> coat_tables;
@@ -117,6 +120,9 @@ Spectrum emitted(const PathSetup& ps, const SurfaceInteraction& si, const LightS
 void footprint(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray);
 /// The BSDF at si (footprint set first when the scene has textures), built into *out; its flags.
 BxDFFlags bsdf_begin(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray, BSDF* out);
+/// The packet form of a BSDF built at a hit and its parameters into q (kPacketParams floats), or
+/// kBSDFLane (no form for its model or parameters, a rough plastic, a softened terminator).
+int32_t packet_form(const BSDF& b, float* q);
 Spectrum bsdf_eval(const BSDF& bsdf, const Vec3f& wo, const Vec3f& wi, float* pdf);
 bool bsdf_sample(const BSDF& bsdf, const Vec3f& wo, float u_lobe, Vec2f u, BxDFSample* out);
 /// Draw one vertex's random numbers.

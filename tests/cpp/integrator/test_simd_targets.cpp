@@ -291,3 +291,34 @@ TEST(SimdTargetRender, ThinDielectricsAndOrenNayarArePacketForms) {
     EXPECT_EQ(eon, 1);
     EXPECT_EQ(classic, 1);
 }
+
+TEST(SimdTargetRender, TexturedMaterialsTakeTheirModelsPacketForm) {
+    // The suite's glass floor (a checkerboard Lambertian) is built at each hit and shaded by the
+    // packet Lambertian with that hit's texel; textured_bump's materials soften the terminator, which
+    // no packet form does, and stay BSDF lanes.
+    auto glass = load_scene("bench/suite/glass.json");
+    const PathSetup ps = make_path_setup(*glass, 8, 5, true, true, SamplerType::Independent);
+    const auto it = std::find(glass->material_names.begin(), glass->material_names.end(), "checker");
+    ASSERT_NE(it, glass->material_names.end());
+    const size_t checker = size_t(it - glass->material_names.begin());
+    EXPECT_EQ(ps.packet_kind[checker], kBSDFLane);
+    EXPECT_TRUE(ps.textured_packet[checker]);
+    // Hits on the floor: the packet parameters are the BSDF's albedo there, and both colours occur.
+    std::set<float> reds;
+    for (int k = 0; k < 64; ++k) {
+        const Ray r{glass->camera.origin(), glass->camera.direction<float>(4.f * float(k) + 2.f, 250.f), kInfinity};
+        SurfaceInteraction si;
+        if (!glass->intersect(r, si) || si.material_id != checker) continue;
+        glass->compute_footprint(si, RayDifferential(r));
+        const BSDF b = glass->bsdf(si);
+        float q[kPacketParams];
+        ASSERT_EQ(path_services::packet_form(b, q), kPacketLambertian);
+        const Spectrum albedo = std::get<Lambertian>(b.bxdf()).albedo();
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(q[c], albedo[c]);
+        reds.insert(q[0]);
+    }
+    EXPECT_EQ(reds.size(), 2u);
+    auto bump = load_scene("bench/suite/textured_bump.json");
+    const PathSetup pb = make_path_setup(*bump, 8, 5, true, true, SamplerType::Independent);
+    for (size_t m = 0; m < bump->material_bxdfs.size(); ++m) EXPECT_FALSE(pb.textured_packet[m]) << m;
+}
