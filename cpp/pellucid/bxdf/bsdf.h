@@ -27,6 +27,34 @@ inline MaskT<F> shading_leaks(const V3<F>& ng, const V3<F>& wo_w, const V3<F>& w
     return dot(wo_w, ng) * wo.z <= F(0.f) || dot(wi_w, ng) * wi.z <= F(0.f);
 }
 
+/// The factor soften_terminator() applies to f for the light direction `light` (local; light_w in
+/// world) seen from `other` (local): Estevez's where `estevez`, else Chiang's (none in
+/// transmission). n0 is the unperturbed and ns the perturbed shading normal. Over a lane type F, for
+/// BSDF below and the packet kernel alike.
+template <class F>
+inline F terminator_factor(const MaskT<F>& estevez, const V3<F>& other, const V3<F>& light, const V3<F>& light_w,
+                           const V3<F>& n0, const V3<F>& ns) {
+    // Chiang et al. 2019, eq. 4: g = min(1, |n0·l| / (|ns·l|·|n0·ns|)), then −g³ + g² + g.
+    const F cos_s = lane::abs(light.z), cos_0 = lane::abs(dot(n0, light_w)), n0_ns = lane::abs(dot(n0, ns));
+    const F den = cos_s * n0_ns;
+    const auto soft = !(other.z * light.z <= F(0.f)) && den > F(0.f);
+    const F r = cos_0 / lane::select(soft, den, F(1.f));
+    const F g = lane::select(r < F(1.f), r, F(1.f));
+    const F chiang = lane::select(soft, g * (F(1.f) + g * (F(1.f) - g)), F(1.f));
+    if (!lane::any(estevez)) return chiang;
+    // Conty Estevez et al. 2019: the GGX G1 with α² = min(tan²θ_d/8, 1), θ_d the angle between the
+    // shading and the unperturbed normal, of the light direction about n0.
+    const F c_n = dot(n0, ns), c_l = dot(n0, light_w);
+    const F c_n2 = c_n * c_n, c_l2 = c_l * c_l;
+    const auto lit = c_l2 > F(0.f), tilted = c_n2 > F(0.f);
+    const F a = F(0.125f) * (F(1.f) - c_n2) / lane::select(tilted, c_n2, F(1.f));
+    const F alpha2 = lane::select(tilted, lane::select(F(1.f) < a, F(1.f), a), F(1.f));
+    const F t = F(1.f) - c_l2;
+    const F tan2_l = lane::select(F(0.f) < t, t, F(0.f)) / lane::select(lit, c_l2, F(1.f));
+    const F est = lane::select(lit, F(2.f) / (F(1.f) + lane::sqrt(F(1.f) + alpha2 * tan2_l)), F(0.f));
+    return lane::select(estevez, est, chiang);
+}
+
 class BSDF {
 public:
     /// Owns a copy of bxdf.
@@ -70,9 +98,12 @@ public:
 
     BxDFFlags flags() const { return pellucid::flags(*m_bxdf); }
     const BxDF& bxdf() const { return *m_bxdf; }
-    /// The shading frame (after any bump or normal map) and whether the terminator is softened.
+    /// The shading frame (after any bump or normal map); whether the terminator is softened, about
+    /// which unperturbed normal and by which model.
     const Frame& frame() const { return m_frame; }
     bool softens() const { return m_soften; }
+    const Normal3f& terminator_normal() const { return m_n0; }
+    TerminatorModel terminator_model() const { return m_terminator; }
 
     /// f·|cos θi| for world directions; 0 where the shading and geometric hemispheres disagree
     /// (a light leak through a shading normal). With pdf_out, also pdf(wo_w, wi_w, mode) from the
@@ -128,26 +159,9 @@ private:
         return den > 0.f ? num / den : 0.f;
     }
 
-    // Chiang et al. 2019, eq. 4, for the light direction `light` (local; light_w in world) seen
-    // from `other` (local).
+    // The soften_terminator() factor (terminator_factor) for the light direction `light`.
     float terminator(const Vec3f& other, const Vec3f& light, const Vec3f& light_w) const {
-        if (m_terminator == TerminatorModel::Estevez) return estevez(light_w);
-        if (other.z * light.z <= 0.f) return 1.f;  // transmission: no terminator
-        float cos_s = std::fabs(light.z), cos_0 = std::fabs(dot(m_n0, light_w)), n0_ns = std::fabs(dot(m_n0, m_frame.n));
-        if (!(cos_s * n0_ns > 0.f)) return 1.f;
-        float g = std::min(1.f, cos_0 / (cos_s * n0_ns));
-        return g * (1.f + g * (1.f - g));  // −g³ + g² + g
-    }
-
-    // Conty Estevez et al. 2019 (Ray Tracing Gems ch. 12): the GGX G1 with α² = min(tan²θ_d/8, 1), θ_d the
-    // angle between the shading and the unperturbed normal), of the light direction about n0.
-    float estevez(const Vec3f& light_w) const {
-        float c_n = dot(m_n0, m_frame.n), c_l = dot(m_n0, light_w);
-        float c_n2 = c_n * c_n, c_l2 = c_l * c_l;
-        if (!(c_l2 > 0.f)) return 0.f;
-        float alpha2 = c_n2 > 0.f ? std::min(0.125f * (1.f - c_n2) / c_n2, 1.f) : 1.f;
-        float tan2_l = std::max(0.f, 1.f - c_l2) / c_l2;
-        return 2.f / (1.f + std::sqrt(1.f + alpha2 * tan2_l));
+        return terminator_factor<float>(m_terminator == TerminatorModel::Estevez, other, light, light_w, m_n0, m_frame.n);
     }
 
     std::optional<BxDF> m_own;  ///< the BxDF, when this BSDF owns it

@@ -119,6 +119,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         bool fast[W], goes_on[W], nee[W];
         bool esc[W];                   // the ray escaped: the lights at infinity, as a packet
         float edx[W], edy[W], edz[W];  // its direction
+        bool soft[W], est[W];          // a packet form's terminator is softened (Estevez's, else Chiang's)
+        float n0x[W], n0y[W], n0z[W];  // about this unperturbed normal (terminator_factor)
         bool cam[W];                   // the lane's path starts: its camera ray through (cfx, cfy) is due
         float cfx[W], cfy[W];
         bool in_medium[W];   // this vertex is a collision in a medium (the phase function scatters)
@@ -273,7 +275,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             };
             // One lane at a time: what has no packet form yet.
             for (bool* f : {a.fast, a.goes_on, a.nee, a.nee_ok, a.s_ok, a.delta, a.plight, a.in_medium, a.crossing, a.at_exit,
-                            a.to_exit, a.esc})
+                            a.to_exit, a.esc, a.soft})
                 SM(f, M(false));
             for (float* f : {a.Ler, a.Leg, a.Leb, a.le_pdf, a.kind}) ST(f, F(0.f));
             for (int i = 0; i < W; ++i) {
@@ -374,6 +376,12 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         a.sx[i] = f.s.x, a.sy[i] = f.s.y, a.sz[i] = f.s.z;
                         a.tx[i] = f.t.x, a.ty[i] = f.t.y, a.tz[i] = f.t.z;
                         a.nx[i] = f.n.x, a.ny[i] = f.n.y, a.nz[i] = f.n.z;
+                        if (bsdf(i).softens()) {
+                            a.soft[i] = true;
+                            a.est[i] = bsdf(i).terminator_model() == TerminatorModel::Estevez;
+                            const Normal3f& n0 = bsdf(i).terminator_normal();
+                            a.n0x[i] = n0.x, a.n0y[i] = n0.y, a.n0z[i] = n0.z;
+                        }
                     }
                 }
                 if (flags == BxDFFlags::None) continue;
@@ -593,6 +601,14 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     principled_lanes<F>(is_princ, [&](int k) { return any_princ ? LD(a.q[k]) : F(0.f); });
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
+                // Bump- and normal-mapped lanes whose terminator is softened (BSDF::soften_terminator).
+                const M soft = LM(a.soft) && fast;
+                const bool any_soft = lane::any(soft);
+                auto soften = [&](const RGB<F>& f, const V3<F>& wi, const V3<F>& wi_w) {
+                    if (!any_soft) return f;
+                    const V3<F> n0(LD(a.n0x), LD(a.n0y), LD(a.n0z));
+                    return f * lane::select(soft, terminator_factor<F>(LM(a.est), wo, wi, wi_w, n0, frame.n), F(1.f));
+                };
 
                 // Next-event estimation: the BSDF toward the sampled light point, the MIS weight, and
                 // what the shadow ray carries if it is unoccluded.
@@ -629,7 +645,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     eval_dielectric(is_rdiel, rdiel);
                     eval_dielectric(is_rdiel_b, rdiel_b);
                     eval_dielectric(is_princ, princ);
-                    f_fast = lane::select(off, RGB<F>(F(0.f)), f_fast);
+                    f_fast = lane::select(off, RGB<F>(F(0.f)), soften(f_fast, wi, wi_w));
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
                     const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
                     const F bsdf_pdf = lane::select(fast, pdf_fast, LD(a.gpdf));
@@ -680,6 +696,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const V3<F> wi_w = frame.to_world(s.wi);
                     const M ok_fast = s.valid && s.pdf > F(0.f) && !is_black(s.weight) && s.wi.z != F(0.f) &&
                                       !shading_leaks<F>(ng, wo_w, wi_w, wo, s.wi) && wo.z != F(0.f);
+                    s.weight = soften(s.weight, s.wi, wi_w);
                     const M ok_gen = LM(a.s_ok);
                     sampled = goes_on && lane::select(fast, ok_fast, ok_gen);
                     weight = lane::select(fast, s.weight, RGB<F>(LD(a.swr), LD(a.swg), LD(a.swb)));

@@ -143,7 +143,7 @@ int32_t packet_form_of(const BxDF& b, float* q, std::vector<float>* tables) {
 }  // namespace
 
 namespace path_services {
-int32_t packet_form(const BSDF& b, float* q) { return b.softens() ? kBSDFLane : packet_form_of(b.bxdf(), q, nullptr); }
+int32_t packet_form(const BSDF& b, float* q) { return packet_form_of(b.bxdf(), q, nullptr); }
 }  // namespace path_services
 
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type) {
@@ -171,8 +171,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
             // Built at each hit (textures, a bump or normal map): the packet form of the model shades
             // it where its BSDF there has one (packet_form).
             float q[kPacketParams];
-            const bool softens = mt.perturbs_normal() && mt.terminator_softening;
-            ps.textured_packet[m] = !softens && packet_form_of(b, q, nullptr) != kBSDFLane;
+            ps.textured_packet[m] = packet_form_of(b, q, nullptr) != kBSDFLane;
             continue;
         }
         ps.packet_kind[m] = packet_form_of(b, &ps.packet_params[kPacketParams * m], &ps.coat_tables);

@@ -121,7 +121,8 @@ void footprint(const PathSetup& ps, SurfaceInteraction& si, const RayDifferentia
 /// The BSDF at si (footprint set first when the scene has textures), built into *out; its flags.
 BxDFFlags bsdf_begin(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray, BSDF* out);
 /// The packet form of a BSDF built at a hit and its parameters into q (kPacketParams floats), or
-/// kBSDFLane (no form for its model or parameters, a rough plastic, a softened terminator).
+/// kBSDFLane (no form for its model or parameters, or a rough plastic). The BSDF's frame and its
+/// terminator softening (BSDF::softens, terminator_factor) go with it.
 int32_t packet_form(const BSDF& b, float* q);
 Spectrum bsdf_eval(const BSDF& bsdf, const Vec3f& wo, const Vec3f& wi, float* pdf);
 bool bsdf_sample(const BSDF& bsdf, const Vec3f& wo, float u_lobe, Vec2f u, BxDFSample* out);

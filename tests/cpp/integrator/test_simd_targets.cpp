@@ -294,8 +294,9 @@ TEST(SimdTargetRender, ThinDielectricsAndOrenNayarArePacketForms) {
 
 TEST(SimdTargetRender, TexturedMaterialsTakeTheirModelsPacketForm) {
     // The suite's glass floor (a checkerboard Lambertian) is built at each hit and shaded by the
-    // packet Lambertian with that hit's texel; textured_bump's materials soften the terminator, which
-    // no packet form does, and stay BSDF lanes.
+    // packet Lambertian with that hit's texel; so are textured_bump's bump-mapped Lambertians (with
+    // their softened terminators), while its rough plastic, whose coat table is built once per
+    // material, stays a BSDF lane.
     auto glass = load_scene("bench/suite/glass.json");
     const PathSetup ps = make_path_setup(*glass, 8, 5, true, true, SamplerType::Independent);
     const auto it = std::find(glass->material_names.begin(), glass->material_names.end(), "checker");
@@ -320,5 +321,8 @@ TEST(SimdTargetRender, TexturedMaterialsTakeTheirModelsPacketForm) {
     EXPECT_EQ(reds.size(), 2u);
     auto bump = load_scene("bench/suite/textured_bump.json");
     const PathSetup pb = make_path_setup(*bump, 8, 5, true, true, SamplerType::Independent);
-    for (size_t m = 0; m < bump->material_bxdfs.size(); ++m) EXPECT_FALSE(pb.textured_packet[m]) << m;
+    for (size_t m = 0; m < bump->material_bxdfs.size(); ++m)
+        EXPECT_EQ(bool(pb.textured_packet[m]), std::holds_alternative<Lambertian>(bump->material_bxdfs[m]))
+            << bump->material_names[m];
+    EXPECT_EQ(std::count(pb.textured_packet.begin(), pb.textured_packet.end(), 1), 2);
 }
