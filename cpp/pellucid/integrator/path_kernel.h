@@ -169,6 +169,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             *x = job.x0 + int(px % tile_w);
             *y = job.y0 + int(px / tile_w);
         };
+        int64_t seeded_pixel = -1;  // the chunk's pixel whose Sampler::PixelSeed pixel_seed holds
+        Sampler::PixelSeed pixel_seed;
         // Lane i takes the chunk's next path, or goes idle.
         auto start = [&](int i) {
             if (next >= n_paths) {
@@ -183,7 +185,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 path_services::start(ps, splat, x, y, job.s0 + int(k % n_samples), job.seed, &sampler[i], &ray[i],
                                      &done[k].fx, &done[k].fy);
             } else {  // the ray follows for all such lanes at once (camera_rays)
-                path_services::start_sample(ps, splat, x, y, job.s0 + int(k % n_samples), job.seed, &sampler[i],
+                if (k / n_samples != seeded_pixel) {  // the first of the pixel's samples
+                    seeded_pixel = k / n_samples;
+                    pixel_seed = path_services::pixel_seed(ps, x, y, job.seed);
+                }
+                path_services::start_sample(ps, splat, x, y, job.s0 + int(k % n_samples), pixel_seed, &sampler[i],
                                             &done[k].fx, &done[k].fy);
                 a.cam[i] = true, a.cfx[i] = done[k].fx, a.cfy[i] = done[k].fy;
                 any_cam = true;

@@ -200,11 +200,14 @@ void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t s
     camera_sample(scene, splat, x, y, *sampler, fx, fy, ray);
 }
 
-void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, float* fx,
-                  float* fy) {
-    const Scene& scene = *ps.scene;
-    *sampler = Sampler(ps.sampler, uint64_t(y) * uint64_t(scene.width) + uint64_t(x), uint64_t(sample), seed);
-    film_position(scene, splat, x, y, *sampler, fx, fy);
+void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, const Sampler::PixelSeed& px, Sampler* sampler,
+                  float* fx, float* fy) {
+    *sampler = Sampler(ps.sampler, px, uint64_t(sample));
+    film_position(*ps.scene, splat, x, y, *sampler, fx, fy);
+}
+
+Sampler::PixelSeed pixel_seed(const PathSetup& ps, int x, int y, uint64_t seed) {
+    return Sampler::PixelSeed::of(ps.sampler, uint64_t(y) * uint64_t(ps.scene->width) + uint64_t(x), seed);
 }
 
 void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) {

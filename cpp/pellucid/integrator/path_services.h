@@ -103,8 +103,10 @@ namespace path_services {
 void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, RayDifferential* ray,
            float* fx, float* fy);
 /// start() without the camera ray (PerspectiveCamera::direction through (fx, fy) gives it).
-void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, float* fx,
-                  float* fy);
+void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, const Sampler::PixelSeed& px, Sampler* sampler,
+                  float* fx, float* fy);
+/// The part of a sample's Sampler that every sample of pixel (x, y) shares (Sampler::PixelSeed).
+Sampler::PixelSeed pixel_seed(const PathSetup& ps, int x, int y, uint64_t seed);
 /// Trace n ≤ 16 rays (one Embree packet when n > 1); a null rays[i] is an inactive lane (no hit).
 void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit);
 /// trace() without the hit records: the kernel's hits (Scene::fill_hit or hit_lanes.h make them records).

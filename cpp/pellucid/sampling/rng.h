@@ -28,7 +28,13 @@ public:
     /// Seed for one (pixel, sample index, user seed) triple: every such triple owns an independent
     /// stream, so images do not depend on how work is split across threads.
     static PCG32 for_sample(uint64_t pixel, uint64_t sample_index, uint64_t seed) {
-        uint64_t stream = mix_bits(pixel * 0x9E3779B97F4A7C15ULL ^ mix_bits(seed + 0x632BE59BD9B4E019ULL));
+        return for_sample_of(pixel_stream(pixel, seed), sample_index);
+    }
+    /// for_sample in two steps: the part every sample of a pixel shares, then the sample's own.
+    static uint64_t pixel_stream(uint64_t pixel, uint64_t seed) {
+        return mix_bits(pixel * 0x9E3779B97F4A7C15ULL ^ mix_bits(seed + 0x632BE59BD9B4E019ULL));
+    }
+    static PCG32 for_sample_of(uint64_t stream, uint64_t sample_index) {
         return PCG32(mix_bits(sample_index ^ (stream << 1)), stream);
     }
 

@@ -181,12 +181,21 @@ public:
     /// A placeholder (independent, pixel 0, sample 0, seed 0), to be assigned a real one.
     Sampler() : Sampler(SamplerType::Independent, 0, 0, 0) {}
     Sampler(SamplerType type, uint64_t pixel, uint64_t sample_index, uint64_t seed)
-        : m_rng(PCG32::for_sample(pixel, sample_index, seed)), m_type(type),
-          m_index_rev(sobol::reverse_bits(uint32_t(sample_index))),
-          // (Only the sobol sampler's scrambles read the pixel hash.)
-          m_pixel_hash(type == SamplerType::Sobol
-                           ? mix_bits(pixel * 0xBF58476D1CE4E5B9ULL ^ mix_bits(seed ^ 0x94D049BB133111EBULL))
-                           : 0) {}
+        : Sampler(type, PixelSeed::of(type, pixel, seed), sample_index) {}
+    /// What every sample of one pixel shares (the same for all its samples: computed once a pixel).
+    struct PixelSeed {
+        uint64_t stream = 0;  ///< PCG32::pixel_stream
+        uint64_t hash = 0;    ///< the sobol sampler's scrambling seed of the pixel
+        static PixelSeed of(SamplerType type, uint64_t pixel, uint64_t seed) {
+            // (Only the sobol sampler's scrambles read the pixel hash.)
+            return {PCG32::pixel_stream(pixel, seed),
+                    type == SamplerType::Sobol ? mix_bits(pixel * 0xBF58476D1CE4E5B9ULL ^ mix_bits(seed ^ 0x94D049BB133111EBULL))
+                                               : 0};
+        }
+    };
+    Sampler(SamplerType type, const PixelSeed& px, uint64_t sample_index)
+        : m_rng(PCG32::for_sample_of(px.stream, sample_index)), m_type(type),
+          m_index_rev(sobol::reverse_bits(uint32_t(sample_index))), m_pixel_hash(px.hash) {}
 
     SamplerType type() const { return m_type; }
     /// The sample's PCG32 stream: every number of the independent sampler (get_1d and get_2d
