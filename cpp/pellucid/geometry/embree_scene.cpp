@@ -4,6 +4,8 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
+#include <cstring>
 #include <string>
 
 #include "pellucid/util/error.h"
@@ -220,6 +222,28 @@ void EmbreeScene::intersect_packet(int n, const Ray* const* rays, RayHit* hits) 
         hit.v = rh.hit.v[i];
         hit.ng = Vec3f(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
     }
+}
+
+void EmbreeScene::occluded_lanes(int n, const float* const soa[7], const bool* valid, bool* occluded) const {
+    if (n <= 0) return;
+    alignas(64) RTCRay16 r;
+    alignas(64) int mask[16];
+    float* dst[7] = {r.org_x, r.org_y, r.org_z, r.dir_x, r.dir_y, r.dir_z, r.tfar};
+    for (int k = 0; k < 7; ++k) {
+        std::memcpy(dst[k], soa[k], sizeof(float) * size_t(n));
+        std::fill(dst[k] + n, dst[k] + 16, 0.f);
+    }
+    for (int i = 0; i < 16; ++i) {
+        mask[i] = i < n && valid[i] ? -1 : 0;
+        r.tnear[i] = 0.f;
+        r.mask[i] = ~0u;
+        r.flags[i] = 0;
+        r.time[i] = 0.f;
+    }
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    rtcOccluded16(mask, m_impl->scene, &ctx, &r);
+    for (int i = 0; i < n; ++i) occluded[i] = mask[i] != 0 && r.tfar[i] < 0.f;
 }
 
 void EmbreeScene::occluded_packet(int n, const Ray* const* rays, bool* occluded) const {

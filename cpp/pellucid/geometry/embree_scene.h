@@ -49,6 +49,9 @@ public:
     void intersect_packet(int n, const Ray* const* rays, RayHit* hits) const;
     /// occluded() for n ≤ kPacketSize rays at once.
     void occluded_packet(int n, const Ray* const* rays, bool* occluded) const;
+    /// occluded_packet for rays given as arrays of n ≤ kPacketSize floats, soa = origin x, y, z,
+    /// direction x, y, z, tmax; rays where valid[i] is false are not traced (occluded[i] false).
+    void occluded_lanes(int n, const float* const soa[7], const bool* valid, bool* occluded) const;
 
 
 private:

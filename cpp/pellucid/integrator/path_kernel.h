@@ -76,10 +76,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     alignas(BSDF) unsigned char bsdf_mem[W][sizeof(BSDF)];
     auto bsdf = [&](int i) -> BSDF& { return *reinterpret_cast<BSDF*>(bsdf_mem[i]); };
     const Ray* ray_ptr[W];
-    Ray shadow[W];
-    const Ray* shadow_ptr[W];
+    Ray shadow[W];  // a shadow ray NEE sampled one lane at a time (then copied into Arrays::sh)
     int64_t path_of[W];
-    int shadow_lane[W];
     // Media (PathSetup::media): the medium each lane's ray runs through, the stream of its medium
     // events, and how many null boundaries its path has crossed.
     int32_t medium[W]{};
@@ -141,6 +139,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         int32_t slobe[W];
         // Results.
         bool has_shadow[W], alive[W], sampled[W];
+        float sh[7][W];  // the shadow rays: origin, direction, tmax (EmbreeScene::occluded_lanes)
         float Ldr[W], Ldg[W], Ldb[W];
         float nwx[W], nwy[W], nwz[W];
     } a{};
@@ -423,10 +422,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const V3<F> o = offset_ray_origin<F>(p, V3<F>(LD(a.pex), LD(a.pey), LD(a.pez)), ng, es.p - p);
                 const V3<F> e = offset_ray_origin<F>(es.p, es.err, es.n, o - es.p);
                 const V3<F> d = e - o;
-                alignas(64) float b[6][W];
-                ST(b[0], o.x), ST(b[1], o.y), ST(b[2], o.z), ST(b[3], d.x), ST(b[4], d.y), ST(b[5], d.z);
-                for (int i = 0; i < W; ++i)
-                    if (a.nee_ok[i]) shadow[i] = Ray{Vec3f(b[0][i], b[1][i], b[2][i]), Vec3f(b[3][i], b[4][i], b[5][i]), 1.f - 1e-4f};
+                ST(a.sh[0], o.x), ST(a.sh[1], o.y), ST(a.sh[2], o.z), ST(a.sh[3], d.x), ST(a.sh[4], d.y), ST(a.sh[5], d.z);
+                ST(a.sh[6], F(1.f - 1e-4f));
             } else if (ps.lights.any) {
                 // Next-event estimation on the packet lights: each lane picks its light as
                 // path_services::sample_light does, and the lanes whose light is a sphere, a
@@ -457,14 +454,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                                                          lane::select(ls.infinite, ls.wi, ls.p - p));
                     const V3<F> e = offset_ray_origin<F>(ls.p, ls.err, ls.n, o - ls.p);
                     const V3<F> d = lane::select(ls.infinite, ls.wi, e - o);
-                    alignas(64) float b[6][W];
-                    alignas(64) bool inf[W];
-                    ST(b[0], o.x), ST(b[1], o.y), ST(b[2], o.z), ST(b[3], d.x), ST(b[4], d.y), ST(b[5], d.z);
-                    SM(inf, ls.infinite);
-                    for (int i = 0; i < W; ++i)
-                        if (a.nee_ok[i])
-                            shadow[i] = Ray{Vec3f(b[0][i], b[1][i], b[2][i]), Vec3f(b[3][i], b[4][i], b[5][i]),
-                                            inf[i] ? kInfinity : 1.f - 1e-4f};
+                    ST(a.sh[0], o.x), ST(a.sh[1], o.y), ST(a.sh[2], o.z), ST(a.sh[3], d.x), ST(a.sh[4], d.y), ST(a.sh[5], d.z);
+                    ST(a.sh[6], lane::select(ls.infinite, F(kInfinity), F(1.f - 1e-4f)));
                 }
             }
 
@@ -487,6 +478,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         a.lwx[i] = ls.wi.x, a.lwy[i] = ls.wi.y, a.lwz[i] = ls.wi.z;
                         a.lLr[i] = ls.L.r, a.lLg[i] = ls.L.g, a.lLb[i] = ls.L.b;
                         a.delta[i] = ls.delta;
+                        const Ray& r = shadow[i];
+                        a.sh[0][i] = r.o.x, a.sh[1][i] = r.o.y, a.sh[2][i] = r.o.z;
+                        a.sh[3][i] = r.d.x, a.sh[4][i] = r.d.y, a.sh[5][i] = r.d.z, a.sh[6][i] = r.tmax;
                     }
                 }
                 if (a.fast[i]) continue;
@@ -764,28 +758,26 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             }
 
             // The shadow rays NEE left, as one packet.
-            int n_shadow = 0;
-            for (int i = 0; i < W; ++i)
-                if (a.has_shadow[i]) {
-                    shadow_lane[n_shadow] = i;
-                    shadow_ptr[n_shadow++] = &shadow[i];
-                }
-            if (n_shadow > 0 && ps.media) {
+            bool any_shadow = false;
+            for (int i = 0; i < W; ++i) any_shadow = any_shadow || a.has_shadow[i];
+            if (any_shadow && ps.media) {
                 // Through media and null boundaries: each shadow ray carries a transmittance.
-                for (int j = 0; j < n_shadow; ++j) {
-                    const int i = shadow_lane[j];
-                    const int32_t m = a.in_medium[i] ? medium[i] : path_services::medium_after(ps, si[i], shadow[i].d, medium[i]);
-                    const Spectrum tr = path_services::shadow_transmittance(ps, m, shadow[i], Spectrum(a.br[i], a.bg[i], a.bb[i]),
+                for (int i = 0; i < W; ++i) {
+                    if (!a.has_shadow[i]) continue;
+                    const Ray sray{Vec3f(a.sh[0][i], a.sh[1][i], a.sh[2][i]), Vec3f(a.sh[3][i], a.sh[4][i], a.sh[5][i]),
+                                   a.sh[6][i]};
+                    const int32_t m = a.in_medium[i] ? medium[i] : path_services::medium_after(ps, si[i], sray.d, medium[i]);
+                    const Spectrum tr = path_services::shadow_transmittance(ps, m, sray, Spectrum(a.br[i], a.bg[i], a.bb[i]),
                                                                             medium_rng[i]);
                     a.Lr[i] += a.Ldr[i] * tr.r;
                     a.Lg[i] += a.Ldg[i] * tr.g;
                     a.Lb[i] += a.Ldb[i] * tr.b;
                 }
-            } else if (n_shadow > 0) {
-                path_services::occluded(scene, n_shadow, shadow_ptr, blocked);
-                for (int j = 0; j < n_shadow; ++j) {
-                    const int i = shadow_lane[j];
-                    if (!blocked[j]) {
+            } else if (any_shadow) {
+                const float* const soa[7] = {a.sh[0], a.sh[1], a.sh[2], a.sh[3], a.sh[4], a.sh[5], a.sh[6]};
+                path_services::occluded_lanes(scene, W, soa, a.has_shadow, blocked);
+                for (int i = 0; i < W; ++i) {
+                    if (a.has_shadow[i] && !blocked[i]) {
                         a.Lr[i] += a.Ldr[i];
                         a.Lg[i] += a.Ldg[i];
                         a.Lb[i] += a.Ldb[i];

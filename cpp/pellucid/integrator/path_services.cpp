@@ -228,6 +228,15 @@ void trace_hits(const Scene& scene, int n, const Ray* const* rays, RayHit* h, bo
     for (int i = 0; i < n; ++i) hit[i] = rays[i] && h[i].hit();
 }
 
+void occluded_lanes(const Scene& scene, int n, const float* const soa[7], const bool* valid, bool* blocked) {
+    if (n == 1) {
+        blocked[0] = valid[0] && scene.occluded(Ray{Vec3f(soa[0][0], soa[1][0], soa[2][0]),
+                                                    Vec3f(soa[3][0], soa[4][0], soa[5][0]), soa[6][0]});
+        return;
+    }
+    scene.accel.occluded_lanes(n, soa, valid, blocked);
+}
+
 void occluded(const Scene& scene, int n, const Ray* const* rays, bool* blocked) {
     if (n == 1) blocked[0] = scene.occluded(*rays[0]);
     else scene.occluded_packet(n, rays, blocked);

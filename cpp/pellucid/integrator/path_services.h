@@ -112,6 +112,9 @@ void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction
 /// trace() without the hit records: the kernel's hits (Scene::fill_hit or hit_lanes.h make them records).
 void trace_hits(const Scene& scene, int n, const Ray* const* rays, RayHit* h, bool* hit);
 void occluded(const Scene& scene, int n, const Ray* const* rays, bool* blocked);
+/// occluded() for n ≤ 16 rays given as arrays (EmbreeScene::occluded_lanes; one ray traced alone
+/// when n is 1), where valid[i].
+void occluded_lanes(const Scene& scene, int n, const float* const soa[7], const bool* valid, bool* blocked);
 /// Radiance from the lights at infinity seen along the escaping direction d, MIS-weighted.
 Spectrum escaped(const PathSetup& ps, const LightSampleContext& prev, const Vec3f& d, bool specular, float prev_pdf);
 /// Emission of the surface hit si toward the ray's origin, and NEE's density for it (0 after a
