@@ -416,7 +416,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 if (any_packet) {
                     const V3<F> p(LD(a.px), LD(a.py), LD(a.pz)), ng(LD(a.ngx), LD(a.ngy), LD(a.ngz));
                     const LightTableSample<F> ls = sample_light_table<F>(
-                        ps.lights, lane::load_int_as<IntT<F>>(a.light), p, V2<F>{LD(a.u[1]), LD(a.u[2])});
+                        ps.lights, lane::load_int_as<IntT<F>>(a.light), p, V2<F>{LD(a.u[1]), LD(a.u[2])}, LM(a.plight));
                     SM(a.nee_ok, LM(a.plight) && ls.valid);
                     SM(a.delta, LM(a.plight) && ls.delta);  // delta lights: no MIS
                     ST(a.lwx, ls.wi.x), ST(a.lwy, ls.wi.y), ST(a.lwz, ls.wi.z);

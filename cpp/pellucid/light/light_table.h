@@ -1,10 +1,12 @@
 // The lights next-event estimation samples as packets when the scene has no emitter table
 // (area.h): sphere area lights, constant environments, environment maps and the delta lights
-// (point, spot, directional), one row each, read by the light's index with gathers. Each lane picks its light from the table's float running sums of
-// the light probabilities (pick_light_lanes; path_services::pick_light is its float instantiation);
-// lanes whose light has no row here are sampled one at a time (path_services::sample_picked_light). The scalar sample_li of these lights is the float
-// instantiation of the same code (sample_sphere, square_to_uniform_sphere_lanes<F>, envmap_sample,
-// point_light_sample, spot_light_sample, directional_light_sample).
+// (point, spot, directional), one row each, read by the light's index with gathers. Each lane
+// picks its light from the table's float running sums of the light probabilities
+// (pick_light_lanes; path_services::pick_light is its float instantiation); lanes whose light has
+// no row here (mesh area lights) are sampled one at a time (path_services::sample_picked_light).
+// The scalar sample_li of these lights is the float instantiation of the same code
+// (sample_sphere, square_to_uniform_sphere_lanes<F>, envmap_sample, point_light_sample,
+// spot_light_sample, directional_light_sample).
 // An environment map's row holds its rotation, and its integer row the offsets of its CDFs and
 // texels in one buffer (LightTable::env) that packets gather from, so lanes of different maps mix.
 // The table also lists the lights at infinity, for the radiance of escaping rays (escaped_radiance).
@@ -105,16 +107,17 @@ struct LightTableSample {
 /// Sample light `light` (an index with a row in t, per lane) as seen from p_ref with u: a sphere by
 /// sample_sphere, a constant environment uniformly over the sphere of directions, an environment
 /// map by envmap_sample, the delta lights by their own templates (point.h; u unused). Each lane's
-/// results depend on its own inputs only; lanes of other lights come back invalid and zero.
+/// results depend on its own inputs only; lanes of other lights, and lanes outside `active`, come
+/// back invalid and zero (and cost no per-lane work, such as the spot falloff's acos).
 template <class F>
 inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>& light, const V3<F>& p_ref,
-                                              const V2<F>& u) {
+                                              const V2<F>& u, const MaskT<F>& active = MaskT<F>(true)) {
     using I = IntT<F>;
     using M = MaskT<F>;
     const I base = light * I(LightTable::kStride);
     const float* d = t.data.data();
     auto E = [&](int k) { return lane::gather(d + k, base); };
-    const F kind = E(0);
+    const F kind = lane::select(active, E(0), F(float(LightTable::kNone)));
     const M sphere = kind == F(float(LightTable::kSphere)), constant = kind == F(float(LightTable::kConstant));
     const M envmap = kind == F(float(LightTable::kEnvmap));
     const M point = kind == F(float(LightTable::kPoint)), spot = kind == F(float(LightTable::kSpot));
@@ -154,13 +157,8 @@ inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>
     const M at_point = point || spot;
     if (lane::any(at_point)) {
         const V3<F> pl(E(1), E(2), E(3));
-        DeltaLightSample<F> ds = point_light_sample<F>(pl, radiance, p_ref);
-        if (lane::any(spot)) {
-            const DeltaLightSample<F> ss =
-                spot_light_sample<F>(pl, V3<F>(E(4), E(5), E(6)), radiance, E(10), E(11), E(12), p_ref);
-            ds.L = lane::select(spot, ss.L, ds.L);
-            ds.valid = lane::select(spot, ss.valid, ds.valid);
-        }
+        DeltaLightSample<F> ds = point_light_sample<F>(pl, radiance, p_ref);  // spot_light_sample's first step
+        if (lane::any(spot)) apply_spot_falloff<F>(ds, spot, V3<F>(E(4), E(5), E(6)), E(10), E(11), E(12));
         s.p = lane::select(at_point, pl, s.p);
         s.wi = lane::select(at_point, ds.wi, s.wi);
         s.pdf = lane::select(at_point, F(1.f), s.pdf);

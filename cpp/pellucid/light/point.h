@@ -70,8 +70,8 @@ inline DeltaLightSample<F> point_light_sample(const V3<F>& p_light, const RGB<F>
 
 /// Mitsuba 3's spot falloff at cos_theta = cos of the angle from the axis: 0 at or beyond the
 /// cutoff (cos_theta ≤ cos_cutoff), 1 within the beam, linear in the angle between. The angle is
-/// libm's acos (safe_acos), taken one lane at a time and only where some lane is on the ramp, so
-/// every lane type gives the float instantiation's bits.
+/// libm's acos (safe_acos), taken one lane at a time on the lanes inside the cutoff only, so every
+/// lane type gives the float instantiation's bits.
 template <class F>
 inline F spot_falloff(const F& cos_theta, const F& cos_cutoff, const F& cutoff, const F& beam) {
     const auto dark = cos_theta <= cos_cutoff;
@@ -80,25 +80,34 @@ inline F spot_falloff(const F& cos_theta, const F& cos_cutoff, const F& cutoff, 
     if constexpr (std::is_same_v<F, float>) {
         angle = safe_acos(cos_theta);
     } else {
-        alignas(64) float c[kLaneWidth<F>];
+        constexpr int W = kLaneWidth<F>;
+        alignas(64) float c[W];
+        alignas(64) bool off[W];
         lane::store(c, cos_theta);
-        for (float& x : c) x = safe_acos(x);
+        lane::store(off, dark);
+        for (int i = 0; i < W; ++i) c[i] = off[i] ? 0.f : safe_acos(c[i]);
         angle = lane::load_as<F>(c);
     }
     const F ramp = (cutoff - angle) / (cutoff - beam);
     return lane::select(dark, F(0.f), lane::select(angle <= beam, F(1.f), ramp));
 }
 
-/// A spot light at p_light shining along the unit axis: the point light's sample times the
-/// falloff toward −wi, valid where that is positive (not where it is ≤ 0).
+/// A point light's sample s made a spot light's on the lanes `where`: the radiance times the
+/// falloff toward −wi about the unit axis, valid where that is positive (not where it is ≤ 0).
+template <class F>
+inline void apply_spot_falloff(DeltaLightSample<F>& s, const MaskT<F>& where, const V3<F>& axis, const F& cos_cutoff,
+                               const F& cutoff, const F& beam) {
+    const F f = spot_falloff<F>(dot(-s.wi, axis), lane::select(where, cos_cutoff, F(2.f)), cutoff, beam);
+    s.L = lane::select(where, s.L * f, s.L);
+    s.valid = s.valid && (!where || !(f <= F(0.f)));
+}
+/// A spot light at p_light shining along the unit axis (apply_spot_falloff on a point light's sample).
 template <class F>
 inline DeltaLightSample<F> spot_light_sample(const V3<F>& p_light, const V3<F>& axis, const RGB<F>& I,
                                              const F& cos_cutoff, const F& cutoff, const F& beam,
                                              const V3<F>& p_ref) {
     DeltaLightSample<F> s = point_light_sample<F>(p_light, I, p_ref);
-    const F f = spot_falloff<F>(dot(-s.wi, axis), cos_cutoff, cutoff, beam);
-    s.L = s.L * f;
-    s.valid = s.valid && !(f <= F(0.f));
+    apply_spot_falloff<F>(s, MaskT<F>(true), axis, cos_cutoff, cutoff, beam);
     return s;
 }
 

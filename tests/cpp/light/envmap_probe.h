@@ -43,7 +43,8 @@ void run(const In& in, Out& out) {
         auto putm = [&](const M& m) { put(lane::select(m, F(1.f), F(0.f))); };
         const IntT<F> light = lane::load_int_as<IntT<F>>(in.light + o);
         const V3<F> d(L(in.d[0]), L(in.d[1]), L(in.d[2])), p(L(in.p[0]), L(in.p[1]), L(in.p[2]));
-        const LightTableSample<F> ls = sample_light_table<F>(*in.lights, light, p, V2<F>{L(in.u[0]), L(in.u[1])});
+        const LightTableSample<F> ls =
+            sample_light_table<F>(*in.lights, light, p, V2<F>{L(in.u[0]), L(in.u[1])}, active);
         putm(ls.valid), putm(ls.infinite), put(ls.wi.x), put(ls.wi.y), put(ls.wi.z);
         put(ls.L.r), put(ls.L.g), put(ls.L.b), put(ls.pdf);
         // The lane's map (lanes of other lights read the table's placeholder rows).

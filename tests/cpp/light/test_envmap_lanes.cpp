@@ -223,8 +223,8 @@ TEST(EnvmapLanes, FloatInstantiationIsTheScalarLight) {
         // The spot falloff and the point light's sample alone.
         const float cos_theta = cases.a[1][size_t(i)] * 2.f - 1.f;
         EXPECT_TRUE(same_bits(at(29), spot_falloff<float>(cos_theta, 0.9f, 0.45f, 0.2f))) << i;
-        const auto pt = PointLight(kPointAt, Spectrum(3.f))
-                            .sample_li({Point3f(cases.a[5][size_t(i)], cases.a[6][size_t(i)], cases.a[7][size_t(i)])}, u);
+        const Point3f p(cases.a[5][size_t(i)], cases.a[6][size_t(i)], cases.a[7][size_t(i)]);
+        const auto pt = PointLight(kPointAt, Spectrum(3.f)).sample_li({p}, u);
         ASSERT_EQ(at(31) == 1.f, pt.has_value()) << i;
         if (pt) EXPECT_TRUE(same_bits(at(30), pt->L.r)) << i;
     }
