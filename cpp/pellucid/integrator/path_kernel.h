@@ -426,10 +426,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 ST(a.sh[6], F(1.f - 1e-4f));
             } else if (ps.lights.any) {
                 // Next-event estimation on the packet lights: each lane picks its light as
-                // path_services::sample_light does, and the lanes whose light is a sphere, a
-                // constant environment or an environment map sample it together; the shadow ray
-                // ends at the sphere's point (spawn_ray_to) or leaves toward the environment
-                // (spawn_ray).
+                // path_services::sample_light does, and the lanes whose light has a row in the
+                // light table (light_table.h) sample it together; the shadow ray ends at the
+                // light's point (spawn_ray_to) or leaves toward infinity (spawn_ray).
                 {  // the pick, for every lane at once (pick_light_lanes; lanes without NEE ignore it)
                     F sel;
                     const IntT<F> li = pick_light_lanes<F>(ps.lights, LD(a.u[0]), &sel);
@@ -445,8 +444,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 if (any_packet) {
                     const V3<F> p(LD(a.px), LD(a.py), LD(a.pz)), ng(LD(a.ngx), LD(a.ngy), LD(a.ngz));
                     const LightTableSample<F> ls = sample_light_table<F>(
-                        ps.lights, lane::load_int_as<IntT<F>>(a.light), p, V2<F>{LD(a.u[1]), LD(a.u[2])});
+                        ps.lights, lane::load_int_as<IntT<F>>(a.light), p, V2<F>{LD(a.u[1]), LD(a.u[2])}, LM(a.plight));
                     SM(a.nee_ok, LM(a.plight) && ls.valid);
+                    SM(a.delta, LM(a.plight) && ls.delta);  // delta lights: no MIS
                     ST(a.lwx, ls.wi.x), ST(a.lwy, ls.wi.y), ST(a.lwz, ls.wi.z);
                     ST(a.lLr, ls.L.r), ST(a.lLg, ls.L.g), ST(a.lLb, ls.L.b);
                     ST(a.lpdf, LD(a.lsel) * ls.pdf);

@@ -64,6 +64,19 @@ LightTable make_light_table(const std::vector<LightT>& lights, const std::vector
             row[5] = a->flipped() ? 1.f : 0.f;
             row[6] = a->two_sided() ? 1.f : 0.f;
             L = a->radiance();
+        } else if (const auto* pt = std::get_if<PointLight>(&lights[i])) {
+            t.kind[i] = LightTable::kPoint;
+            for (int c = 0; c < 3; ++c) row[1 + c] = pt->position()[c];
+            L = pt->intensity();
+        } else if (const auto* sp = std::get_if<SpotLight>(&lights[i])) {
+            t.kind[i] = LightTable::kSpot;
+            for (int c = 0; c < 3; ++c) row[1 + c] = sp->position()[c], row[4 + c] = sp->axis()[c];
+            row[10] = sp->cos_cutoff(), row[11] = sp->cutoff(), row[12] = sp->beam();
+            L = sp->intensity();
+        } else if (const auto* dl = std::get_if<DirectionalLight>(&lights[i])) {
+            t.kind[i] = LightTable::kDirectional;
+            for (int c = 0; c < 3; ++c) row[1 + c] = dl->direction()[c];
+            L = dl->irradiance();
         } else if (const auto* k = std::get_if<ConstantLight>(&lights[i])) {
             t.kind[i] = LightTable::kConstant;
             L = k->radiance();

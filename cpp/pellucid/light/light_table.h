@@ -1,9 +1,12 @@
 // The lights next-event estimation samples as packets when the scene has no emitter table
-// (area.h): sphere area lights, constant environments and environment maps, one row each, read by
-// the light's index with gathers. Each lane picks its light from the table's float running sums of
-// the light probabilities (pick_light_lanes; path_services::pick_light is its float instantiation);
-// lanes whose light has no row here are sampled one at a time (path_services::sample_picked_light). The scalar sample_li of these lights is the float
-// instantiation of the same code (sample_sphere, square_to_uniform_sphere_lanes<F>, envmap_sample).
+// (area.h): sphere area lights, constant environments, environment maps and the delta lights
+// (point, spot, directional), one row each, read by the light's index with gathers. Each lane
+// picks its light from the table's float running sums of the light probabilities
+// (pick_light_lanes; path_services::pick_light is its float instantiation); lanes whose light has
+// no row here (mesh area lights) are sampled one at a time (path_services::sample_picked_light).
+// The scalar sample_li of these lights is the float instantiation of the same code
+// (sample_sphere, square_to_uniform_sphere_lanes<F>, envmap_sample, point_light_sample,
+// spot_light_sample, directional_light_sample).
 // An environment map's row holds its rotation, and its integer row the offsets of its CDFs and
 // texels in one buffer (LightTable::env) that packets gather from, so lanes of different maps mix.
 // The table also lists the lights at infinity, for the radiance of escaping rays (escaped_radiance).
@@ -16,19 +19,23 @@
 #include "pellucid/light/area.h"
 #include "pellucid/light/constant.h"
 #include "pellucid/light/envmap.h"
+#include "pellucid/light/point.h"
 #include "pellucid/sampling/mis.h"
 
 namespace pellucid {
 
 /// Per light, kStride floats: kind (LightTable::Kind as a float), then for a sphere its centre (3),
 /// radius, flip (1 or 0), two-sided (1 or 0), radiance (3); for a constant environment its radiance
-/// at 7..9; for an environment map its rotation (9, column-major) at 1..9; one float of padding.
+/// at 7..9; for an environment map its rotation (9, column-major) at 1..9; for a point light its
+/// position (3) and intensity at 7..9; for a spot light its position (3), unit axis (3), intensity
+/// (3), then the cosine of its cutoff, its cutoff and its beam angle (radians) at 10..12; for a
+/// directional light the unit direction it travels (3) and its irradiance at 7..9.
 /// Per light, kIntStride integers: for an environment map the offsets in env of its marginal
 /// CDF, its conditional CDFs and its texels, its width and height; for other lights offsets 0 and
 /// the size 2 × 3, which keep their lanes' (unused) reads inside any map's buffer.
 struct LightTable {
-    enum Kind : int { kNone = 0, kSphere = 1, kConstant = 2, kEnvmap = 3 };
-    static constexpr int kStride = 11;
+    enum Kind : int { kNone = 0, kSphere = 1, kConstant = 2, kEnvmap = 3, kPoint = 4, kSpot = 5, kDirectional = 6 };
+    static constexpr int kStride = 13;
     static constexpr int kIntStride = 5;
     std::vector<float> data;
     std::vector<int32_t> idata;
@@ -84,11 +91,14 @@ inline EnvmapLanes<F> envmap_lanes(const LightTable& t, const IntT<F>& light) {
     return e;
 }
 
-/// A light sample in kLaneWidth<F> lanes: the point (for a sphere) and what NEE needs of it.
-/// infinite: a light at infinity, a constant environment or a map (the shadow ray has no end).
+/// A light sample in kLaneWidth<F> lanes: the point (for a sphere, a point or a spot light; the
+/// latter two with zero normal and error bound, so the shadow ray ends at the point exactly, as
+/// SurfaceInteraction::spawn_ray_to does for their sample_li) and what NEE needs of it.
+/// infinite: a light at infinity, a constant environment, a map or a directional light (the shadow
+/// ray has no end). delta: a delta light (point, spot, directional; pdf 1, no MIS).
 template <class F>
 struct LightTableSample {
-    MaskT<F> valid, infinite;
+    MaskT<F> valid, infinite, delta;
     V3<F> p, n, err, wi;
     RGB<F> L;
     F pdf;  ///< solid-angle density at p_ref, light selection not included
@@ -96,23 +106,27 @@ struct LightTableSample {
 
 /// Sample light `light` (an index with a row in t, per lane) as seen from p_ref with u: a sphere by
 /// sample_sphere, a constant environment uniformly over the sphere of directions, an environment
-/// map by envmap_sample. Each lane's
-/// results depend on its own inputs only; lanes of other lights come back invalid and zero.
+/// map by envmap_sample, the delta lights by their own templates (point.h; u unused). Each lane's
+/// results depend on its own inputs only; lanes of other lights, and lanes outside `active`, come
+/// back invalid and zero (and cost no per-lane work, such as the spot falloff's acos).
 template <class F>
 inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>& light, const V3<F>& p_ref,
-                                              const V2<F>& u) {
+                                              const V2<F>& u, const MaskT<F>& active = MaskT<F>(true)) {
     using I = IntT<F>;
     using M = MaskT<F>;
     const I base = light * I(LightTable::kStride);
     const float* d = t.data.data();
     auto E = [&](int k) { return lane::gather(d + k, base); };
-    const F kind = E(0);
+    const F kind = lane::select(active, E(0), F(float(LightTable::kNone)));
     const M sphere = kind == F(float(LightTable::kSphere)), constant = kind == F(float(LightTable::kConstant));
     const M envmap = kind == F(float(LightTable::kEnvmap));
+    const M point = kind == F(float(LightTable::kPoint)), spot = kind == F(float(LightTable::kSpot));
+    const M directional = kind == F(float(LightTable::kDirectional));
     const RGB<F> radiance(E(7), E(8), E(9));
     LightTableSample<F> s;
     s.valid = M(false);
-    s.infinite = constant;
+    s.infinite = constant || directional;
+    s.delta = point || spot || directional;
     s.p = s.n = s.err = s.wi = V3<F>(F(0.f));
     s.L = RGB<F>(F(0.f));
     s.pdf = F(0.f);
@@ -139,6 +153,24 @@ inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>
         s.L = lane::select(envmap, es.L, s.L);
         s.valid = s.valid || (envmap && es.valid);
         s.infinite = s.infinite || envmap;
+    }
+    const M at_point = point || spot;
+    if (lane::any(at_point)) {
+        const V3<F> pl(E(1), E(2), E(3));
+        DeltaLightSample<F> ds = point_light_sample<F>(pl, radiance, p_ref);  // spot_light_sample's first step
+        if (lane::any(spot)) apply_spot_falloff<F>(ds, spot, V3<F>(E(4), E(5), E(6)), E(10), E(11), E(12));
+        s.p = lane::select(at_point, pl, s.p);
+        s.wi = lane::select(at_point, ds.wi, s.wi);
+        s.pdf = lane::select(at_point, F(1.f), s.pdf);
+        s.L = lane::select(at_point, ds.L, s.L);
+        s.valid = s.valid || (at_point && ds.valid);
+    }
+    if (lane::any(directional)) {
+        const DeltaLightSample<F> ds = directional_light_sample<F>(V3<F>(E(1), E(2), E(3)), radiance);
+        s.wi = lane::select(directional, ds.wi, s.wi);
+        s.pdf = lane::select(directional, F(1.f), s.pdf);
+        s.L = lane::select(directional, ds.L, s.L);
+        s.valid = s.valid || directional;
     }
     return s;
 }

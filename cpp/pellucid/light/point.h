@@ -1,5 +1,8 @@
 // Delta lights: point, spot (smooth falloff) and directional. They are reached only by light
-// sampling (no MIS: a BSDF sample hits them with probability 0).
+// sampling (no MIS: a BSDF sample hits them with probability 0). Their sampling is written once
+// over a lane type F (point_light_sample, spot_light_sample, directional_light_sample): sample_li
+// is the float instantiation, and the packet path tracer runs the same templates on its lanes
+// (light/light_table.h).
 // SPDX-License-Identifier: Apache-2.0
 //
 //
@@ -34,25 +37,91 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "pellucid/light/light_types.h"
 #include "pellucid/math/constants.h"
 #include "pellucid/math/frame.h"
+#include "pellucid/math/lane_types.h"
 
 namespace pellucid {
 
-/// The light sample of a point emitter at p_light with radiant intensity I seen from ctx
-/// (radiance arriving = I/d², a delta in direction): shared by point and spot lights.
-inline std::optional<LightLiSample> delta_point_sample(const LightSampleContext& ctx, const Point3f& p_light,
-                                                       const Spectrum& I) {
-    Vec3f d = p_light - ctx.p;
-    float d2 = length2(d);
-    if (!(d2 > 0.f)) return std::nullopt;
-    LightLiSample s;
-    s.wi = d / std::sqrt(d2);
+/// A delta light's sample in kLaneWidth<F> lanes (pdf 1, a delta in direction): where it is valid,
+/// the unit direction toward the light and the radiance arriving along −wi.
+template <class F>
+struct DeltaLightSample {
+    MaskT<F> valid;
+    V3<F> wi;
+    RGB<F> L;
+};
+
+/// A point emitter at p_light with radiant intensity I seen from p_ref: radiance I/d², valid where
+/// d² > 0. Shared by point and spot lights; their sample_li is the float instantiation.
+template <class F>
+inline DeltaLightSample<F> point_light_sample(const V3<F>& p_light, const RGB<F>& I, const V3<F>& p_ref) {
+    const V3<F> d = p_light - p_ref;
+    const F d2 = length2(d);
+    DeltaLightSample<F> s;
+    s.valid = d2 > F(0.f);
+    s.wi = d / lane::sqrt(d2);
     s.L = I / d2;
+    return s;
+}
+
+/// Mitsuba 3's spot falloff at cos_theta = cos of the angle from the axis: 0 at or beyond the
+/// cutoff (cos_theta ≤ cos_cutoff), 1 within the beam, linear in the angle between. The angle is
+/// libm's acos (safe_acos), taken one lane at a time on the lanes inside the cutoff only, so every
+/// lane type gives the float instantiation's bits.
+template <class F>
+inline F spot_falloff(const F& cos_theta, const F& cos_cutoff, const F& cutoff, const F& beam) {
+    const auto dark = cos_theta <= cos_cutoff;
+    if (lane::all(dark)) return F(0.f);
+    F angle;
+    if constexpr (std::is_same_v<F, float>) {
+        angle = safe_acos(cos_theta);
+    } else {
+        constexpr int W = kLaneWidth<F>;
+        alignas(64) float c[W];
+        alignas(64) bool off[W];
+        lane::store(c, cos_theta);
+        lane::store(off, dark);
+        for (int i = 0; i < W; ++i) c[i] = off[i] ? 0.f : safe_acos(c[i]);
+        angle = lane::load_as<F>(c);
+    }
+    const F ramp = (cutoff - angle) / (cutoff - beam);
+    return lane::select(dark, F(0.f), lane::select(angle <= beam, F(1.f), ramp));
+}
+
+/// A point light's sample s made a spot light's on the lanes `where`: the radiance times the
+/// falloff toward −wi about the unit axis, valid where that is positive (not where it is ≤ 0).
+template <class F>
+inline void apply_spot_falloff(DeltaLightSample<F>& s, const MaskT<F>& where, const V3<F>& axis, const F& cos_cutoff,
+                               const F& cutoff, const F& beam) {
+    const F f = spot_falloff<F>(dot(-s.wi, axis), lane::select(where, cos_cutoff, F(2.f)), cutoff, beam);
+    s.L = lane::select(where, s.L * f, s.L);
+    s.valid = s.valid && (!where || !(f <= F(0.f)));
+}
+/// A spot light at p_light shining along the unit axis (apply_spot_falloff on a point light's sample).
+template <class F>
+inline DeltaLightSample<F> spot_light_sample(const V3<F>& p_light, const V3<F>& axis, const RGB<F>& I,
+                                             const F& cos_cutoff, const F& cutoff, const F& beam,
+                                             const V3<F>& p_ref) {
+    DeltaLightSample<F> s = point_light_sample<F>(p_light, I, p_ref);
+    apply_spot_falloff<F>(s, MaskT<F>(true), axis, cos_cutoff, cutoff, beam);
+    return s;
+}
+
+/// The record sample_li returns for a delta light's valid sample at p_light (p_light unused for a
+/// light at infinity); n_light and p_error stay zero, so the shadow ray ends at p_light exactly.
+inline std::optional<LightLiSample> delta_light_record(const DeltaLightSample<float>& d, const Point3f& p_light,
+                                                       bool infinite) {
+    if (!d.valid) return std::nullopt;
+    LightLiSample s;
+    s.wi = d.wi;
+    s.L = d.L;
     s.pdf = 1.f;
     s.p_light = p_light;
+    s.infinite = infinite;
     s.delta = true;
     return s;
 }
@@ -61,9 +130,11 @@ class PointLight {
 public:
     PointLight(const Point3f& p, const Spectrum& intensity) : m_p(p), m_I(intensity) {}
     std::optional<LightLiSample> sample_li(const LightSampleContext& ctx, Vec2f) const {
-        return delta_point_sample(ctx, m_p, m_I);
+        return delta_light_record(point_light_sample<float>(m_p, m_I, ctx.p), m_p, false);
     }
     float power() const { return 4.f * kPi * m_I.average(); }
+    const Point3f& position() const { return m_p; }
+    const Spectrum& intensity() const { return m_I; }
     std::string to_string() const { return "PointLight[position=" + pellucid::to_string(m_p) + ", intensity=" + m_I.to_string() + "]"; }
 
 private:
@@ -78,19 +149,10 @@ public:
     SpotLight(const Point3f& p, const Vec3f& dir, const Spectrum& intensity, float cutoff_deg, float beam_deg)
         : m_p(p), m_frame(Frame::from_z(normalize(dir))), m_I(intensity),
           m_cutoff(radians(cutoff_deg)), m_beam(radians(beam_deg)), m_cos_cutoff(std::cos(radians(cutoff_deg))) {}
-    float falloff(const Vec3f& w_local) const {
-        if (w_local.z <= m_cos_cutoff) return 0.f;
-        float angle = safe_acos(w_local.z);
-        if (angle <= m_beam) return 1.f;
-        return (m_cutoff - angle) / (m_cutoff - m_beam);
-    }
+    float falloff(const Vec3f& w_local) const { return spot_falloff<float>(w_local.z, m_cos_cutoff, m_cutoff, m_beam); }
     std::optional<LightLiSample> sample_li(const LightSampleContext& ctx, Vec2f) const {
-        auto s = delta_point_sample(ctx, m_p, m_I);
-        if (!s) return s;
-        float f = falloff(m_frame.to_local(-s->wi));
-        if (f <= 0.f) return std::nullopt;
-        s->L *= f;
-        return s;
+        return delta_light_record(
+            spot_light_sample<float>(m_p, m_frame.n, m_I, m_cos_cutoff, m_cutoff, m_beam, ctx.p), m_p, false);
     }
     /// Φ = 2π I ∫ falloff(θ) sin θ dθ, exact for the linear ramp: with b = beam, c = cutoff,
     /// ∫_0^b sin θ dθ + ∫_b^c (c − θ)/(c − b) sin θ dθ = 1 − (sin c − sin b)/(c − b)
@@ -100,6 +162,14 @@ public:
         double frac = c - b > 1e-6 ? 1.0 - (std::sin(c) - std::sin(b)) / (c - b) : 1.0 - std::cos(c);
         return float(2.0 * M_PI * frac) * m_I.average();
     }
+    const Point3f& position() const { return m_p; }
+    /// The unit direction the spot shines along.
+    const Vec3f& axis() const { return m_frame.n; }
+    const Spectrum& intensity() const { return m_I; }
+    /// Cutoff and beam angles in radians, and the cosine of the cutoff.
+    float cutoff() const { return m_cutoff; }
+    float beam() const { return m_beam; }
+    float cos_cutoff() const { return m_cos_cutoff; }
     std::string to_string() const { return "SpotLight[position=" + pellucid::to_string(m_p) + ", intensity=" + m_I.to_string() + "]"; }
 
 private:
@@ -109,21 +179,28 @@ private:
     float m_cutoff, m_beam, m_cos_cutoff;
 };
 
+/// A directional light travelling along the unit w: the direction toward it is −w everywhere.
+template <class F>
+inline DeltaLightSample<F> directional_light_sample(const V3<F>& w, const RGB<F>& E) {
+    DeltaLightSample<F> s;
+    s.valid = MaskT<F>(true);
+    s.wi = -w;
+    s.L = E;
+    return s;
+}
+
 class DirectionalLight {
 public:
     /// `dir` is the direction the light travels; scene_radius bounds shadow-ray placement.
     DirectionalLight(const Vec3f& dir, const Spectrum& irradiance, float scene_radius)
         : m_w(normalize(dir)), m_E(irradiance), m_radius(scene_radius) {}
     std::optional<LightLiSample> sample_li(const LightSampleContext&, Vec2f) const {
-        LightLiSample s;
-        s.wi = -m_w;
-        s.L = m_E;
-        s.pdf = 1.f;
-        s.infinite = true;
-        s.delta = true;
-        return s;
+        return delta_light_record(directional_light_sample<float>(m_w, m_E), Point3f(0.f), true);
     }
     float power() const { return kPi * m_radius * m_radius * m_E.average(); }
+    /// The unit direction the light travels.
+    const Vec3f& direction() const { return m_w; }
+    const Spectrum& irradiance() const { return m_E; }
     std::string to_string() const { return "DirectionalLight[direction=" + pellucid::to_string(m_w) + ", irradiance=" + m_E.to_string() + "]"; }
 
 private:

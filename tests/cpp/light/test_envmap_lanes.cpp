@@ -1,12 +1,15 @@
-// Environment maps on packets (light/envmap.h, light/light_table.h): lanes equal scalars, bit for
-// bit (a bound of 0 ulp: the templates use IEEE-exact lane operations only and the library is built
-// without contraction), for the light table's sampling over lanes of mixed kinds (two maps of
-// different sizes and rotations, a sphere, a constant environment, a point light with no packet
-// form), the maps' density and radiance, and the radiance escaping rays take from the lights at
-// infinity. Inputs: fixed-seed random u and directions, u at 0, 1/2, 1 − 2⁻²⁴ and 1e-7, directions
-// at the poles and on the seam u = 0/1 (both signs of zero), every third packet partially masked.
-// The float instantiation is EnvmapLight's own sample_li, pdf_li and Le, and the float CDF's density
-// is that of the cell each sample lies in; the mapping's angles match libm to float precision.
+// Environment maps and delta lights on packets (light/envmap.h, light/point.h, light/light_table.h):
+// lanes equal scalars, bit for bit (a bound of 0 ulp: the templates use IEEE-exact lane operations
+// only, the spot's acos is libm's one lane at a time, and the library is built without
+// contraction), for the light table's sampling over lanes of mixed kinds (two maps of different
+// sizes and rotations, a sphere, a constant environment, a point light, two spot lights, a
+// directional light and a mesh area light with no packet form), the maps' density and radiance,
+// and the radiance escaping rays take from the lights at infinity. Inputs: fixed-seed random u,
+// directions and points, u at 0, 1/2, 1 − 2⁻²⁴ and 1e-7, directions at the poles and on the seam
+// u = 0/1 (both signs of zero), points at the point light itself, every third packet partially
+// masked. The float instantiation is EnvmapLight's, PointLight's, SpotLight's and
+// DirectionalLight's own sample_li (and the envmap's pdf_li and Le), and the float CDF's density is
+// that of the cell each sample lies in; the mapping's angles match libm to float precision.
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
@@ -40,6 +43,9 @@ void run_sse4(const In& in, Out& out);
 
 namespace {
 constexpr int kEnvA = 0, kEnvB = 3;  // the maps' indices in Cases::lights
+constexpr int kLights = 9;
+const Point3f kPointAt(0.25f, -0.125f, 0.375f);  // the point light (some cases' points lie on it)
+const float kPmf[kLights] = {0.1f, 0.1f, 0.2f, 0.15f, 0.1f, 0.1f, 0.1f, 0.05f, 0.1f};
 
 struct Cases {
     static constexpr int kN = 4096;
@@ -56,8 +62,15 @@ struct Cases {
                   AreaLight(Point3f(0.3f, 0.2f, -0.1f), 0.5f, false, Spectrum(1.f, 2.f, 3.f), false),
                   ConstantLight(Spectrum(0.25f, 0.5f, 1.f)),
                   EnvmapLight(test::asymmetric_envmap_image(13, 7), 0.7f, Mat3f(1.f)),
-                  PointLight(Point3f(1.f), Spectrum(1.f))};
-        table = make_light_table(lights, {0.1f, 0.2f, 0.3f, 0.25f, 0.15f});
+                  PointLight(kPointAt, Spectrum(1.f, 0.5f, 2.f)),
+                  // From 2 above, the cases' points span about 25° off the axis: dark, ramp and
+                  // full beam all occur.
+                  SpotLight(Point3f(0.f, 2.f, 0.f), Vec3f(0.1f, -1.f, 0.05f), Spectrum(3.f, 2.f, 1.f), 20.f, 8.f),
+                  DirectionalLight(Vec3f(-0.3f, -1.f, 0.4f), Spectrum(2.f, 1.f, 0.5f), 10.f),
+                  AreaLight(test::mesh_of(test::planar_light_triangles()), Spectrum(1.f), false),
+                  // Beam 0: all ramp, to 30° off a tilted axis from below (some points lie beyond).
+                  SpotLight(Point3f(0.1f, -1.5f, 0.2f), Vec3f(-0.2f, 1.f, 0.3f), Spectrum(0.5f), 30.f, 0.f)};
+        table = make_light_table(lights, std::vector<float>(kPmf, kPmf + kLights));
         PCG32 rng(3, 17);
         for (auto& v : a) v.resize(kN);
         light.resize(kN);
@@ -66,13 +79,13 @@ struct Cases {
         const Vec3f special[] = {{0, 1, 0}, {0, -1, 0}, {0.f, 0.f, -1.f}, {-0.f, 0.f, -1.f},
                                  {1e-8f, 0.3f, -0.95f}, {-1e-8f, -0.3f, -0.95f}, {0.f, 0.6f, 0.8f}};
         for (int i = 0; i < kN; ++i) {
-            light[size_t(i)] = int32_t((i / 3 + i / 64) % 5);
+            light[size_t(i)] = int32_t((i / 3 + i / 64) % kLights);
             const Mat3f R = light[size_t(i)] == kEnvA ? test::test_rotation() : Mat3f(1.f);
             for (int c = 0; c < 2; ++c) a[c][size_t(i)] = i % 7 < 3 ? us[(i / 7 + c) % 4] : rng.next_float();
             Vec3f d = square_to_uniform_sphere(Vec2f(rng.next_float(), rng.next_float()));
             if (i % 5 == 0) d = R * normalize(special[(i / 5) % 7]);
             for (int c = 0; c < 3; ++c) a[2 + c][size_t(i)] = d[c];
-            for (int c = 0; c < 3; ++c) a[5 + c][size_t(i)] = rng.next_float() - 0.5f;
+            for (int c = 0; c < 3; ++c) a[5 + c][size_t(i)] = i % 11 == 4 ? kPointAt[c] : rng.next_float() - 0.5f;
             a[8][size_t(i)] = i % 9 == 0 ? 0.f : (i % 9 == 1 ? kInfinity : 4.f * rng.next_float());
             active[i] = (i / 16) % 3 != 1 || i % 5 != 0;  // every third packet partially masked
             specular[i] = i % 6 == 0;
@@ -100,7 +113,7 @@ TEST(EnvmapLanes, EveryTargetEveryLaneEqualsTheFloatInstantiation) {
     for (int i = 0; i < Cases::kN; ++i)
         env_valid += cases.active[i] && (cases.light[size_t(i)] == kEnvA || cases.light[size_t(i)] == kEnvB) &&
                      scalar.at(0, i) == 1.f;
-    EXPECT_GT(env_valid, size_t(Cases::kN) / 5);  // the probe sampled the maps
+    EXPECT_GT(env_valid, size_t(Cases::kN) / 10);  // the probe sampled the maps
     int targets = 0;
     for (SimdTarget t : available_simd_targets()) {
         Outputs packet;
@@ -127,12 +140,19 @@ TEST(EnvmapLanes, ACaseChangedInOneLaneIsSeen) {
     Cases cases;
     Outputs x, y;
     envmap_probe::run<float>(cases.in, x.out);
-    ASSERT_EQ(cases.light[40], kEnvB);
-    const_cast<float*>(cases.in.u[0])[40] = 0.37f;
+    ASSERT_EQ(cases.light[9], kEnvB);
+    const_cast<float*>(cases.in.u[0])[9] = 0.37f;
     envmap_probe::run<float>(cases.in, y.out);
-    const std::vector<int> changed = test::differing_cases(x, y);
+    std::vector<int> changed = test::differing_cases(x, y);
     EXPECT_FALSE(changed.empty());
-    for (int i : changed) EXPECT_EQ(i, 40);
+    for (int i : changed) EXPECT_EQ(i, 9);
+    // A spot light's lane: its point moved changes that lane only.
+    ASSERT_EQ(cases.light[15], 5);
+    ASSERT_EQ(x.at(0, 15), 1.f);  // lit
+    const_cast<float*>(cases.in.p[0])[15] += 0.01f;
+    envmap_probe::run<float>(cases.in, y.out);
+    changed = test::differing_cases(x, y);
+    EXPECT_EQ(changed, std::vector<int>({9, 15}));
 }
 
 TEST(EnvmapLanes, FloatInstantiationIsTheScalarLight) {
@@ -142,14 +162,42 @@ TEST(EnvmapLanes, FloatInstantiationIsTheScalarLight) {
     Outputs o;
     envmap_probe::run<float>(cases.in, o.out);
     const LightSampleContext ctx;
-    const float pmf[] = {0.1f, 0.2f, 0.3f, 0.25f, 0.15f};
+    size_t delta_valid[kLights] = {}, delta_invalid[kLights] = {};
     for (int i = 0; i < Cases::kN; ++i) {
         if (!cases.active[i]) continue;
         const size_t li = size_t(cases.light[size_t(i)]);
         const Vec3f d(cases.a[2][size_t(i)], cases.a[3][size_t(i)], cases.a[4][size_t(i)]);
         const Vec2f u(cases.a[0][size_t(i)], cases.a[1][size_t(i)]);
         auto at = [&](int k) { return o.at(k, i); };
-        if (const auto* e = std::get_if<EnvmapLight>(&cases.lights[li])) {
+        const Light& light = cases.lights[li];
+        if (std::holds_alternative<PointLight>(light) || std::holds_alternative<SpotLight>(light) ||
+            std::holds_alternative<DirectionalLight>(light)) {
+            // A delta light: its sample_li seen from the case's point, and the shadow ray's ends
+            // (a point with zero normal and error bound, or at infinity).
+            const LightSampleContext seen{Point3f(cases.a[5][size_t(i)], cases.a[6][size_t(i)], cases.a[7][size_t(i)]),
+                                        Normal3f(0.f, 1.f, 0.f)};
+            const auto s = std::visit([&](const auto& l) { return l.sample_li(seen, u); }, light);
+            ASSERT_EQ(at(0) == 1.f, s.has_value()) << i;
+            EXPECT_EQ(at(28), 1.f) << i;  // delta
+            ++(s ? delta_valid : delta_invalid)[li];
+            if (s) {
+                EXPECT_TRUE(s->delta);
+                EXPECT_EQ(at(1) == 1.f, s->infinite) << i;
+                EXPECT_TRUE(same_bits(at(2), s->wi.x) && same_bits(at(3), s->wi.y) && same_bits(at(4), s->wi.z)) << i;
+                EXPECT_TRUE(same_bits(at(5), s->L.r) && same_bits(at(6), s->L.g) && same_bits(at(7), s->L.b)) << i;
+                EXPECT_TRUE(same_bits(at(8), s->pdf)) << i;
+                if (!s->infinite)
+                    for (int c = 0; c < 3; ++c) {
+                        EXPECT_TRUE(same_bits(at(19 + c), s->p_light[c])) << i;
+                        EXPECT_TRUE(same_bits(at(22 + c), s->n_light[c])) << i;
+                        EXPECT_TRUE(same_bits(at(25 + c), s->p_error[c])) << i;
+                    }
+            }
+        } else if (!std::holds_alternative<EnvmapLight>(light)) {
+            EXPECT_EQ(at(28), 0.f) << i;  // not a delta light
+        }
+        if (li == 7) EXPECT_EQ(at(0), 0.f) << i;  // no packet form: invalid
+        if (const auto* e = std::get_if<EnvmapLight>(&light)) {
             const auto s = e->sample_li(ctx, u);
             ASSERT_EQ(at(0) == 1.f, s.has_value()) << i;
             EXPECT_EQ(at(1), 1.f);
@@ -165,12 +213,26 @@ TEST(EnvmapLanes, FloatInstantiationIsTheScalarLight) {
         Spectrum esc(0.f);
         for (size_t k = 0; k < cases.lights.size(); ++k) {
             const InfiniteHit h = infinite_hit(cases.lights[k], ctx, d);
-            if (k == 1 || k == 4) continue;  // not at infinity
-            esc += h.Le * bsdf_hit_weight<float>(true, true, cases.specular[i], cases.a[8][size_t(i)], pmf[k] * h.pdf);
+            const bool area_at_infinity = std::holds_alternative<ConstantLight>(cases.lights[k]) ||
+                                          std::holds_alternative<EnvmapLight>(cases.lights[k]);
+            if (!area_at_infinity) continue;
+            esc += h.Le * bsdf_hit_weight<float>(true, true, cases.specular[i], cases.a[8][size_t(i)], kPmf[k] * h.pdf);
         }
         EXPECT_TRUE(same_bits(at(13), esc.r) && same_bits(at(14), esc.g) && same_bits(at(15), esc.b))
             << i << ": " << at(13) << " vs " << esc.r;
+        // The spot falloff and the point light's sample alone.
+        const float cos_theta = cases.a[1][size_t(i)] * 2.f - 1.f;
+        EXPECT_TRUE(same_bits(at(29), spot_falloff<float>(cos_theta, 0.9f, 0.45f, 0.2f))) << i;
+        const Point3f p(cases.a[5][size_t(i)], cases.a[6][size_t(i)], cases.a[7][size_t(i)]);
+        const auto pt = PointLight(kPointAt, Spectrum(3.f)).sample_li({p}, u);
+        ASSERT_EQ(at(31) == 1.f, pt.has_value()) << i;
+        if (pt) EXPECT_TRUE(same_bits(at(30), pt->L.r)) << i;
     }
+    // Every delta light was sampled; the point light was also seen from itself (no sample), and
+    // each spot's dark side was reached.
+    for (int li : {4, 5, 6, 8}) EXPECT_GT(delta_valid[li], 50u) << li;
+    for (int li : {4, 5, 8}) EXPECT_GT(delta_invalid[li], 0u) << li;
+    EXPECT_EQ(delta_invalid[6], 0u);
 }
 
 TEST(EnvmapLanes, SamplesLieInTheCellWhoseDensityTheyCarry) {
