@@ -13,15 +13,6 @@
 #include "pellucid/simd/packet.h"
 #include "pellucid/util/error.h"
 
-// The sums are 4-vectors of doubles: x86-64 builds also compile the accumulation for AVX2 and pick it at
-// run time. Without contraction (-ffp-contract=off) each clone rounds every product and sum alike,
-// so both give the same bits.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define PELLUCID_FILM_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define PELLUCID_FILM_CLONES
-#endif
-
 namespace pellucid {
 
 namespace {
@@ -52,48 +43,84 @@ inline F4 load_f4(const float* p) {
     return v;
 }
 
-void gaussian_taps4(const GaussianFilter& g, const float x0[4], int n, float (*w)[4]) {
-    // Each row starts at its middle tap c, at xc = x0 + c, and walks outwards: right with the ratio
-    // e(x + 1)/e(x) = exp(−(2x + 1)k), left with e(x − 1)/e(x) = exp(−(1 − 2x)k), each ratio shrinking
-    // by q = exp(−2k) a step. The product of the two first ratios is q, so each row takes two
-    // exponentials, e(xc) and the right ratio; the eight go through the vector exp (lane::exp) in as
-    // many baseline packets as they fill.
+/// The abscissa offsets of the taps, float(i), as constants.
+constexpr float kTapOffset[kMaxFilterTaps] = {0,  1,  2,  3,  4,  5,  6,  7,  8,  9,  10, 11, 12, 13, 14, 15, 16,
+                                              17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 32};
+
+// The Gaussian's taps (kShift: the shifted profile; kN: the number of taps when it is known at
+// compile time, 0 for any n). Each row starts at its middle tap c, at xc = x0 + c, and walks
+// outwards: right with the ratio e(x + 1)/e(x) = exp(−(2x + 1)k), left with e(x − 1)/e(x) =
+// exp(−(1 − 2x)k), each ratio shrinking by q = exp(−2k) a step. The product of the two first ratios
+// is q, so each row takes two exponentials, e(xc) and the right ratio; the eight go through the
+// vector exp (lane::exp) in as many baseline packets as they fill. Every element is one IEEE
+// operation of the lane's own inputs, in the same order whatever kShift and kN.
+template <bool kShift, int kN>
+inline void gaussian_taps4_impl(const GaussianFilter& g, const float x0[4], int n_dyn, float (*w)[4]) {
     using B = NativePacket;
     constexpr int kB = kLaneWidth<B>;
     static_assert(kB <= 16, "a baseline packet wider than 16 floats");
-    const int c = n / 2;
+    const int n = kN > 0 ? kN : n_dyn, c = n / 2;
+    const F4 zero = {0.f, 0.f, 0.f, 0.f};
+    const F4 x = load_f4(x0), k = zero + g.m_k;
+    const F4 xc = x + kTapOffset[c];
     alignas(64) float arg[16] = {};
-    float xc[4];
-    for (int r = 0; r < 4; ++r) {
-        xc[r] = x0[r] + float(c);
-        arg[r] = -xc[r] * xc[r] * g.m_k;
-        arg[4 + r] = -(2.f * xc[r] + 1.f) * g.m_k;
-    }
+    const F4 a_e = -xc * xc * k, a_r = -(2.f * xc + 1.f) * k;
+    std::memcpy(arg, &a_e, sizeof a_e);
+    std::memcpy(arg + 4, &a_r, sizeof a_r);
     for (int i = 0; i < 8; i += kB) lane::store(arg + i, lane::exp(lane::load_as<B>(arg + i)));
-    const F4 x = load_f4(x0), zero = {0.f, 0.f, 0.f, 0.f};
-    const F4 q = zero + g.m_q, bias = zero + g.m_bias, radius = zero + g.m_radius;
+    const F4 q = zero + g.m_q, radius = zero + g.m_radius;
+    F4 abs_mask;
+    {
+        const uint32_t bits = 0x7fffffffu;
+        const uint32_t b4[4] = {bits, bits, bits, bits};
+        std::memcpy(&abs_mask, b4, sizeof abs_mask);
+    }
+    typedef int32_t I4 __attribute__((vector_size(16)));
     auto tap = [&](int i, F4 e) {
-        const F4 xi = x + float(i);
-        const F4 v = e - bias;
-        const F4 kept = zero < v ? v : zero;                       // std::max(0, v)
-        const F4 out = (xi < radius) & (-xi < radius) ? kept : zero;  // |x| < r (false for NaN, as fabs)
+        const F4 xi = x + kTapOffset[i];
+        F4 v = e;
+        if constexpr (kShift) {
+            const F4 d = e - g.m_bias;
+            v = zero < d ? d : zero;  // std::max(0, g − g(r))
+        } else {
+            v = zero < e ? e : zero;  // std::max(0, e) (e − 0 is e)
+        }
+        // |x| < r (false for NaN, as fabs)
+        const I4 in = (I4)((F4)((I4)xi & (I4)abs_mask) < radius);
+        const F4 out = (F4)((I4)v & in);
         std::memcpy(w[i], &out, sizeof out);
     };
-    const F4 ec = load_f4(arg);
-    F4 e = ec, ratio = load_f4(arg + 4);
+    const F4 ec = load_f4(arg), r0 = load_f4(arg + 4);
+    // The two walks are independent: the left one's first ratio (a division) starts at once.
+    F4 el_ratio = q / r0;  // exp(−(1 − 2xc)k)
+    F4 el = ec * el_ratio;
+    el_ratio *= q;
+    F4 er = ec, er_ratio = r0;
     for (int i = c; i < n; ++i) {
-        tap(i, e);
-        e *= ratio;
-        ratio *= q;
+        tap(i, er);
+        er *= er_ratio;
+        er_ratio *= q;
     }
-    ratio = q / load_f4(arg + 4);  // exp(−(1 − 2xc)k)
-    e = ec * ratio;
-    ratio *= q;
     for (int i = c - 1; i >= 0; --i) {
-        tap(i, e);
-        e *= ratio;
-        ratio *= q;
+        tap(i, el);
+        el *= el_ratio;
+        el_ratio *= q;
     }
+}
+
+template <bool kShift>
+inline void gaussian_taps4_shift(const GaussianFilter& g, const float x0[4], int n, float (*w)[4]) {
+    switch (n) {  // the film's common sizes fully unrolled
+    case 5: return gaussian_taps4_impl<kShift, 5>(g, x0, n, w);
+    case 7: return gaussian_taps4_impl<kShift, 7>(g, x0, n, w);
+    case 3: return gaussian_taps4_impl<kShift, 3>(g, x0, n, w);
+    default: return gaussian_taps4_impl<kShift, 0>(g, x0, n, w);
+    }
+}
+
+void gaussian_taps4(const GaussianFilter& g, const float x0[4], int n, float (*w)[4]) {
+    if (g.shift) gaussian_taps4_shift<true>(g, x0, n, w);
+    else gaussian_taps4_shift<false>(g, x0, n, w);
 }
 }  // namespace
 
@@ -109,7 +136,7 @@ void eval_filter_taps4(const Filter& f, const float x0[4], int n, float (*w)[4])
 }
 
 Film::Film(int width, int height, std::optional<Filter> splat)
-    : m_width(width), m_height(height), m_splat(std::move(splat)) {
+    : m_width(width), m_height(height), m_splat(std::move(splat)), m_variant(accumulation_variants().back()) {
     if (m_splat && is_one_pixel_box(*m_splat)) m_splat.reset();
     if (m_splat) {
         // Pixel centres px + ½ within the radius r of a sample in [x, x + 1) satisfy
@@ -173,12 +200,28 @@ void Film::splat_pixel(int x, int y, const FilmSample* s, int n) {
     }
 }
 
-// Adds sample b (weights w[·][2], w[·][3], value L) to the sums of every target pixel; with a
-// partner a (weights w[·][0], w[·][1], value la; la null for none) also the pair's differences, and
-// a itself first if add_a. The sums are updated in the order a, then b, so a pair gives the bits of
-// two single calls.
-PELLUCID_FILM_CLONES void Film::accumulate(int x, int y, int m, const float (*w)[4], const float* la, bool add_a,
-                                           const Spectrum& L) {
+namespace {
+/// What one accumulation reads and writes: the film's sums (4 doubles a pixel: Σw, Σw·L) and pair
+/// sums (8 doubles a pixel: Σ Δ(1, L)², Σ Δ(1, L)·Δw), and one pair of samples (Film::accumulate).
+struct AccumulateArgs {
+    double* sums;
+    double* pairs;
+    int width, height, x, y, m;
+    const float (*w)[4];
+    const float* la;
+    bool add_a;
+    const float* L;
+};
+
+// The accumulation, written once for every instruction set (Film::AccumulationVariant). kM > 0: the
+// film's margin is kM and the whole (2kM + 1)² block of targets lies inside the film, so the loops
+// have fixed bounds and every target of the block is updated (the trimmed targets have weight 0
+// for both samples, and adding 0 leaves a sum's bits as they are: no sum is ever −0, as the sums
+// start at +0 and x + (−x) is +0). kM = 0: any margin and position, trimmed.
+template <int kM>
+__attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs& A) {
+    const int m = kM > 0 ? kM : A.m, x = A.x, y = A.y;
+    const float (*w)[4] = A.w;
     // The weights as doubles (exact), so that each target's weight is one product.
     double wd[kMaxFilterTaps][4];
     for (int t = 0; t <= 2 * m; ++t)
@@ -188,44 +231,111 @@ PELLUCID_FILM_CLONES void Film::accumulate(int x, int y, int m, const float (*w)
     // about half the offsets (with σ = ½: every offset), so the end taps are tested, without a
     // branch; a zero weight inside the block adds w·(1, L) = 0, which leaves a finite sum's bits as
     // they are. (Without a partner, w[·][0..1] repeat b's weights.)
-    auto nz = [&](int t, int axis) { return int(w[t][axis] > 0.f) | int(w[t][2 + axis] > 0.f); };
-    int i0 = -m + (1 - nz(0, 0)), i1 = m - (1 - nz(2 * m, 0));
-    int j0 = -m + (1 - nz(0, 1)), j1 = m - (1 - nz(2 * m, 1));
-    i0 = std::max(i0, -x), i1 = std::min(i1, m_width - 1 - x);
-    j0 = std::max(j0, -y), j1 = std::min(j1, m_height - 1 - y);
-    const bool pair = la != nullptr;
+    int i0 = -m, i1 = m, j0 = -m, j1 = m;
+    if constexpr (kM == 0) {
+        auto nz = [&](int t, int axis) { return int(w[t][axis] > 0.f) | int(w[t][2 + axis] > 0.f); };
+        i0 = -m + (1 - nz(0, 0)), i1 = m - (1 - nz(2 * m, 0));
+        j0 = -m + (1 - nz(0, 1)), j1 = m - (1 - nz(2 * m, 1));
+        i0 = std::max(i0, -x), i1 = std::min(i1, A.width - 1 - x);
+        j0 = std::max(j0, -y), j1 = std::min(j1, A.height - 1 - y);
+    }
+    const float* L = A.L;
     // (1, L) and (1, L_a): w·l4 is (w, wL), and its pair difference (Δw, Δ(wL)). Four doubles at a
     // time (a GCC/Clang vector: one AVX2 register, or two SSE2/NEON ones; the same IEEE operation
     // per element either way).
     const D4 l4 = {1.0, double(L[0]), double(L[1]), double(L[2])};
-    if (!pair) {
+    if (!A.la) {
         for (int j = j0; j <= j1; ++j) {
             const double wyj = wd[j + m][3];
-            SplatSums* sums = &m_sums[size_t(y + j) * m_width + x];
+            double* sums = A.sums + 4 * (size_t(y + j) * A.width + x);
             for (int i = i0; i <= i1; ++i) {
                 const double wb = wd[i + m][2] * wyj;
-                store4(sums[i].v, load4(sums[i].v) + l4 * wb);
+                store4(sums + 4 * i, load4(sums + 4 * i) + l4 * wb);
             }
         }
         return;
     }
+    const float* la = A.la;
     const D4 lp4 = {1.0, double(la[0]), double(la[1]), double(la[2])};
-    for (int j = j0; j <= j1; ++j) {
-        const double wyj = wd[j + m][3], pyj = wd[j + m][1];
-        const size_t row = size_t(y + j) * m_width + x;
-        SplatSums* sums = &m_sums[row];
-        SplatPairSums* pairs = &m_pair_sums[row];
-        for (int i = i0; i <= i1; ++i) {
-            const double wb = wd[i + m][2] * wyj, wa = wd[i + m][0] * pyj;
-            const D4 b = l4 * wb, a = lp4 * wa;
-            D4 t = load4(sums[i].v);
-            if (add_a) t += a;
-            store4(sums[i].v, t + b);
-            const D4 d = b - a;
-            store4(pairs[i].sq, load4(pairs[i].sq) + d * d);
-            store4(pairs[i].cr, load4(pairs[i].cr) + d * d[0]);
+    auto pair_rows = [&](auto add_a_constant) {
+        constexpr bool add_a = decltype(add_a_constant)::value;
+        for (int j = j0; j <= j1; ++j) {
+            const double wyj = wd[j + m][3], pyj = wd[j + m][1];
+            const size_t row = size_t(y + j) * A.width + x;
+            double* sums = A.sums + 4 * row;
+            double* pairs = A.pairs + 8 * row;
+            for (int i = i0; i <= i1; ++i) {
+                // Σ(w, wL) += a (if add_a), += b; the pair sums += (d·d, d·Δw), d = b − a.
+                const double wb = wd[i + m][2] * wyj, wa = wd[i + m][0] * pyj;
+                const D4 b = l4 * wb, a = lp4 * wa;
+                D4 t = load4(sums + 4 * i);
+                if constexpr (add_a) t += a;
+                store4(sums + 4 * i, t + b);
+                const D4 d = b - a;
+                double* q = pairs + 8 * i;
+                store4(q, load4(q) + d * d);
+                store4(q + 4, load4(q + 4) + d * d[0]);
+            }
         }
-    }
+    };
+    if (A.add_a) pair_rows(std::true_type{});
+    else pair_rows(std::false_type{});
+}
+
+// Every margin, and the fixed-bound block of the common margins 1 and 2 (σ = ½: 5 taps) away from
+// the film's border.
+__attribute__((always_inline)) inline void accumulate_any(const AccumulateArgs& a) {
+    const bool inside = a.x >= a.m && a.y >= a.m && a.x + a.m < a.width && a.y + a.m < a.height;
+    if (inside && a.m == 2) accumulate_impl<2>(a);
+    else if (inside && a.m == 1) accumulate_impl<1>(a);
+    else accumulate_impl<0>(a);
+}
+}  // namespace
+
+// The variants of the accumulation (film.h, AccumulationVariant): on x86-64 with GCC, baseline and
+// AVX2 (a four-double vector in one register), chosen once per film from the CPU; elsewhere the
+// baseline only.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PELLUCID_FILM_X86_VARIANTS 1
+#endif
+
+namespace {
+void accumulate_baseline(const AccumulateArgs& a) { accumulate_any(a); }
+#ifdef PELLUCID_FILM_X86_VARIANTS
+__attribute__((target("avx2"))) void accumulate_avx2(const AccumulateArgs& a) { accumulate_any(a); }
+#endif
+}  // namespace
+
+// Adds sample b (weights w[·][2], w[·][3], value L) to the sums of every target pixel; with a
+// partner a (weights w[·][0], w[·][1], value la; la null for none) also the pair's differences, and
+// a itself first if add_a. The sums are updated in the order a, then b, so a pair gives the bits of
+// two single calls. Every variant does the same IEEE operations per element, in the same order
+// (no contraction: -ffp-contract=off), so all give the same bits.
+void Film::accumulate(int x, int y, int m, const float (*w)[4], const float* la, bool add_a, const Spectrum& L) {
+    static_assert(sizeof(SplatSums) == 4 * sizeof(double) && sizeof(SplatPairSums) == 8 * sizeof(double));
+    const float l[3] = {L[0], L[1], L[2]};
+    const AccumulateArgs args{reinterpret_cast<double*>(m_sums.data()), reinterpret_cast<double*>(m_pair_sums.data()),
+                              m_width, m_height, x, y, m, w, la, add_a, l};
+#ifdef PELLUCID_FILM_X86_VARIANTS
+    if (m_variant == AccumulationVariant::AVX2) return accumulate_avx2(args);
+#endif
+    accumulate_baseline(args);
+}
+
+std::vector<Film::AccumulationVariant> Film::accumulation_variants() {
+    std::vector<AccumulationVariant> v{AccumulationVariant::Baseline};
+#ifdef PELLUCID_FILM_X86_VARIANTS
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2")) v.push_back(AccumulationVariant::AVX2);
+#endif
+    return v;
+}
+
+void Film::set_accumulation_variant(AccumulationVariant v) {
+    const std::vector<AccumulationVariant> ok = accumulation_variants();
+    if (std::find(ok.begin(), ok.end(), v) == ok.end())
+        throw Error("Film: accumulation variant " + std::to_string(int(v)) + " is not available on this CPU");
+    m_variant = v;
 }
 
 void Film::pixel_stats(size_t i, double mean[3], double var[3]) const {

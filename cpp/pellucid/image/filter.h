@@ -114,10 +114,11 @@ constexpr int kMaxFilterTaps = 2 * 16 + 1;
 /// rightwards; each row starts at its middle tap and walks outwards, so the rounding compounds over
 /// at most m steps (within 1.5e-6 of the profile, relative, for σ ≤ 1.2; test_filter.cpp). The
 /// eight exponentials of a call are one vector exp (lane::exp on the baseline packet) and the
-/// recurrence runs on the four rows side by side. Defined in film.cpp, which is compiled once for
-/// the baseline instruction set, so the weights are the same on every
-/// machine and for every SIMD target of the path tracer. Each lane's arithmetic depends only on its
-/// own x0: a row's weights do not depend on the other rows of the call.
+/// recurrence runs on the four rows side by side (3, 5 and 7 taps in fixed-size code, the same
+/// operations). Defined in film.cpp, which is compiled once for the baseline instruction set, so the
+/// weights are the same on every machine and for every SIMD target of the path tracer. Each lane's
+/// arithmetic depends only on its own x0: a row's weights do not depend on the other rows of the
+/// call.
 void eval_filter_taps4(const Filter& f, const float x0[4], int n, float (*w)[4]);
 /// w[i] = f(x0 + i) for i < n ≤ kMaxFilterTaps: one row of eval_filter_taps4, the same numbers.
 inline void eval_filter_taps(const Filter& f, float x0, int n, float* w) {

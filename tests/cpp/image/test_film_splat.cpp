@@ -22,6 +22,7 @@
 #include "pellucid/api.h"
 #include "pellucid/image/film.h"
 #include "pellucid/sampling/rng.h"
+#include "pellucid/util/error.h"
 #include "support/chi2.h"
 #include "support/scene_util.h"
 
@@ -230,43 +231,61 @@ TEST(FilmSplat, PixelRunsEqualSingleSplats) {
     // must give, bit for bit, the sums (and so the mean and variance images) of one splat() per
     // sample and those of the reference above:
     // runs of 1 to 5 samples, so pairs start inside a run, span two runs of one pixel, and span runs
-    // of different pixels (the second sample re-evaluates its partner's taps), on a 5×4 film whose
-    // pixels all lie within the filter's reach of its border, with Gaussians (shifted or not)
-    // reaching 2 pixels, a tent and a box of radius 1.5.
+    // of different pixels (the second sample re-evaluates its partner's taps), on a 7×6 film (pixels
+    // whose block is cut by the border, and pixels whose whole block is inside, which margins 1 and
+    // 2 take on fixed bounds), with Gaussians (shifted or not) reaching 2 and 3 pixels, a tent and a
+    // box of radius 1.5; and through every variant of the accumulation this CPU runs (AVX2 and the
+    // baseline on x86-64), which must all give the same bits.
     const Filter filters[] = {GaussianFilter(0.5f, true), GaussianFilter(0.5f), GaussianFilter(0.7f, true),
                               TentFilter{1.f}, BoxFilter{1.5f}};
-    for (const Filter& filter : filters) {
-        Film a(5, 4, filter), b(5, 4, filter);
-        ReferenceFilm ref(5, 4, filter);
-        PCG32 rng(7, 3);
-        const int runs[] = {1, 2, 3, 5, 4, 1, 1, 2};
-        for (int pass = 0; pass < 3; ++pass)
-            for (int y = 0; y < 4; ++y)
-                for (int x = 0; x < 5; ++x) {
-                    const int n = runs[(x + 3 * y + pass) % 8];
-                    std::vector<FilmSample> s(static_cast<size_t>(n));
-                    for (FilmSample& e : s) {
-                        e.fx = float(x) + rng.next_float();
-                        e.fy = float(y) + rng.next_float();
-                        e.L = Spectrum(rng.next_float(), 3.f * rng.next_float(), 0.25f);
-                        a.splat(x, y, e.fx, e.fy, e.L);
-                        ref.splat(x, y, e.fx, e.fy, e.L);
+    const int W = 7, H = 6;
+    const std::vector<Film::AccumulationVariant> variants = Film::accumulation_variants();
+    ASSERT_FALSE(variants.empty());
+    EXPECT_EQ(Film(2, 2, Filter(TentFilter{1.f})).accumulation_variant(), variants.back());
+    for (const Film::AccumulationVariant variant : variants)
+        for (const Filter& filter : filters) {
+            const std::string what = to_string(filter) + " variant " + std::to_string(int(variant));
+            Film a(W, H, filter), b(W, H, filter);
+            a.set_accumulation_variant(variant);
+            b.set_accumulation_variant(variant);
+            ReferenceFilm ref(W, H, filter);
+            PCG32 rng(7, 3);
+            const int runs[] = {1, 2, 3, 5, 4, 1, 1, 2};
+            for (int pass = 0; pass < 3; ++pass)
+                for (int y = 0; y < H; ++y)
+                    for (int x = 0; x < W; ++x) {
+                        const int n = runs[(x + 3 * y + pass) % 8];
+                        std::vector<FilmSample> s(static_cast<size_t>(n));
+                        for (FilmSample& e : s) {
+                            e.fx = float(x) + rng.next_float();
+                            e.fy = float(y) + rng.next_float();
+                            e.L = Spectrum(rng.next_float(), 3.f * rng.next_float(), 0.25f);
+                            a.splat(x, y, e.fx, e.fy, e.L);
+                            ref.splat(x, y, e.fx, e.fy, e.L);
+                        }
+                        b.splat_pixel(x, y, s.data(), n);
                     }
-                    b.splat_pixel(x, y, s.data(), n);
-                }
-        // The sums themselves (a one-ulp change in one of them rarely shows in the float images).
-        const std::vector<double> sa = film_sums(a, filter, "a"), sb = film_sums(b, filter, "b"), sr = reference_sums(ref);
-        EXPECT_EQ(count_differing(sa, sb), 0u) << to_string(filter);
-        EXPECT_EQ(count_differing(sa, sr), 0u) << to_string(filter);
-        Image mr, vr;
-        ref.images(mr, vr);
-        const Image ma = a.mean(), mb = b.mean(), va = a.variance(), vb = b.variance();
-        EXPECT_EQ(count_differing(ma, mb) + count_differing(va, vb), 0u) << to_string(filter);
-        EXPECT_EQ(count_differing(ma, mr) + count_differing(va, vr), 0u) << to_string(filter);
-        for (int y = 0; y < 4; ++y)
-            for (int x = 0; x < 5; ++x) EXPECT_EQ(a.samples(x, y), b.samples(x, y));
-        EXPECT_GT(va.data[0], 0.f);
-    }
+            // The sums themselves (a one-ulp change in one of them rarely shows in the float images).
+            const std::vector<double> sa = film_sums(a, filter, "a"), sb = film_sums(b, filter, "b"), sr = reference_sums(ref);
+            EXPECT_EQ(count_differing(sa, sb), 0u) << what;
+            EXPECT_EQ(count_differing(sa, sr), 0u) << what;
+            Image mr, vr;
+            ref.images(mr, vr);
+            const Image ma = a.mean(), mb = b.mean(), va = a.variance(), vb = b.variance();
+            EXPECT_EQ(count_differing(ma, mb) + count_differing(va, vb), 0u) << what;
+            EXPECT_EQ(count_differing(ma, mr) + count_differing(va, vr), 0u) << what;
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) EXPECT_EQ(a.samples(x, y), b.samples(x, y));
+            EXPECT_GT(va.data[0], 0.f);
+        }
+}
+
+TEST(FilmSplat, AccumulationVariantsAreChecked) {
+    // A variant this CPU lacks is refused (the enum's values past the last are never available).
+    Film f(3, 3, Filter(TentFilter{1.f}));
+    EXPECT_THROW(f.set_accumulation_variant(Film::AccumulationVariant(99)), Error);
+    f.set_accumulation_variant(Film::AccumulationVariant::Baseline);
+    EXPECT_EQ(f.accumulation_variant(), Film::AccumulationVariant::Baseline);
 }
 
 TEST(FilmSplat, SplatsReachTheFilterRadiusOnly) {

@@ -2,7 +2,8 @@
 // profile against Mitsuba 3's, continuity at the radius, and filter sampling from the shifted
 // profile (χ² against the profile, α = 0.01 over the four histograms; monotone in u), and the Mitsuba
 // importer's choice of it; the film's splat weights (eval_filter_taps4) against the profile on a
-// dense grid, and the independence of their four rows.
+// dense grid, the independence of their four rows, and their bits against the recurrence written
+// out one row at a time.
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@
 
 #include "pellucid/image/filter.h"
 #include "pellucid/sampling/rng.h"
+#include "pellucid/simd/packet.h"
 #include "pellucid/scene/mitsuba_xml.h"
 #include "support/chi2.h"
 #include "support/scene_util.h"
@@ -200,5 +202,61 @@ TEST(GaussianFilter, SplatWeightRowsAreIndependent) {
                 for (int i = 0; i < n; ++i) ASSERT_EQ(std::memcmp(&rows[i][r], &alone[i], 4), 0) << to_string(f) << " row " << r;
             }
         }
+    }
+}
+
+// The film's Gaussian taps are, bit for bit, the recurrence of image/filter.h written out plainly,
+// one row at a time in scalar floats: from the middle tap c, e(xc) = exp(−xc² k) and the ratio
+// exp(−(2xc + 1)k) (the exponentials of the same baseline vector exp, lane::exp), then e *= ratio,
+// ratio *= q rightwards, and leftwards from ratio q / exp(−(2xc + 1)k); each tap is
+// max(0, e − bias) inside the radius and 0 outside. The film takes fixed-size code for 3, 5 and 7
+// taps and a loop for the others, so each row length from 1 to 11 is checked, on offsets where the
+// film puts them and anywhere in ±6 pixels.
+TEST(GaussianFilter, SplatWeightsAreTheRecurrence) {
+    auto exp_lane = [](float a) {
+        float out[kLaneWidth<NativePacket>];
+        lane::store(out, lane::exp(NativePacket(a)));
+        return out[0];
+    };
+    PCG32 rng(23, 9);
+    for (const GaussianFilter& g : {GaussianFilter(0.5f, true), GaussianFilter(0.5f), GaussianFilter(1.2f, true),
+                                    GaussianFilter(0.3f)}) {
+        const Filter f(g);
+        for (int n = 1; n <= 11; ++n)
+            for (int trial = 0; trial < 400; ++trial) {
+                float x0[4];
+                for (float& v : x0)
+                    v = trial % 2 == 0 ? float(-(n / 2)) + 0.5f - rng.next_float() : 12.f * rng.next_float() - 6.f;
+                float rows[kMaxFilterTaps][4];
+                eval_filter_taps4(f, x0, n, rows);
+                for (int r = 0; r < 4; ++r) {
+                    float ref[kMaxFilterTaps];
+                    auto tap = [&](int i, float e) {
+                        const float xi = x0[r] + float(i);
+                        const float v = std::max(0.f, e - g.m_bias);
+                        ref[i] = std::fabs(xi) < g.m_radius ? v : 0.f;
+                    };
+                    const int c = n / 2;
+                    const float xc = x0[r] + float(c);
+                    const float ec = exp_lane(-xc * xc * g.m_k), r0 = exp_lane(-(2.f * xc + 1.f) * g.m_k);
+                    float e = ec, ratio = r0;
+                    for (int i = c; i < n; ++i) {
+                        tap(i, e);
+                        e *= ratio;
+                        ratio *= g.m_q;
+                    }
+                    ratio = g.m_q / r0;
+                    e = ec * ratio;
+                    ratio *= g.m_q;
+                    for (int i = c - 1; i >= 0; --i) {
+                        tap(i, e);
+                        e *= ratio;
+                        ratio *= g.m_q;
+                    }
+                    for (int i = 0; i < n; ++i)
+                        ASSERT_EQ(std::memcmp(&rows[i][r], &ref[i], 4), 0)
+                            << to_string(f) << " n " << n << " row " << r << " tap " << i << ": " << rows[i][r] << " vs " << ref[i];
+                }
+            }
     }
 }
