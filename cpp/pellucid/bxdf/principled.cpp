@@ -20,26 +20,29 @@ Vec3f principled2012_detail::principled2012_gtr1_normal(float alpha, const Vec2f
     return spherical_direction(st, ct, 2.f * kPi * u.y);
 }
 
-Principled::Principled(const PrincipledParams& p) : m_p(p) {
-    m_p.base_color = clamp_zero(p.base_color);
-    for (float* v : {&m_p.metallic, &m_p.roughness, &m_p.specular, &m_p.specular_tint, &m_p.sheen,
-                     &m_p.sheen_tint, &m_p.clearcoat, &m_p.clearcoat_gloss, &m_p.anisotropic})
+Principled::Principled(const PrincipledParams& p) {
+    PrincipledParams c = p;
+    c.base_color = clamp_zero(p.base_color);
+    for (float* v : {&c.metallic, &c.roughness, &c.specular, &c.specular_tint, &c.sheen, &c.sheen_tint, &c.clearcoat,
+                     &c.clearcoat_gloss, &c.anisotropic})
         *v = unit(*v);
-    const float lum = m_p.base_color.luminance();
-    const Spectrum tint = lum > 0.f ? m_p.base_color / lum : Spectrum(1.f);
-    m_l.base = m_p.base_color;
-    m_l.cspec0 = lerp(m_p.specular * 0.08f * lerp(Spectrum(1.f), tint, m_p.specular_tint), m_p.base_color, m_p.metallic);
-    m_l.csheen = lerp(Spectrum(1.f), tint, m_p.sheen_tint);
-    m_l.metallic = m_p.metallic;
-    m_l.roughness = m_p.roughness;
-    m_l.sheen = m_p.sheen;
-    m_l.clearcoat = m_p.clearcoat;
-    m_l.cc_alpha = lerp(0.1f, 0.001f, m_p.clearcoat_gloss);
+    m_specular = c.specular, m_specular_tint = c.specular_tint, m_sheen_tint = c.sheen_tint;
+    m_clearcoat_gloss = c.clearcoat_gloss, m_anisotropic = c.anisotropic;
+    const float lum = c.base_color.luminance();
+    const Spectrum tint = lum > 0.f ? c.base_color / lum : Spectrum(1.f);
+    m_l.base = c.base_color;
+    m_l.cspec0 = lerp(c.specular * 0.08f * lerp(Spectrum(1.f), tint, c.specular_tint), c.base_color, c.metallic);
+    m_l.csheen = lerp(Spectrum(1.f), tint, c.sheen_tint);
+    m_l.metallic = c.metallic;
+    m_l.roughness = c.roughness;
+    m_l.sheen = c.sheen;
+    m_l.clearcoat = c.clearcoat;
+    m_l.cc_alpha = lerp(0.1f, 0.001f, c.clearcoat_gloss);
     m_l.cc_log_a2 = std::log(m_l.cc_alpha * m_l.cc_alpha);
-    const bool has_diffuse = m_p.metallic < 1.f && (!m_p.base_color.is_black() || m_p.sheen > 0.f);
-    m_l.w_diffuse = has_diffuse ? 1.f - m_p.metallic : 0.f;
+    const bool has_diffuse = c.metallic < 1.f && (!c.base_color.is_black() || c.sheen > 0.f);
+    m_l.w_diffuse = has_diffuse ? 1.f - c.metallic : 0.f;
     // Specular α (§5.4): α = roughness², aspect = sqrt(1 − 0.9 anisotropic).
-    const float a = sqr(m_p.roughness), aspect = std::sqrt(1.f - 0.9f * m_p.anisotropic);
+    const float a = sqr(c.roughness), aspect = std::sqrt(1.f - 0.9f * c.anisotropic);
     m_l.spec = GGX(std::max(1e-3f, a / aspect), std::max(1e-3f, a * aspect)).lanes();
 }
 
@@ -56,9 +59,9 @@ BxDFFlags Principled::flags() const {
 
 std::string Principled::to_string() const {
     auto n = [](const char* k, float v) { return std::string(", ") + k + "=" + std::to_string(v); };
-    return "Principled[base_color=" + m_p.base_color.to_string() + n("metallic", m_p.metallic) +
-           n("roughness", m_p.roughness) + n("specular", m_p.specular) + n("specular_tint", m_p.specular_tint) +
-           n("sheen", m_p.sheen) + n("sheen_tint", m_p.sheen_tint) + n("clearcoat", m_p.clearcoat) +
-           n("clearcoat_gloss", m_p.clearcoat_gloss) + n("anisotropic", m_p.anisotropic) + "]";
+    return "Principled[base_color=" + m_l.base.to_string() + n("metallic", m_l.metallic) +
+           n("roughness", m_l.roughness) + n("specular", m_specular) + n("specular_tint", m_specular_tint) +
+           n("sheen", m_l.sheen) + n("sheen_tint", m_sheen_tint) + n("clearcoat", m_l.clearcoat) +
+           n("clearcoat_gloss", m_clearcoat_gloss) + n("anisotropic", m_anisotropic) + "]";
 }
 }  // namespace pellucid

@@ -276,7 +276,8 @@ public:
     static float gtr1(float cos_h, float alpha);
 
 private:
-    PrincipledParams m_p;
     Principled2012T<float> m_l;
+    // The parameters that to_string() reports and m_l holds only through the colours and α.
+    float m_specular, m_specular_tint, m_sheen_tint, m_clearcoat_gloss, m_anisotropic;
 };
 }  // namespace pellucid

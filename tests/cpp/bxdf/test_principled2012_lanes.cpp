@@ -254,7 +254,8 @@ TEST(SimdTargetRenderPrincipled2012, SuiteSceneMaterialsArePacketForms) {
         EXPECT_EQ(ps.packet_count[m], kPrincipled2012Params) << m;
         float q[kP];
         principled2012_packet_params(b->lanes(), q);
-        for (int k = 0; k < kP; ++k) EXPECT_TRUE(same_bits(ps.packet_params[kPacketParams * m + size_t(k)], q[k])) << m << " " << k;
+        for (int k = 0; k < kP; ++k)
+            EXPECT_TRUE(same_bits(ps.packet_params[kPacketParams * m + size_t(k)], q[k])) << m << " " << k;
     }
     EXPECT_EQ(n, 2);
 }
