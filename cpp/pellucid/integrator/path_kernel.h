@@ -599,6 +599,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const bool any_princ = lane::any(is_princ);
                 const PrincipledBSDFT<F> princ =
                     principled_lanes<F>(is_princ, [&](int k) { return any_princ ? LD(a.q[k]) : F(0.f); });
+                // The Burley 2012 principled BRDFs.
+                const M is_princ12 = fast && kind == F(float(kPacketPrincipled2012));
+                const bool any_princ12 = lane::any(is_princ12);
+                const Principled2012T<F> princ12 =
+                    principled2012_lanes<F>(is_princ12, [&](int k) { return any_princ12 ? LD(a.q[k]) : F(0.f); });
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
                 // Bump- and normal-mapped lanes whose terminator is softened (BSDF::soften_terminator).
@@ -618,9 +623,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const V3<F> wi = frame.to_local(wi_w);
                     const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
                     // (Of the packet forms the Lambertian, Oren–Nayar, the rough conductors, the
-                    // plastics, the rough dielectrics and the principled BSDF have lobes NEE can reach.)
+                    // plastics, the rough dielectrics and the principled models have lobes NEE can reach.)
                     const M off = leak || !(is_lambert || is_on || is_rough || is_beckmann || is_plastic || is_plastic_b ||
-                                            is_any_rdiel || is_princ);
+                                            is_any_rdiel || is_princ || is_princ12);
                     RGB<F> f_fast = lambert.eval(ctx, wo, wi);
                     F pdf_fast = lambert.pdf(ctx, wo, wi);
                     // Each glossy packet form present evaluates on all lanes; its own lanes keep the result.
@@ -645,6 +650,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     eval_dielectric(is_rdiel, rdiel);
                     eval_dielectric(is_rdiel_b, rdiel_b);
                     eval_dielectric(is_princ, princ);
+                    eval_dielectric(is_princ12, princ12);
                     f_fast = lane::select(off, RGB<F>(F(0.f)), soften(f_fast, wi, wi_w));
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
                     const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
@@ -683,6 +689,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (lane::any(is_rdiel)) merge(is_rdiel, rdiel.sample(ctx, wo, u_lobe, u2, is_rdiel));
                     if (lane::any(is_rdiel_b)) merge(is_rdiel_b, rdiel_b.sample(ctx, wo, u_lobe, u2, is_rdiel_b));
                     if (any_princ) merge(is_princ, princ.sample(ctx, wo, u_lobe, u2, is_princ));
+                    if (any_princ12) merge(is_princ12, princ12.sample(ctx, wo, u_lobe, u2, is_princ12));
                     if (lane::any(is_dielectric)) {
                         const SmoothDielectricT<F> diel{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
                                                         RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};

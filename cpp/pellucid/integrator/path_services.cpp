@@ -90,6 +90,15 @@ bool packet_principled(const BxDF& b, int32_t* kind, float* q) {
     *kind = kPacketPrincipled;
     return true;
 }
+static_assert(kPrincipled2012Params <= kPacketParams, "a 2012 principled BRDF's parameters fit a material's");
+/// The Burley 2012 principled BRDF's packet form (always); its parameters by principled2012_packet_params.
+bool packet_principled2012(const BxDF& b, int32_t* kind, float* q) {
+    const auto* p = std::get_if<Principled>(&b);
+    if (!p) return false;
+    principled2012_packet_params(p->lanes(), q);
+    *kind = kPacketPrincipled2012;
+    return true;
+}
 }  // namespace
 
 int packet_param_count(int32_t kind) {
@@ -105,6 +114,7 @@ int packet_param_count(int32_t kind) {
         case kPacketRoughDielectric:
         case kPacketRoughDielectricBeckmann: return kRoughDielectricParams;
         case kPacketPrincipled: return kPrincipledParams;
+        case kPacketPrincipled2012: return kPrincipled2012Params;
         case kPacketOrenNayar: return kOrenNayarParams;
         default: return 0;
     }
@@ -136,7 +146,8 @@ int32_t packet_form_of(const BxDF& b, float* q, std::vector<float>* tables) {
         return kPacketOrenNayar;
     }
     if (packet_conductor(b, &kind, q) || (tables && packet_plastic(b, &kind, q, tables)) ||
-        packet_rough_dielectric(b, &kind, q) || packet_principled(b, &kind, q))
+        packet_rough_dielectric(b, &kind, q) || packet_principled(b, &kind, q) ||
+        packet_principled2012(b, &kind, q))
         return kind;
     return kBSDFLane;
 }

@@ -38,6 +38,7 @@ enum PacketKind : int32_t {
     kPacketPrincipled = 10,  ///< opaque solid principled BSDF, Burley 2015 (PrincipledBSDFT, principled_lanes)
     kPacketThinDielectric = 11,  ///< ThinDielectricT (a delta form; parameters as the smooth dielectric's)
     kPacketOrenNayar = 12,       ///< classic or EON Oren–Nayar (OrenNayarT, oren_nayar_packet_params)
+    kPacketPrincipled2012 = 13,  ///< principled BRDF, Burley 2012 (Principled2012T, principled2012_lanes)
 };
 constexpr int kPacketParams = 19;
 /// How many parameters the packet form of `kind` reads (0 for kBSDFLane).
@@ -60,7 +61,8 @@ struct PathSetup {
     /// smooth and thin dielectrics: η, reflectance, transmittance; Oren–Nayar:
     /// oren_nayar_packet_params; conductors: η, k, specular_reflectance,
     /// then for the rough ones (GGX, Beckmann) αx, αy and 1 for separable shadowing; plastics:
-    /// plastic_packet_params; principled: principled_packet_params), and its BxDFFlags.
+    /// plastic_packet_params; principled: principled_packet_params or, for the 2012 model,
+    /// principled2012_packet_params), and its BxDFFlags.
     std::vector<float> packet_params;
     /// Per material, how many of its kPacketParams its packet form reads (packet_param_count); a
     /// lane copies only those (the forms of other kinds ignore the lane's values: they select their
