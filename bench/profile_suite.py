@@ -34,12 +34,13 @@ STAGES: List[Tuple[str, str, str]] = [
     # or writing the image (the dynamic linker, the kernel's page faults, image-format libraries).
     ("loading", r"^(?!pellucid|libembree|libOpenImageIO|libm\.so|libtbb)", r""),
     ("loading", r"libembree", r"(?i)build|morton|split|heuristic|bvh.*builder|refit|createLeaf|rtcCommit|parallel_"),
-    ("loading", r"", r"(?i)json|mesh_io|load_|read_|parse|tinyobj|pugi|Mesh::|build_scene|scene_from|build\("),
+    ("loading", r"", r"(?i)json|mesh_io|load_|read_|parse|tinyobj|pugi|Mesh::|build_scene|scene_from|build\(|"
+                         r"integrate_unit_square|interface_energy|coat_table"),
     ("ray traversal (Embree)", r"libembree", r""),
     ("textures", r"OpenImageIO|libOpenImageIO", r""),
     ("textures", r"", r"(?i)texture|bump|perturbed_shading_frame|normal_map"),
-    ("film", r"", r"Film::|film_add|FilmSample|filter_taps|gaussian_taps"),
-    ("camera rays, samplers", r"", r"path_services::start|Camera|Sampler|PCG32|sobol|sample_filter|truncated_gaussian|film_position"),
+    ("film", r"", r"Film::|film_add|FilmSample|filter_taps|gaussian_taps|accumulate_(avx2|any|baseline)"),
+    ("camera rays, samplers", r"", r"path_services::start|Camera|Sampler|PCG32|sobol|sample_filter|truncated_gaussian|film_position|pixel_seed"),
     ("hit records", r"", r"fill_hit|fill_packet|fill_triangle|intersect_packet|occluded_packet|Interaction|compute_footprint|"
                          r"uv_differentials|approximate_dp_dxy|Scene::intersect|Scene::occluded|path_services::trace|refine_sphere_t|"
                          r"hit_vertices|fetch_hit_vertex|EmbreeScene::intersect|EmbreeScene::occluded|"
