@@ -155,7 +155,7 @@ def _cpu_flags() -> set:
 # kernel (1 spp, one thread): pellucid-render hands rtcIntersect16 a valid lane whose ray Embree
 # rejects, and Embree's assertion `all(valid, ray.valid())` aborts the process. Other kernels and
 # the same renders in-process from Python did not abort: the bad lane was an idle lane's
-# uninitialised ray. Idle lanes now pass no ray (path_services::trace).
+# uninitialised ray. Idle lanes now pass no ray (path_services::trace_hits).
 @pytest.mark.skipif(not CLI.exists(), reason="pellucid-render is built by `make`")
 @pytest.mark.parametrize("scene, simd, flag", [("packet_invalid_ray.xml", "avx512", "avx512bw"),
                                                ("packet_invalid_ray_1x4.xml", "avx2", "avx2")])

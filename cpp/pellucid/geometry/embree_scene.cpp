@@ -182,7 +182,7 @@ auto lanes_of(int n, const Ray* const* rays) {
         return true;
     };
 }
-/// rtcIntersect16 / rtcOccluded16 on the lanes `lane` gives (fill_packet); valid receives the mask.
+/// rtcIntersect16 on the lanes `lane` gives (fill_packet); valid receives the mask.
 template <class LaneFn>
 void intersect16(RTCScene scene, LaneFn&& lane, RTCRayHit16& rh, int* valid) {
     RTCIntersectContext ctx;
@@ -193,13 +193,6 @@ void intersect16(RTCScene scene, LaneFn&& lane, RTCRayHit16& rh, int* valid) {
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
     rtcIntersect16(valid, scene, &ctx, &rh);
-}
-template <class LaneFn>
-void occluded16(RTCScene scene, LaneFn&& lane, RTCRay16& r, int* valid) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    fill_packet(r, valid, lane);
-    rtcOccluded16(valid, scene, &ctx, &r);
 }
 }  // namespace
 
@@ -244,14 +237,6 @@ void EmbreeScene::occluded_lanes(int n, const float* const soa[7], const bool* v
     rtcInitIntersectContext(&ctx);
     rtcOccluded16(mask, m_impl->scene, &ctx, &r);
     for (int i = 0; i < n; ++i) occluded[i] = mask[i] != 0 && r.tfar[i] < 0.f;
-}
-
-void EmbreeScene::occluded_packet(int n, const Ray* const* rays, bool* occluded) const {
-    if (n <= 0) return;
-    alignas(64) RTCRay16 r;
-    alignas(64) int valid[16];
-    occluded16(m_impl->scene, lanes_of(n, rays), r, valid);
-    for (int i = 0; i < n; ++i) occluded[i] = r.tfar[i] < 0.f;
 }
 
 }  // namespace pellucid

@@ -40,17 +40,15 @@ public:
     /// Any hit in (0, ray.tmax].
     bool occluded(const Ray& ray) const;
 
-    /// Rays per packet of intersect_packet/occluded_packet (Embree's widest, rtcIntersect16).
+    /// Rays per packet of intersect_packet/occluded_lanes (Embree's widest, rtcIntersect16).
     static constexpr int kPacketSize = 16;
     /// intersect() for n ≤ kPacketSize rays at once, traced as one packet: Embree tests a BVH node
     /// against all of them in SIMD, which amortises the traversal of incoherent rays too. hits[i]
     /// is filled as intersect() fills it; returns nothing, hits[i].hit() tells.
     /// A null rays[i] is an inactive lane (no hit).
     void intersect_packet(int n, const Ray* const* rays, RayHit* hits) const;
-    /// occluded() for n ≤ kPacketSize rays at once.
-    void occluded_packet(int n, const Ray* const* rays, bool* occluded) const;
-    /// occluded_packet for rays given as arrays of n ≤ kPacketSize floats, soa = origin x, y, z,
-    /// direction x, y, z, tmax; rays where valid[i] is false are not traced (occluded[i] false).
+    /// occluded() for n ≤ kPacketSize rays at once, given as arrays of n floats, soa = origin x, y,
+    /// z, direction x, y, z, tmax; rays where valid[i] is false are not traced (occluded[i] false).
     void occluded_lanes(int n, const float* const soa[7], const bool* valid, bool* occluded) const;
 
 

@@ -221,11 +221,6 @@ Sampler::PixelSeed pixel_seed(const PathSetup& ps, int x, int y, uint64_t seed) 
     return Sampler::PixelSeed::of(ps.sampler, uint64_t(y) * uint64_t(ps.scene->width) + uint64_t(x), seed);
 }
 
-void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) {
-    if (n == 1) hit[0] = rays[0] && scene.intersect(*rays[0], si[0]);
-    else scene.intersect_packet(n, rays, si, hit);
-}
-
 void trace_hits(const Scene& scene, int n, const Ray* const* rays, RayHit* h, bool* hit) {
     if (n == 1) {
         h[0] = RayHit{};
@@ -246,11 +241,6 @@ void occluded_lanes(const Scene& scene, int n, const float* const soa[7], const 
         return;
     }
     scene.accel.occluded_lanes(n, soa, valid, blocked);
-}
-
-void occluded(const Scene& scene, int n, const Ray* const* rays, bool* blocked) {
-    if (n == 1) blocked[0] = scene.occluded(*rays[0]);
-    else scene.occluded_packet(n, rays, blocked);
 }
 
 Spectrum escaped(const PathSetup& ps, const LightSampleContext& prev, const Vec3f& d, bool specular, float prev_pdf) {

@@ -110,12 +110,10 @@ void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, con
 /// The part of a sample's Sampler that every sample of pixel (x, y) shares (Sampler::PixelSeed).
 Sampler::PixelSeed pixel_seed(const PathSetup& ps, int x, int y, uint64_t seed);
 /// Trace n ≤ 16 rays (one Embree packet when n > 1); a null rays[i] is an inactive lane (no hit).
-void trace(const Scene& scene, int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit);
-/// trace() without the hit records: the kernel's hits (Scene::fill_hit or hit_lanes.h make them records).
+/// The kernel's hits: Scene::fill_hit or scene/hit_packets.h make them records.
 void trace_hits(const Scene& scene, int n, const Ray* const* rays, RayHit* h, bool* hit);
-void occluded(const Scene& scene, int n, const Ray* const* rays, bool* blocked);
-/// occluded() for n ≤ 16 rays given as arrays (EmbreeScene::occluded_lanes; one ray traced alone
-/// when n is 1), where valid[i].
+/// Whether each of n ≤ 16 rays, given as arrays, is blocked (EmbreeScene::occluded_lanes; one ray
+/// traced alone when n is 1), where valid[i].
 void occluded_lanes(const Scene& scene, int n, const float* const soa[7], const bool* valid, bool* blocked);
 /// Radiance from the lights at infinity seen along the escaping direction d, MIS-weighted.
 Spectrum escaped(const PathSetup& ps, const LightSampleContext& prev, const Vec3f& d, bool specular, float prev_pdf);

@@ -105,16 +105,7 @@ bool Scene::intersect(const Ray& ray, SurfaceInteraction& si) const {
     return true;
 }
 
-void Scene::intersect_packet(int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) const {
-    RayHit h[EmbreeScene::kPacketSize];
-    accel.intersect_packet(n, rays, h);
-    for (int i = 0; i < n; ++i) {
-        hit[i] = h[i].hit();
-        if (hit[i]) fill_hit(*rays[i], h[i], si[i], has_textures);
-    }
-}
-
-// Not inlined, so that single rays and packets fill hit records with the same instructions.
+// Not inlined, so that intersect and the path kernel fill hit records with the same instructions.
 [[gnu::noinline]] void Scene::fill_hit(const Ray& ray, const RayHit& h, SurfaceInteraction& si, bool with_uv) const {
     const ShapeRecord& s = shapes[h.geom_id];
     if (s.kind == ShapeRecord::Kind::Mesh) {

@@ -68,14 +68,6 @@ public:
     /// Closest hit, filled into si. Thread-safe.
     bool intersect(const Ray& ray, SurfaceInteraction& si) const;
     bool occluded(const Ray& ray) const { return accel.occluded(ray); }
-    /// intersect() for n ≤ EmbreeScene::kPacketSize rays traced as one packet; hit[i] says whether
-    /// si[i] was filled. The path tracer's call: in a scene without textures (has_textures false)
-    /// nothing reads uv, and a sphere's is left 0. Thread-safe.
-    void intersect_packet(int n, const Ray* const* rays, SurfaceInteraction* si, bool* hit) const;
-    /// occluded() for n ≤ EmbreeScene::kPacketSize rays traced as one packet.
-    void occluded_packet(int n, const Ray* const* rays, bool* occluded) const {
-        accel.occluded_packet(n, rays, occluded);
-    }
     /// The BSDF at a hit: textures evaluated over the hit's footprint, bump/normal maps applied.
     /// A material with two_sided false seen from the back of the shading normal scatters nothing.
     BSDF bsdf(const SurfaceInteraction& si) const {
@@ -152,8 +144,8 @@ public:
     uint32_t updates = 0;     ///< parameter updates applied
     uint32_t bvh_builds = 0;  ///< times `accel` was built: 1 when loaded, +1 per update that moved geometry
 
-    /// The hit record of a kernel hit (the one place intersect and intersect_packet fill it; the path
-    /// kernel's packet vertices are hit_lanes.h's, as here). Without with_uv a sphere's uv (an atan2
+    /// The hit record of a kernel hit (the one place intersect and the path kernel fill it; the
+    /// kernel's packet vertices are geometry/hit_lanes.h's, as here). Without with_uv a sphere's uv (an atan2
     /// and an acos) is left 0.
     void fill_hit(const Ray& ray, const RayHit& h, SurfaceInteraction& si, bool with_uv) const;
 
