@@ -7,61 +7,21 @@
 // the renderer's kernels do).
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include "bxdf/form_probe.h"
 #include "pellucid/bxdf/principled_bsdf.h"
 
 namespace pellucid::principled_probe {
 
-/// Inputs, one array entry per case; n is a multiple of 16. q[k] holds each case's packet parameter
-/// k (principled_packet_params); kind is 1 for a principled BSDF and 0 for a lane of another model,
-/// whose parameters are not a principled BSDF's.
-struct In {
-    int n = 0;
-    const float* q[kPrincipledParams];
-    const float *wo[3], *wi[3], *u[3];
-    const int32_t* kind;
-    const bool* active;
-};
-/// The contexts: both modes with every lobe, then glossy reflection only, diffuse reflection only,
-/// and transmission only (which the opaque solid has none of).
-constexpr int kContexts = 5;
-constexpr TransportMode kMode[kContexts] = {TransportMode::Radiance, TransportMode::Importance, TransportMode::Radiance,
-                                            TransportMode::Radiance, TransportMode::Radiance};
-constexpr BxDFFlags kAllowed[kContexts] = {BxDFFlags::All, BxDFFlags::All, BxDFFlags::GlossyReflection,
-                                           BxDFFlags::DiffuseReflection, BxDFFlags::Transmission | BxDFFlags::Glossy};
-/// Per context: eval (3), pdf, and the sample's valid, wi (3), weight (3), pdf, η and lobe.
-constexpr int kPerContext = 14;
-constexpr int kOutputs = kContexts * kPerContext;
-/// Outputs, one array of n floats per quantity (masks as 0/1; 0 on inactive and other lanes).
-struct Out {
-    float* v[kOutputs];
-};
+using In = form_probe::In<kPrincipledParams>;
+using form_probe::kAllowed;
+using form_probe::kContexts;
+using form_probe::kMode;
+using form_probe::kOutputs;
+using form_probe::kPerContext;
+using form_probe::Out;
 
 template <class F>
 void run(const In& in, Out& out) {
-    constexpr int W = kLaneWidth<F>;
-    using M = MaskT<F>;
-    alignas(64) bool act[W];
-    for (int o = 0; o < in.n; o += W) {
-        auto L = [&](const float* a) { return lane::load_as<F>(a + o); };
-        for (int i = 0; i < W; ++i) act[i] = in.active[o + i];
-        const IntT<F> kind = lane::load_int_as<IntT<F>>(in.kind + o);
-        const M mine = lane::float_mask(kind == IntT<F>(1));
-        const M shown = lane::load_mask_as<M>(act) && mine;
-        const PrincipledBSDFT<F> b = principled_lanes<F>(mine, [&](int k) { return L(in.q[k]); });
-        const V3<F> wo(L(in.wo[0]), L(in.wo[1]), L(in.wo[2])), wi(L(in.wi[0]), L(in.wi[1]), L(in.wi[2]));
-        const V2<F> u{L(in.u[1]), L(in.u[2])};
-        int k = 0;
-        auto put = [&](const F& x) { lane::store(out.v[k++] + o, lane::select(shown, x, F(0.f))); };
-        for (int c = 0; c < kContexts; ++c) {
-            const BxDFContext ctx{kMode[c], kAllowed[c]};
-            const auto ep = b.eval_pdf(ctx, wo, wi, shown);
-            put(ep.f.r), put(ep.f.g), put(ep.f.b), put(ep.pdf);
-            const BxDFSampleT<F> s = b.sample(ctx, wo, L(in.u[0]), u, shown);
-            put(lane::select(s.valid, F(1.f), F(0.f)));
-            put(s.wi.x), put(s.wi.y), put(s.wi.z), put(s.weight.r), put(s.weight.g), put(s.weight.b), put(s.pdf);
-            put(s.eta);
-            put(lane::to_float(s.lobe));
-        }
-    }
+    form_probe::run<F>(in, out, [](const MaskT<F>& mine, auto q) { return principled_lanes<F>(mine, q); });
 }
 }  // namespace pellucid::principled_probe
