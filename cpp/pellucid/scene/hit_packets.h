@@ -36,7 +36,7 @@ template <int W>
     if (s.kind == ShapeRecord::Kind::Sphere) {
         hv.ox[i] = r.o.x, hv.oy[i] = r.o.y, hv.oz[i] = r.o.z;
         hv.dx[i] = r.d.x, hv.dy[i] = r.d.y, hv.dz[i] = r.d.z;
-        hv.t[i] = refine_sphere_t(s, r, h.t);
+        hv.t[i] = h.t;
         hv.cx[i] = s.center.x, hv.cy[i] = s.center.y, hv.cz[i] = s.center.z, hv.r[i] = s.radius;
         for (int c = 0; c < 9; ++c) hv.rot[c][i] = s.rotation[c / 3][c % 3];
         hv.flip[i] = s.flip_normals;

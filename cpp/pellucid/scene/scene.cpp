@@ -54,20 +54,6 @@ void fill_triangle(const TriangleMesh& m, const RayHit& h, SurfaceInteraction& s
     }
 }
 
-}  // namespace
-
-float refine_sphere_t(const ShapeRecord& s, const Ray& ray, float t_kernel) {
-    const Vec3d o = Vec3d(ray.o) - Vec3d(s.center), d(ray.d);
-    const double a = glm::dot(d, d), b = glm::dot(o, d), c = glm::dot(o, o) - double(s.radius) * s.radius;
-    const double disc = b * b - a * c;
-    if (!(disc >= 0.0) || !(a > 0.0)) return t_kernel;
-    // The two roots without cancellation (Numerical Recipes §5.6): q = −(b + sign(b)√disc).
-    const double q = -(b + std::copysign(std::sqrt(disc), b)), t0 = q / a, t1 = q != 0.0 ? c / q : t0;
-    const double t = std::fabs(t0 - t_kernel) < std::fabs(t1 - t_kernel) ? t0 : t1;
-    return std::isfinite(t) ? float(t) : t_kernel;
-}
-
-namespace {
 
 /// A sphere's rotation as columns (hit_lanes.h).
 Mat3T<float> columns(const Mat3f& R) { return {R[0], R[1], R[2]}; }
@@ -112,10 +98,10 @@ bool Scene::intersect(const Ray& ray, SurfaceInteraction& si) const {
         fill_triangle(meshes[s.mesh_index], h, si);
         si.t = h.t;
     } else {
-        RayHit refined = h;
-        refined.t = refine_sphere_t(s, ray, h.t);
-        fill_sphere(s, ray, refined, si, with_uv);
-        si.t = refined.t;
+        // The sphere's t is its double-precision root (EmbreeScene::add_sphere), the same for
+        // single rays and packets.
+        fill_sphere(s, ray, h, si, with_uv);
+        si.t = h.t;
     }
     si.wo = -ray.d;
     si.shape_id = h.geom_id;

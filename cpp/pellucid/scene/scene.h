@@ -152,9 +152,4 @@ public:
 private:
     BSDF textured_bsdf(const SurfaceInteraction& si) const;
 };
-
-/// The root of |o + t·d − c|² = r² nearest the kernel's t for the sphere s, in double: the hit then
-/// does not depend on how the kernel rounded (Embree's single-ray and packet sphere tests differ in
-/// the last bits).
-float refine_sphere_t(const ShapeRecord& s, const Ray& ray, float t_kernel);
 }  // namespace pellucid

@@ -75,3 +75,70 @@ TEST(EmbreeScene, SurfaceInteractionAndSpawnedRays) {
         EXPECT_FALSE(scene->occluded(r)) << "self-intersection for direction " << i;
     }
 }
+
+// A sphere's t is the root of |o + t·d − c|² = r² rounded once from double precision, on single
+// rays and packets alike; spawned rays on either side of its surface never re-hit it at the spawn
+// point. 512 random rays aimed near a sphere far from the origin (where float rounding of the
+// geometry is coarse).
+TEST(EmbreeScene, SphereRootsAreExactAndAgreeAcrossPacketsAndSingleRays) {
+    SceneDesc d;
+    d.root = parse_json(R"({"shapes": [{"type": "sphere", "center": [300, -20, 7], "radius": 2.5}]})", "t");
+    auto scene = build_scene(d);
+    const EmbreeScene& accel = scene->accel;
+    uint64_t state = 12345;
+    auto next = [&] {  // a fixed LCG: the test's rays are the same on every run
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return float(state >> 40) / float(1 << 24);
+    };
+    // The first root in (0, ∞) of the ray's sphere equation in long double, or −1 for none.
+    auto exact_root = [](const Ray& r) -> float {
+        const long double ox = (long double)r.o.x - 300, oy = (long double)r.o.y + 20, oz = (long double)r.o.z - 7;
+        const long double b = ox * r.d.x + oy * r.d.y + oz * r.d.z;
+        const long double a = (long double)r.d.x * r.d.x + (long double)r.d.y * r.d.y + (long double)r.d.z * r.d.z;
+        const long double c = ox * ox + oy * oy + oz * oz - 6.25L, disc = b * b - a * c;
+        if (disc < 0) return -1.f;
+        const long double t0 = (-b - std::sqrt(disc)) / a, t1 = (-b + std::sqrt(disc)) / a;
+        return float(t0 > 0 ? t0 : t1 > 0 ? t1 : -1.L);
+    };
+    auto within_an_ulp = [](float t, float exact) { return std::fabs(t - exact) <= std::nextafter(exact, kInfinity) - exact; };
+    constexpr int kRays = 512;
+    std::vector<Ray> rays(kRays);
+    for (Ray& r : rays) {
+        r.o = Point3f(300.f + 20.f * (next() - 0.5f), -20.f + 20.f * (next() - 0.5f), 40.f);
+        const Point3f target(300.f + 6.f * (next() - 0.5f), -20.f + 6.f * (next() - 0.5f), 7.f);
+        r.d = normalize(target - r.o);
+        r.tmax = kInfinity;
+    }
+    int hits = 0;
+    for (int base = 0; base < kRays; base += EmbreeScene::kPacketSize) {
+        const Ray* ptr[EmbreeScene::kPacketSize];
+        for (int i = 0; i < EmbreeScene::kPacketSize; ++i) ptr[i] = &rays[size_t(base + i)];
+        RayHit packet[EmbreeScene::kPacketSize];
+        accel.intersect_packet(EmbreeScene::kPacketSize, ptr, packet);
+        for (int i = 0; i < EmbreeScene::kPacketSize; ++i) {
+            const Ray& r = rays[size_t(base + i)];
+            RayHit single;
+            const bool hit = accel.intersect(r, single);
+            ASSERT_EQ(hit, packet[i].hit()) << "ray " << base + i;
+            const float exact = exact_root(r);
+            EXPECT_EQ(hit, exact > 0.f) << "ray " << base + i;
+            if (!hit) continue;
+            ++hits;
+            EXPECT_EQ(single.t, packet[i].t) << "ray " << base + i;
+            EXPECT_TRUE(within_an_ulp(single.t, exact)) << "ray " << base + i << ": " << single.t << " vs " << exact;
+            // Spawned rays: reflected (outwards) misses; refracted straight on (inwards) hits the
+            // far side at its own exact root.
+            SurfaceInteraction si;
+            ASSERT_TRUE(scene->intersect(r, si));
+            const Vec3f out = normalize(r.d - 2.f * dot(r.d, si.ng) * si.ng);
+            SurfaceInteraction si2;
+            EXPECT_FALSE(scene->intersect(si.spawn_ray(out), si2)) << "reflected ray " << base + i << " re-hit";
+            const Ray in = si.spawn_ray(r.d);
+            ASSERT_TRUE(scene->intersect(in, si2)) << "ray " << base + i << " did not reach the far side";
+            EXPECT_TRUE(within_an_ulp(si2.t, exact_root(in))) << "ray " << base + i;
+            EXPECT_GT(si2.t, 1e-2f) << "ray " << base + i << " re-hit the near side";
+        }
+    }
+    EXPECT_GT(hits, kRays / 4);  // the grid aims about half of the rays at the sphere
+    EXPECT_LT(hits, kRays);
+}
