@@ -180,19 +180,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             int x, y;
             pixel_xy(k, &x, &y);
             path_of[i] = k;
-            if (scene.has_textures) {  // camera rays with differentials, one at a time
-                path_services::start(ps, splat, x, y, job.s0 + int(k % n_samples), job.seed, &sampler[i], &ray[i],
-                                     &done[k].fx, &done[k].fy);
-            } else {  // the ray follows for all such lanes at once (camera_rays)
-                if (k / n_samples != seeded_pixel) {  // the first of the pixel's samples
-                    seeded_pixel = k / n_samples;
-                    pixel_seed = path_services::pixel_seed(ps, x, y, job.seed);
-                }
-                path_services::start_sample(ps, splat, x, y, job.s0 + int(k % n_samples), pixel_seed, &sampler[i],
-                                            &done[k].fx, &done[k].fy);
-                a.cam[i] = true, a.cfx[i] = done[k].fx, a.cfy[i] = done[k].fy;
-                any_cam = true;
+            // The camera ray follows for all such lanes at once (camera_rays).
+            if (k / n_samples != seeded_pixel) {  // the first of the pixel's samples
+                seeded_pixel = k / n_samples;
+                pixel_seed = path_services::pixel_seed(ps, x, y, job.seed);
             }
+            path_services::start_sample(ps, splat, x, y, job.s0 + int(k % n_samples), pixel_seed, &sampler[i],
+                                        &done[k].fx, &done[k].fy);
+            a.cam[i] = true, a.cfx[i] = done[k].fx, a.cfy[i] = done[k].fy;
+            any_cam = true;
             a.Lr[i] = a.Lg[i] = a.Lb[i] = 0.f;
             a.br[i] = a.bg[i] = a.bb[i] = 1.f;
             a.prev_pdf[i] = 0.f;
@@ -209,16 +205,33 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             pending_exit[i] = false;
             active[i] = true;
         };
-        // The camera rays of the lanes start() left without one, as a packet.
+        // The camera rays of the lanes start() left without one, as a packet; in a scene with
+        // textures with their differentials toward the pixels (x + 1, y) and (x, y + 1), whose
+        // footprints filter the textures (PerspectiveCamera::generate_ray_differential's rays).
         auto camera_rays = [&]() {
             if (!any_cam) return;
             any_cam = false;
-            const V3<F> d = scene.camera.direction<F>(LD(a.cfx), LD(a.cfy));
-            alignas(64) float b[3][W];
+            const F fx = LD(a.cfx), fy = LD(a.cfy);
+            const V3<F> d = scene.camera.direction<F>(fx, fy);
+            alignas(64) float b[9][W];
             ST(b[0], d.x), ST(b[1], d.y), ST(b[2], d.z);
             const Point3f o = scene.camera.origin();
-            for (int i = 0; i < W; ++i)
-                if (a.cam[i]) ray[i].set(o, Vec3f(b[0][i], b[1][i], b[2][i]), kInfinity), a.cam[i] = false;
+            if (scene.has_textures) {
+                const V3<F> dx = scene.camera.direction<F>(fx + F(1.f), fy), dy = scene.camera.direction<F>(fx, fy + F(1.f));
+                ST(b[3], dx.x), ST(b[4], dx.y), ST(b[5], dx.z), ST(b[6], dy.x), ST(b[7], dy.y), ST(b[8], dy.z);
+            }
+            for (int i = 0; i < W; ++i) {
+                if (!a.cam[i]) continue;
+                a.cam[i] = false;
+                RayDifferential& r = ray[i];
+                r.set(o, Vec3f(b[0][i], b[1][i], b[2][i]), kInfinity);
+                if (scene.has_textures) {
+                    r.has_differentials = true;
+                    r.rx_o = r.ry_o = o;
+                    r.rx_d = Vec3f(b[3][i], b[4][i], b[5][i]);
+                    r.ry_d = Vec3f(b[6][i], b[7][i], b[8][i]);
+                }
+            }
         };
         for (int i = 0; i < W; ++i) start(i);
         camera_rays();

@@ -204,13 +204,6 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
 
 namespace path_services {
 
-void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, RayDifferential* ray,
-           float* fx, float* fy) {
-    const Scene& scene = *ps.scene;
-    *sampler = Sampler(ps.sampler, uint64_t(y) * uint64_t(scene.width) + uint64_t(x), uint64_t(sample), seed);
-    camera_sample(scene, splat, x, y, *sampler, fx, fy, ray);
-}
-
 void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, const Sampler::PixelSeed& px, Sampler* sampler,
                   float* fx, float* fy) {
     *sampler = Sampler(ps.sampler, px, uint64_t(sample));

@@ -101,10 +101,9 @@ struct VertexRandoms {
 };
 
 namespace path_services {
-/// Start sample `sample` of pixel (x, y): its sampler, its camera ray and its film position.
-void start(const PathSetup& ps, bool splat, int x, int y, int sample, uint64_t seed, Sampler* sampler, RayDifferential* ray,
-           float* fx, float* fy);
-/// start() without the camera ray (PerspectiveCamera::direction through (fx, fy) gives it).
+/// Start sample `sample` of pixel (x, y): its sampler and its film position (fx, fy), given the
+/// pixel's share of the seeding (pixel_seed). The kernel makes the camera ray through (fx, fy)
+/// (PerspectiveCamera::direction).
 void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, const Sampler::PixelSeed& px, Sampler* sampler,
                   float* fx, float* fy);
 /// The part of a sample's Sampler that every sample of pixel (x, y) shares (Sampler::PixelSeed).

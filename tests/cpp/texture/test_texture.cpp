@@ -324,3 +324,28 @@ TEST(ImageTexture, ForgetRereadsAFileRewrittenUnderItsName) {
     forget_image_texture(path);
     EXPECT_NEAR(read(), 0.75f, 1e-3f);
 }
+
+// The path kernel makes a camera ray's differentials as the directions through (x + 1, y) and
+// (x, y + 1) (PerspectiveCamera::direction, over packets): they are generate_ray_differential's, bit
+// for bit, on a rotated camera with a non-square film.
+TEST(Footprint, CameraDifferentialsAreTheDirectionsThroughTheNeighbouringPixels) {
+    auto scene = scene_from(R"({"film": {"width": 96, "height": 40}, "camera": {"type": "perspective", "fov": 55,
+        "to_world": [{"look_at": {"origin": [0.3, 1.2, 3], "target": [0.5, -0.2, 0], "up": [0.1, 1, 0]}}]},
+        "shapes": [{"type": "rectangle"}]})");
+    const PerspectiveCamera& cam = scene->camera;
+    for (float y = 0.f; y < 40.f; y += 1.37f) {
+        for (float x = 0.f; x < 96.f; x += 2.71f) {
+            const RayDifferential r = cam.generate_ray_differential(x, y);
+            ASSERT_TRUE(r.has_differentials);
+            const Vec3f d = cam.direction<float>(x, y), dx = cam.direction<float>(x + 1.f, y),
+                        dy = cam.direction<float>(x, y + 1.f);
+            for (int k = 0; k < 3; ++k) {
+                EXPECT_EQ(r.d[k], d[k]) << x << ", " << y;
+                EXPECT_EQ(r.rx_d[k], dx[k]) << x << ", " << y;
+                EXPECT_EQ(r.ry_d[k], dy[k]) << x << ", " << y;
+                EXPECT_EQ(r.rx_o[k], cam.origin()[k]);
+                EXPECT_EQ(r.ry_o[k], cam.origin()[k]);
+            }
+        }
+    }
+}
