@@ -126,6 +126,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         bool at_exit[W];     // this vertex is a BSSRDF's exit point (its exit lobe scatters)
         bool to_exit[W];     // this vertex's sample entered a BSSRDF: the next vertex is its exit
         float u[7][W];
+        int32_t draw0[W], draw1[W];  // the independent sampler's numbers u[draw0, draw1) of this vertex
         // NEE.
         bool nee_ok[W], delta[W];
         bool plight[W];      // the lane's light has a packet form (PathSetup::lights)
@@ -287,15 +288,31 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     for (int k = 0; k < 7; ++k) a.u[k][i] = r.u[k];
                     return;
                 }
-                PCG32& g = sampler[i].stream();
-                const int k0 = a.nee[i] ? 0 : 3, k1 = rr ? 7 : 6;
-                for (int k = k0; k < k1; ++k) a.u[k][i] = g.next_float();
+                a.draw0[i] = a.nee[i] ? 0 : 3, a.draw1[i] = rr ? 7 : 6;  // drawn below, for all lanes at once
+            };
+            // The independent sampler's numbers u[draw0, draw1) of every lane, drawn from the lanes'
+            // PCG32 streams side by side: the states in an array, each step for all lanes (lanes
+            // outside their range keep theirs), a loop the compiler vectorises.
+            auto draw_independent = [&]() {
+                alignas(64) uint64_t st[W], inc[W];
+                for (int i = 0; i < W; ++i) st[i] = sampler[i].stream().state(), inc[i] = sampler[i].stream().increment();
+                for (int k = 0; k < 7; ++k) {
+                    for (int i = 0; i < W; ++i) {
+                        const bool draw = (k >= a.draw0[i]) & (k < a.draw1[i]);
+                        const uint64_t old = st[i];
+                        const float u = PCG32::to_float(PCG32::output(old));
+                        a.u[k][i] = draw ? u : a.u[k][i];
+                        st[i] = draw ? PCG32::step(old, inc[i]) : old;
+                    }
+                }
+                for (int i = 0; i < W; ++i) sampler[i].stream().set_state(st[i]);
             };
             // One lane at a time: what has no packet form yet.
             for (bool* f : {a.fast, a.goes_on, a.nee, a.nee_ok, a.s_ok, a.delta, a.plight, a.in_medium, a.crossing, a.at_exit,
                             a.to_exit, a.esc, a.soft})
                 SM(f, M(false));
             for (float* f : {a.Ler, a.Leg, a.Leb, a.le_pdf, a.kind}) ST(f, F(0.f));
+            lane::store(a.draw0, IntT<F>(0)), lane::store(a.draw1, IntT<F>(0));
             for (int i = 0; i < W; ++i) {
                 if (!active[i]) continue;
                 const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]), Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
@@ -407,6 +424,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 a.nee[i] = ps.use_nee && is_non_specular(flags);
                 draw_randoms(i, depth);
             }
+            if (ps.sampler == SamplerType::Independent) draw_independent();
 
             // Escaped rays: the radiance of the lights at infinity (light table), MIS-weighted, for
             // all lanes at once.

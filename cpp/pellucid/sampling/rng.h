@@ -48,16 +48,30 @@ public:
     // Always inlined: the path tracer's SIMD kernels draw the independent sampler's numbers
     // themselves, and each must hold its own copy (no shared out-of-line symbol).
     [[gnu::always_inline]] uint32_t next_u32() {
-        uint64_t old = m_state;
-        m_state = old * 0x5851f42d4c957f2dULL + m_inc;
-        uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
-        uint32_t rot = uint32_t(old >> 59u);
-        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31));
+        const uint64_t old = m_state;
+        m_state = step(old, m_inc);
+        return output(old);
     }
     /// Uniform float in [0, 1).
-    [[gnu::always_inline]] float next_float() {
-        return std::min(float(next_u32()) * 0x1p-32f, kOneMinusEpsilon);  // std::min inlines; std::fmin is a libm call
+    [[gnu::always_inline]] float next_float() { return to_float(next_u32()); }
+
+    // The generator's parts, for code that advances many streams side by side (the path kernel
+    // keeps a packet's states in arrays, and these loops vectorise): the state after `state`, the
+    // output of a step from `state` (XSH RR: xorshift high, random rotation), and [0, 1) from it.
+    [[gnu::always_inline]] static uint64_t step(uint64_t state, uint64_t inc) {
+        return state * 0x5851f42d4c957f2dULL + inc;
     }
+    [[gnu::always_inline]] static uint32_t output(uint64_t state) {
+        const uint32_t xorshifted = uint32_t(((state >> 18u) ^ state) >> 27u);
+        const uint32_t rot = uint32_t(state >> 59u);
+        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31));
+    }
+    [[gnu::always_inline]] static float to_float(uint32_t v) {
+        return std::min(float(v) * 0x1p-32f, kOneMinusEpsilon);  // std::min inlines; std::fmin is a libm call
+    }
+    uint64_t state() const { return m_state; }
+    uint64_t increment() const { return m_inc; }
+    void set_state(uint64_t state) { m_state = state; }
     Vec2f next_2d() {
         float a = next_float();
         return Vec2f(a, next_float());
