@@ -169,8 +169,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             *x = job.x0 + int(px % tile_w);
             *y = job.y0 + int(px / tile_w);
         };
-        int64_t seeded_pixel = -1;  // the chunk's pixel whose Sampler::PixelSeed pixel_seed holds
-        Sampler::PixelSeed pixel_seed;
+        // Path `next` is sample next_s of the chunk's pixel (next_x, next_y), whose shared seeding
+        // (Sampler::PixelSeed) pixel_seed holds: kept up to date as paths start, without divisions.
+        int next_s = 0, next_x, next_y;
+        pixel_xy(0, &next_x, &next_y);
+        Sampler::PixelSeed pixel_seed = path_services::pixel_seed(ps, next_x, next_y, job.seed);
         // Lane i takes the chunk's next path, or goes idle.
         auto start = [&](int i) {
             if (next >= n_paths) {
@@ -178,16 +181,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 return;
             }
             const int64_t k = next++;
-            int x, y;
-            pixel_xy(k, &x, &y);
+            const int x = next_x, y = next_y, sample = job.s0 + next_s;
             path_of[i] = k;
             // The camera ray follows for all such lanes at once (camera_rays).
-            if (k / n_samples != seeded_pixel) {  // the first of the pixel's samples
-                seeded_pixel = k / n_samples;
-                pixel_seed = path_services::pixel_seed(ps, x, y, job.seed);
+            path_services::start_sample(ps, splat, x, y, sample, pixel_seed, &sampler[i], &done[k].fx, &done[k].fy);
+            if (++next_s == n_samples && next < n_paths) {  // on to the next pixel of the tile
+                next_s = 0;
+                if (++next_x == job.x1) next_x = job.x0, ++next_y;
+                pixel_seed = path_services::pixel_seed(ps, next_x, next_y, job.seed);
             }
-            path_services::start_sample(ps, splat, x, y, job.s0 + int(k % n_samples), pixel_seed, &sampler[i],
-                                        &done[k].fx, &done[k].fy);
             a.cam[i] = true, a.cfx[i] = done[k].fx, a.cfy[i] = done[k].fy;
             any_cam = true;
             a.Lr[i] = a.Lg[i] = a.Lb[i] = 0.f;
@@ -198,7 +200,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             a.ppx[i] = a.ppy[i] = a.ppz[i] = a.pnx[i] = a.pny[i] = a.pnz[i] = 0.f;
             a.specular[i] = true;  // the camera ray counts as a delta bounce
             if (ps.media || ps.subsurface)
-                medium_rng[i] = path_services::medium_rng(ps, x, y, job.s0 + int(k % n_samples), job.seed);
+                medium_rng[i] = path_services::medium_rng(ps, x, y, sample, job.seed);
             if (ps.media) {
                 medium[i] = ps.camera_medium;
                 crossings[i] = 0;
@@ -814,13 +816,12 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             } else if (any_shadow) {
                 const float* const soa[7] = {a.sh[0], a.sh[1], a.sh[2], a.sh[3], a.sh[4], a.sh[5], a.sh[6]};
                 path_services::occluded_lanes(scene, W, soa, a.has_shadow, blocked);
-                for (int i = 0; i < W; ++i) {
-                    if (a.has_shadow[i] && !blocked[i]) {
-                        a.Lr[i] += a.Ldr[i];
-                        a.Lg[i] += a.Ldg[i];
-                        a.Lb[i] += a.Ldb[i];
-                    }
-                }
+                // Unblocked lanes add what their shadow rays carry (the others add +0, which leaves
+                // L as it is: L starts at +0 and never becomes −0).
+                const M lit = LM(a.has_shadow) && !LM(blocked);
+                ST(a.Lr, LD(a.Lr) + lane::select(lit, LD(a.Ldr), F(0.f)));
+                ST(a.Lg, LD(a.Lg) + lane::select(lit, LD(a.Ldg), F(0.f)));
+                ST(a.Lb, LD(a.Lb) + lane::select(lit, LD(a.Ldb), F(0.f)));
             }
             // Finished paths hand their estimate over; their lanes start the next ones.
             for (int i = 0; i < W; ++i) {
