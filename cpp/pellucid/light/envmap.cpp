@@ -51,8 +51,8 @@ EnvmapLight::EnvmapLight(const Image& image, float scale, const Mat3f& rotation,
     }
     // Σ weight·(1/nu)·(1/nv)·2π² = ∫ L̄ dω.
     m_integral = total / (double(nu) * double(nv)) * 2.0 * M_PI * M_PI;
-    // One buffer: the CDFs, then the texels (RGB), addressed by 32-bit offsets.
-    const size_t n = size_t(nv) + 1 + size_t(nv) * (size_t(nu) + 1) + 3 * texels.size();
+    // One buffer: the CDFs and their guides, then the texels (RGB), addressed by 32-bit offsets.
+    const size_t n = 2 * (size_t(nv) + 1 + size_t(nv) * (size_t(nu) + 1)) + 3 * texels.size();
     PELLUCID_CHECK(n < size_t(INT32_MAX), "envmap image too large: " + std::to_string(m_w) + "x" + std::to_string(m_h));
     auto data = std::make_shared<std::vector<float>>();
     data->reserve(n);

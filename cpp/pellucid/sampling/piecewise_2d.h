@@ -15,8 +15,17 @@
 //
 // Every operation is an IEEE-exact lane operation (+, −, ·, /, comparisons, selects, gathers,
 // integer arithmetic), so each lane of a packet gives the bits the float instantiation gives.
+//
+// Finding u's cell in a CDF of n cells starts from a guide table (the cutpoint method: Chen & Asau
+// 1974, "On Generating Random Variates from an Empirical Distribution", AIIE Transactions 6(2)):
+// entry k is the cell of the smallest float u with ⌊u·n⌋ = k, so u's cell lies between the entries
+// k and k + 1 of its k = ⌊u·n⌋, and the binary search runs over that range only (one or two steps
+// for a map of moderate contrast, instead of log₂ n dependent gathers). The cell found is the same
+// as a search of the whole CDF gives. Each CDF's guide has its shape (n + 1 entries, whole numbers
+// as floats) and sits at a fixed distance after it in the buffer, past all the CDFs.
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -51,13 +60,25 @@ inline IntT<F> whole_to_int(const F& k) {
     return lane::as_int(k + F(8388608.f)) - lane::as_int(F(8388608.f));
 }
 
-/// Largest index i in [0, n) with cdf[i] ≤ u, for cdf[0] = 0 ≤ u < 1 = cdf[n]: then
-/// cdf[i] ≤ u < cdf[i+1], so the cell is never empty. A branch-free binary search whose steps
-/// are the same on every lane type (lanes of shorter CDFs stop moving when their length is 1).
+/// The cell ⌊u·n⌋ of u in [0, 1) among n equal intervals, clamped to [0, n − 1] (u ≥ 1: n − 1;
+/// below 0 or NaN: 0).
 template <class F>
-inline IntT<F> cdf_find(const float* base, const IntT<F>& cdf, const IntT<F>& n, const F& u) {
+inline IntT<F> guide_cell(const F& u, const IntT<F>& n) {
+    const F c = lane::select(u > F(0.f), lane::select(u < F(1.f), u, F(0.f)), F(0.f));
+    const IntT<F> k = whole_to_int<F>(lane::floor(c * lane::to_float(n)));
+    return lane::select(lane::int_mask(u < F(1.f)), lane::min(k, n - IntT<F>(1)), n - IntT<F>(1));
+}
+
+/// Largest index i in [0, n) with cdf[i] ≤ u, for cdf[0] = 0 ≤ u < 1 = cdf[n]: then
+/// cdf[i] ≤ u < cdf[i+1], so the cell is never empty. The guide of the CDF (at cdf + guide) bounds
+/// it to [g[k], g[k + 1]], k = guide_cell(u, n); a branch-free binary search of that range whose
+/// steps are the same on every lane type (lanes of shorter ranges stop moving at length 1).
+template <class F>
+inline IntT<F> cdf_find(const float* base, const IntT<F>& cdf, const IntT<F>& n, const F& u, const IntT<F>& guide) {
     using I = IntT<F>;
-    I at = I(0), len = n + I(1);
+    const I g = cdf + guide + guide_cell<F>(u, n);
+    I at = whole_to_int<F>(lane::gather(base, g));
+    I len = whole_to_int<F>(lane::gather(base, g + I(1))) - at + I(1);
     while (lane::any(len > I(1))) {
         const I half = len >> 1;
         const auto ok = lane::int_mask(lane::gather(base, cdf + at + half) <= u);
@@ -66,9 +87,27 @@ inline IntT<F> cdf_find(const float* base, const IntT<F>& cdf, const IntT<F>& n,
     }
     return lane::min(at, n - I(1));
 }
+
+/// The guide of the CDF cdf[0..n] (see the header comment): n + 1 whole numbers, appended to `out`.
+/// Entry k < n is the cell of the smallest float u with guide_cell(u) = k, the last n − 1.
+inline void append_guide(std::vector<float>& out, const float* cdf, int32_t n) {
+    const float nf = float(n);
+    auto cell_of = [&](float u) {  // what cdf_find returns: the largest i < n with cdf[i] ≤ u
+        return int32_t(std::upper_bound(cdf + 1, cdf + n, u) - (cdf + 1));
+    };
+    auto k_of = [&](float u) { return std::min(int32_t(std::floor(u * nf)), n - 1); };  // guide_cell on [0, 1)
+    for (int32_t k = 0; k < n; ++k) {
+        // The smallest float u ≥ 0 with k_of(u) = k (u·n rounds monotonically, so no k is skipped).
+        float u = float(k) / nf;
+        while (u > 0.f && k_of(std::nextafter(u, 0.f)) >= k) u = std::nextafter(u, 0.f);
+        while (k_of(u) < k) u = std::nextafter(u, 1.f);
+        out.push_back(float(cell_of(u)));
+    }
+    out.push_back(float(n - 1));
+}
 }  // namespace detail
 
-/// Append the CDFs of weights (nv rows of nu values, row-major, ≥ 0) to `buffer`.
+/// Append the CDFs of weights (nv rows of nu values, row-major, ≥ 0) to `buffer`, then their guides.
 inline Piecewise2DLayout append_piecewise_2d(std::vector<float>& buffer, const std::vector<float>& weights, size_t nu,
                                              size_t nv) {
     Piecewise2DLayout l;
@@ -86,6 +125,12 @@ inline Piecewise2DLayout append_piecewise_2d(std::vector<float>& buffer, const s
         for (size_t u = 0; u < nu; ++u) row[u] = double(weights[v * nu + u]);
         detail::append_cdf(buffer, row.data(), nu);
     }
+    // The guides, in the CDFs' shape, at guide_offset() past each (reserved first: append_guide
+    // reads the CDFs in the buffer it appends to).
+    buffer.reserve(buffer.size() + (nv + 1) + nv * (nu + 1));
+    detail::append_guide(buffer, buffer.data() + l.marginal, l.nv);
+    for (size_t v = 0; v < nv; ++v)
+        detail::append_guide(buffer, buffer.data() + l.conditional + v * (nu + 1), l.nu);
     return l;
 }
 
@@ -94,6 +139,8 @@ template <class F>
 struct Piecewise2DLanes {
     const float* base;
     IntT<F> marginal, conditional, nu, nv;
+    /// How far past each CDF its guide lies: past the marginal and the nv conditional CDFs.
+    IntT<F> guide_offset() const { return conditional - marginal + nv * (nu + IntT<F>(1)); }
 };
 
 template <class F>
@@ -108,10 +155,11 @@ struct Piecewise2DSample {
 template <class F>
 inline Piecewise2DSample<F> sample_piecewise_2d(const Piecewise2DLanes<F>& d, const V2<F>& u) {
     using I = IntT<F>;
-    const I j = detail::cdf_find<F>(d.base, d.marginal, d.nv, u.y);
+    const I guide = d.guide_offset();
+    const I j = detail::cdf_find<F>(d.base, d.marginal, d.nv, u.y, guide);
     const F v0 = lane::gather(d.base, d.marginal + j), v1 = lane::gather(d.base, d.marginal + j + I(1));
     const I row = d.conditional + j * (d.nu + I(1));
-    const I i = detail::cdf_find<F>(d.base, row, d.nu, u.x);
+    const I i = detail::cdf_find<F>(d.base, row, d.nu, u.x, guide);
     const F u0 = lane::gather(d.base, row + i), u1 = lane::gather(d.base, row + i + I(1));
     const F nu = lane::to_float(d.nu), nv = lane::to_float(d.nv);
     const F wv = v1 - v0, wu = u1 - u0;

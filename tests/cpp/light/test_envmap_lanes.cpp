@@ -272,6 +272,53 @@ TEST(EnvmapLanes, SamplesLieInTheCellWhoseDensityTheyCarry) {
     EXPECT_FLOAT_EQ(piecewise_2d_pdf<float>(dz, Vec2f(0.7f, 0.2f)), 1.f);
 }
 
+// The guided search finds the cell a search of the whole CDF finds: on a 37 × 11 distribution of
+// high contrast with empty cells and runs of them, at every CDF value and every guide boundary k/n
+// and one float either side of each, and at random u. (A guide entry off by one cell fails here.)
+TEST(EnvmapLanes, GuidedCdfSearchFindsTheWholeSearchsCell) {
+    constexpr int nu = 37, nv = 11;
+    std::vector<float> w(size_t(nu) * nv);
+    PCG32 rng(77, 3);
+    for (size_t k = 0; k < w.size(); ++k) {
+        const float r = rng.next_float();
+        w[k] = r < 0.3f ? 0.f : r < 0.95f ? r : 1e4f * r;  // empty cells, a few very bright ones
+    }
+    for (int i = 5; i < 20; ++i) w[size_t(4 * nu + i)] = 0.f;  // a run of empty cells
+    std::vector<float> buf;
+    const Piecewise2DLayout l = append_piecewise_2d(buf, w, nu, nv);
+    const Piecewise2DLanes<float> d{buf.data(), l.marginal, l.conditional, l.nu, l.nv};
+    // The reference: the largest i < n with cdf[i] ≤ u (std::upper_bound over the whole CDF).
+    auto whole = [](const float* cdf, int n, float u) {
+        return int(std::min<std::ptrdiff_t>(std::upper_bound(cdf + 1, cdf + n + 1, u) - (cdf + 1), n - 1));
+    };
+    auto probes = [](const float* cdf, int n) {
+        std::vector<float> us;
+        auto around = [&](float u) {
+            for (float v : {std::nextafter(u, 0.f), u, std::nextafter(u, 1.f)})
+                if (v >= 0.f && v < 1.f) us.push_back(v);
+        };
+        for (int i = 0; i <= n; ++i) around(cdf[i]);
+        for (int k = 0; k <= n; ++k) around(float(k) / float(n));
+        return us;
+    };
+    int checked = 0;
+    const float* marginal = buf.data() + l.marginal;
+    for (float uy : probes(marginal, nv)) {
+        const int j = whole(marginal, nv, uy);
+        EXPECT_EQ(detail::cdf_find<float>(d.base, l.marginal, nv, uy, d.guide_offset()), j) << uy;
+        const int32_t row = l.conditional + j * (nu + 1);
+        std::vector<float> uxs = probes(buf.data() + row, nu);
+        for (int r = 0; r < 64; ++r) uxs.push_back(rng.next_float());
+        for (float ux : uxs) {
+            const Piecewise2DSample<float> s = sample_piecewise_2d<float>(d, Vec2f(ux, uy));
+            ASSERT_EQ(s.j, j) << ux << ", " << uy;
+            ASSERT_EQ(s.i, whole(buf.data() + row, nu, ux)) << ux << ", " << uy;
+            ++checked;
+        }
+    }
+    EXPECT_GT(checked, 5000);
+}
+
 TEST(EnvmapLanes, AnglesMatchLibmToFloatPrecision) {
     // The lat-long mapping's own atan2 and sin/cos (no libm, envmap.h) against double libm: u and v
     // within 1.5e-7 (a few float ulps of 1; u compared around the seam), directions within 2e-7
