@@ -142,7 +142,9 @@ struct Cases {
                         break;
                     }
                     case 1: *wi[0] = *wo[0], *wi[1] = *wo[1], *wi[2] = -*wo[2]; break;  // h tilted away
-                    case 2: *wo[2] = std::copysign(0.02f, *wo[2]), *wi[2] = -std::copysign(0.9f, *wo[2]); break;
+                    case 2:  // wo grazing, wi steep on the other side
+                        *wo[2] = std::copysign(0.02f, *wo[2]), *wi[2] = -std::copysign(0.9f, *wo[2]);
+                        break;
                     default: *wo[2] = 1e-23f, *wi[2] = (i / 44) % 2 ? 3e-23f : -3e-23f; break;  // float z product 0
                 }
             const double cs[] = {crit, -crit, crit / eta_ld, -crit / eta_ld};
