@@ -130,26 +130,13 @@ float RoughDielectric<D>::ms_probability(const BxDFContext& ctx, const Vec3f& wo
 }
 
 DielectricHalf dielectric_half(const Vec3f& wo, const Vec3f& wi, float eta) {
+    const DielectricHalfD<double> h = dielectric_half_d<double>(
+        Vec3P<double>(wo.x, wo.y, wo.z), Vec3P<double>(wi.x, wi.y, wi.z), double(eta));
     DielectricHalf out;
-    const float co = wo.z, ci = wi.z;
-    if (co == 0.f || ci == 0.f) return out;
-    const bool reflect = co * ci > 0.f;
-    const double etap = reflect ? 1.0 : (co > 0.f ? double(eta) : 1.0 / double(eta));
-    const Vec3d h = Vec3d(wi) * etap + Vec3d(wo);
-    const double hl = glm::length(h);
-    if (!(hl > 0.0)) return out;
-    const Vec3d wmd = h / (h.z < 0.0 ? -hl : hl);
-    const double dot_o = glm::dot(Vec3d(wo), wmd), dot_i = glm::dot(Vec3d(wi), wmd);
-    out.wm = Vec3f(wmd);
-    out.dot_o = float(dot_o), out.dot_i = float(dot_i);
-    // Back-facing microfacets contribute nothing (Walter et al. 2007, §5.1, χ⁺ terms).
-    if (out.dot_i * ci <= 0.f || out.dot_o * co <= 0.f) return out;
-    const bool from_inside = !reflect && ((co > 0.f) != (eta >= 1.f));
-    const double Fd = fresnel_dielectric_d(from_inside ? dot_i : dot_o, eta);
-    out.R = float(Fd), out.T = float(1.0 - Fd);
-    out.denom = reflect ? 0.f : float(sqr(double(out.dot_i) + double(out.dot_o) / etap));
-    out.etap2 = float(etap * etap);
-    out.ok = true;
+    out.wm = Vec3f(float(h.wm.x), float(h.wm.y), float(h.wm.z));
+    out.dot_o = float(h.dot_o), out.dot_i = float(h.dot_i);
+    out.R = float(h.R), out.T = float(h.T), out.denom = float(h.denom), out.etap2 = float(h.etap2);
+    out.ok = h.ok != 0.0;
     return out;
 }
 

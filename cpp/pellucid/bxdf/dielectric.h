@@ -195,12 +195,60 @@ struct DielectricHalf {
     float etap2 = 1.f;  ///< η'²
     bool ok = false;    ///< both directions off the horizon, |h| > 0, no back-facing microfacet
 };
+/// The half-vector step over a double lane type D (double, or a double packet: simd/lane.h, "The
+/// double side"): each field is the double whose rounding to float is that DielectricHalf field
+/// (ok is 1 or 0). The float function (dielectric_half) is its double instantiation and a float
+/// packet runs it on its double parts (dielectric_half_lanes), so every lane gets the float
+/// function's bits: the same IEEE double operations in the same order, the float function's early
+/// outs as selects, and its float products as double ones rounded to float (a product of two
+/// floats is exact in double, so rounding it once gives the float product).
+template <class D>
+struct DielectricHalfD {
+    Vec3P<D> wm;
+    D dot_o, dot_i, R, T, denom, etap2, ok;
+};
+template <class D>
+inline DielectricHalfD<D> dielectric_half_d(const Vec3P<D>& wo, const Vec3P<D>& wi, const D& eta) {
+    const D zero(0.0), one(1.0);
+    const D co = wo.z, ci = wi.z;
+    const auto off_horizon = co != zero && ci != zero;
+    const auto reflect = lane::round_to_float(co * ci) > zero;  // co · ci > 0 in float
+    // Walter et al. 2007, eq. 16: h = −(η_i wi + η_o wo), here scaled by 1/η_o and oriented to +z;
+    // η' = η(wi side)/η(wo side) is 1 for reflection.
+    const D etap = lane::select(reflect, one, lane::select(co > zero, eta, one / eta));
+    const Vec3P<D> h = wi * etap + wo;
+    const D hl = length(h);  // sqrt((x² + y²) + z²), as glm::length
+    const auto has_h = off_horizon && hl > zero;
+    const Vec3P<D> wm = h / lane::select(h.z < zero, lane::neg(hl), hl);
+    const D dot_o = dot(wo, wm), dot_i = dot(wi, wm);  // (x + y) + z, as glm::dot
+    const D fo = lane::round_to_float(dot_o), fi = lane::round_to_float(dot_i);
+    // Back-facing microfacets contribute nothing (Walter et al. 2007, §5.1, χ⁺ terms); the test
+    // is on the float dot products, in float.
+    const auto front = !(lane::round_to_float(fi * ci) <= zero) && !(lane::round_to_float(fo * co) <= zero);
+    const auto ok = has_h && front;
+    // Fresnel from the less dense side of a transmission pair (DielectricHalf::R).
+    // (Mask inequality spelt with && and ||: simd/packet.h.)
+    const auto above = co > zero, denser = eta >= one;
+    const auto from_inside = !reflect && ((above && !denser) || (!above && denser));
+    const D Fd = fresnel_dielectric_d(lane::select(from_inside, dot_i, dot_o), eta);
+    // Eq. 17's denominator from the float dot products: a double sum, squared in float.
+    const D s = lane::round_to_float(fi + fo / etap);
+    DielectricHalfD<D> out;
+    out.wm = lane::select(has_h, wm, Vec3P<D>(zero, zero, one));
+    out.dot_o = lane::select(has_h, dot_o, zero), out.dot_i = lane::select(has_h, dot_i, zero);
+    out.R = lane::select(ok, Fd, zero), out.T = lane::select(ok, one - Fd, zero);
+    out.denom = lane::select(ok && !reflect, s * s, zero);
+    out.etap2 = lane::select(ok, etap * etap, one);
+    out.ok = lane::select(ok, one, zero);
+    return out;
+}
 DielectricHalf dielectric_half(const Vec3f& wo, const Vec3f& wi, float eta);
 /// Fresnel reflectance (double precision) at cos_i and 1 − it, both rounded to float.
 void dielectric_fresnel_pair(float cos_i, float eta, float* R, float* T);
 
-/// DielectricHalf over a lane type F: one lane at a time (a lane outside `where` gets ok = false),
-/// each lane exactly the float function.
+/// DielectricHalf over a lane type F (a lane outside `where` gets ok = false and DielectricHalf's
+/// defaults), each lane exactly the float function: a float is the float function itself, a
+/// packet runs dielectric_half_d on its double parts.
 template <class F>
 struct DielectricHalfT {
     V3<F> wm;
@@ -213,47 +261,57 @@ inline DielectricHalfT<F> dielectric_half_lanes(const V3<F>& wo, const V3<F>& wi
         const DielectricHalf h = where ? dielectric_half(wo, wi, eta) : DielectricHalf{};
         return {h.wm, h.dot_o, h.dot_i, h.R, h.T, h.denom, h.etap2, h.ok};
     } else {
-        constexpr int W = kLaneWidth<F>;
-        alignas(64) float in[7][W], out[9][W];
-        alignas(64) bool on[W], ok[W];
-        lane::store(in[0], wo.x), lane::store(in[1], wo.y), lane::store(in[2], wo.z);
-        lane::store(in[3], wi.x), lane::store(in[4], wi.y), lane::store(in[5], wi.z);
-        lane::store(in[6], eta), lane::store(on, where);
-        for (int i = 0; i < W; ++i) {
-            const DielectricHalf h = on[i] ? dielectric_half(Vec3f(in[0][i], in[1][i], in[2][i]),
-                                                             Vec3f(in[3][i], in[4][i], in[5][i]), in[6][i])
-                                           : DielectricHalf{};
-            out[0][i] = h.wm.x, out[1][i] = h.wm.y, out[2][i] = h.wm.z, out[3][i] = h.dot_o, out[4][i] = h.dot_i;
-            out[5][i] = h.R, out[6][i] = h.T, out[7][i] = h.denom, out[8][i] = h.etap2, ok[i] = h.ok;
-        }
-        auto L = [&](int k) { return lane::load_as<F>(out[k]); };
-        return {V3<F>(L(0), L(1), L(2)), L(3), L(4), L(5), L(6), L(7), L(8), lane::load_mask_as<MaskT<F>>(ok)};
+        using D = DoubleT<F>;
+        constexpr int P = kDoubleParts<F>;
+        D ox[P], oy[P], oz[P], ix[P], iy[P], iz[P], e[P];
+        lane::to_doubles(wo.x, ox), lane::to_doubles(wo.y, oy), lane::to_doubles(wo.z, oz);
+        lane::to_doubles(wi.x, ix), lane::to_doubles(wi.y, iy), lane::to_doubles(wi.z, iz);
+        lane::to_doubles(eta, e);
+        DielectricHalfD<D> h[P];
+        for (int p = 0; p < P; ++p)
+            h[p] = dielectric_half_d<D>(Vec3P<D>(ox[p], oy[p], oz[p]), Vec3P<D>(ix[p], iy[p], iz[p]), e[p]);
+        // Each field rounded to float, on the lanes `where` (the float function's defaults elsewhere).
+        auto out = [&](auto field, float other) {
+            D parts[P];
+            for (int p = 0; p < P; ++p) parts[p] = field(h[p]);
+            return lane::select(where, lane::from_doubles(parts), F(other));
+        };
+        DielectricHalfT<F> r;
+        r.wm = V3<F>(out([](const auto& x) { return x.wm.x; }, 0.f), out([](const auto& x) { return x.wm.y; }, 0.f),
+                     out([](const auto& x) { return x.wm.z; }, 1.f));
+        r.dot_o = out([](const auto& x) { return x.dot_o; }, 0.f);
+        r.dot_i = out([](const auto& x) { return x.dot_i; }, 0.f);
+        r.R = out([](const auto& x) { return x.R; }, 0.f);
+        r.T = out([](const auto& x) { return x.T; }, 0.f);
+        r.denom = out([](const auto& x) { return x.denom; }, 0.f);
+        r.etap2 = out([](const auto& x) { return x.etap2; }, 1.f);
+        r.ok = out([](const auto& x) { return x.ok; }, 0.f) != F(0.f);
+        return r;
     }
 }
-/// dielectric_fresnel_pair over a lane type F, one lane at a time (lanes outside `where`: 0, 0).
+/// dielectric_fresnel_pair over a lane type F (lanes outside `where`: 0, 0): a float is the float
+/// function, a packet computes fresnel_dielectric_d on its double parts.
 template <class F>
 inline void dielectric_fresnel_pair_lanes(const F& cos_i, const F& eta, const MaskT<F>& where, F* R, F* T) {
     if constexpr (std::is_same_v<F, float>) {
         *R = *T = 0.f;
         if (where) dielectric_fresnel_pair(cos_i, eta, R, T);
     } else {
-        constexpr int W = kLaneWidth<F>;
-        alignas(64) float c[W], e[W], r[W], t[W];
-        alignas(64) bool on[W];
-        lane::store(c, cos_i), lane::store(e, eta), lane::store(on, where);
-        for (int i = 0; i < W; ++i) {
-            r[i] = t[i] = 0.f;
-            if (on[i]) dielectric_fresnel_pair(c[i], e[i], &r[i], &t[i]);
-        }
-        *R = lane::load_as<F>(r), *T = lane::load_as<F>(t);
+        using D = DoubleT<F>;
+        constexpr int P = kDoubleParts<F>;
+        D c[P], e[P], r[P], t[P];
+        lane::to_doubles(cos_i, c), lane::to_doubles(eta, e);
+        for (int p = 0; p < P; ++p) r[p] = fresnel_dielectric_d(c[p], e[p]), t[p] = D(1.0) - r[p];
+        *R = lane::select(where, lane::from_doubles(r), F(0.f));
+        *T = lane::select(where, lane::from_doubles(t), F(0.f));
     }
 }
 
 /// The rough dielectric without multiple-scattering compensation over a lane type F, on the lane
 /// distribution DistT<F> (GGXT or BeckmannT): RoughDielectric's single-scattering lobes are its
 /// float instantiation, and the path tracer's packets use it directly. The half vector and Fresnel
-/// are computed one lane at a time in double (dielectric_half_lanes); D, G and the visible-normal
-/// density and sampling run on the packet.
+/// are computed in double on the packet's double parts (dielectric_half_lanes), each lane exactly
+/// the float function; D, G and the visible-normal density and sampling run on the float packet.
 template <template <class> class DistT, class F>
 struct RoughDielectricT {
     DistT<F> d;

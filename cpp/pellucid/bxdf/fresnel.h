@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "pellucid/math/constants.h"
 #include "pellucid/math/spectrum.h"
@@ -49,20 +50,28 @@ inline float fresnel_dielectric(float cos_i, float eta, float* cos_t_out = nullp
     return fresnel_dielectric<float>(cos_i, eta, cos_t_out, eta_used);
 }
 
-inline double fresnel_dielectric_d(double cos_i, double eta) {
-    cos_i = std::min(1.0, std::max(-1.0, cos_i));
-    if (cos_i < 0.0) {
-        eta = 1.0 / eta;
-        cos_i = -cos_i;
-    }
-    if (eta == 1.0) return 0.0;
-    double sin2_t = std::max(0.0, 1.0 - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1.0) return 1.0;
-    double cos_t = std::sqrt(1.0 - sin2_t);
-    double r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    double r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return std::min(1.0, 0.5 * (r_parl * r_parl + r_perp * r_perp));
+/// fresnel_dielectric in double precision over a double lane type D (double, or a double packet:
+/// simd/lane.h, "The double side"), for the rough dielectrics' half-vector step (dielectric.h) and
+/// the precomputed tables and profiles. The scalar form's branches are per-lane selects computing the same IEEE operations,
+/// so each lane of a packet is the double function's result, bit for bit. (D = float is excluded:
+/// a call with float arguments takes the double function.)
+template <class D, std::enable_if_t<std::is_same_v<D, double> || !std::is_arithmetic_v<D>, int> = 0>
+inline D fresnel_dielectric_d(D cos_i, D eta) {
+    const D zero(0.0), one(1.0);
+    cos_i = lane::select(D(-1.0) < cos_i, cos_i, D(-1.0));  // std::max(-1, cos_i)
+    cos_i = lane::select(cos_i < one, cos_i, one);          // std::min(1, cos_i)
+    const auto back = cos_i < zero;
+    eta = lane::select(back, one / eta, eta);
+    cos_i = lane::select(back, lane::neg(cos_i), cos_i);
+    const D x = one - cos_i * cos_i;
+    const D sin2_t = lane::select(zero < x, x, zero) / (eta * eta);
+    const D cos_t = lane::sqrt(one - sin2_t);  // NaN on TIR, not selected
+    const D r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    const D r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    const D r = D(0.5) * (r_parl * r_parl + r_perp * r_perp);
+    return lane::select(eta == one, zero, lane::select(sin2_t >= one, one, lane::select(r < one, r, one)));
 }
+inline double fresnel_dielectric_d(double cos_i, double eta) { return fresnel_dielectric_d<double>(cos_i, eta); }
 
 /// Exact unpolarised reflectance of a conductor with complex relative IOR η + i·k for one
 /// wavelength (Born & Wolf §14.2; the same formula as the dielectric case with complex η, computed

@@ -14,7 +14,8 @@
 
 namespace pellucid {
 
-/// What a lane type is made of: its width, its mask type and its 32-bit integer type.
+/// What a lane type is made of: its width, its mask type, its 32-bit integer type, and the
+/// double-precision type its lanes widen to (Double), kDoubleParts of which hold them in order.
 template <class F>
 struct LaneTraits;
 template <>
@@ -22,6 +23,8 @@ struct LaneTraits<float> {
     static constexpr int kWidth = 1;
     using Mask = bool;
     using Int = int32_t;
+    using Double = double;
+    static constexpr int kDoubleParts = 1;
 };
 template <class F>
 using MaskT = typename LaneTraits<F>::Mask;
@@ -29,6 +32,13 @@ template <class F>
 using IntT = typename LaneTraits<F>::Int;
 template <class F>
 inline constexpr int kLaneWidth = LaneTraits<F>::kWidth;
+/// Double-precision lanes: a float lane type F widens to kDoubleParts<F> values of DoubleT<F>
+/// (one double for a float; two double packets of half the width for a float packet), and code
+/// written over a double lane type D (double or a double packet) runs on each part.
+template <class F>
+using DoubleT = typename LaneTraits<F>::Double;
+template <class F>
+inline constexpr int kDoubleParts = LaneTraits<F>::kDoubleParts;
 
 /// Lane operations on floats, named as their packet overloads (simd/packet.h) so that templated
 /// code calls `lane::sqrt(x)` whatever F is.
@@ -74,6 +84,18 @@ inline int32_t gather(const int32_t* base, int32_t idx) { return base[idx]; }
 /// The float mask m as a mask of the integer lane type, and back.
 inline bool int_mask(bool m) { return m; }
 inline bool float_mask(bool m) { return m; }
+/// The double side: the operations code over a double lane type D needs (simd/packet.h has their
+/// packet overloads), and the exact conversions between a float lane type and its double parts.
+inline double select(bool m, double a, double b) { return m ? a : b; }
+inline double neg(double x) { return -x; }
+inline double sqrt(double x) { return std::sqrt(x); }
+/// x rounded to float and widened back: the result of a float operation whose exact value is x
+/// (a product of two floats is exact in double, so round_to_float(double(a) * double(b)) is a * b
+/// in float, bit for bit).
+inline double round_to_float(double x) { return double(float(x)); }
+/// The lanes of x as doubles, exactly (parts[0..kDoubleParts<F>)), and doubles rounded to float.
+inline void to_doubles(float x, double* parts) { parts[0] = double(x); }
+inline float from_doubles(const double* parts) { return float(parts[0]); }
 /// Load and store W lanes from/to memory.
 inline float load(const float* p) { return *p; }
 inline int32_t load(const int32_t* p) { return *p; }

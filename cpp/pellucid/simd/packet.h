@@ -24,6 +24,8 @@ struct LaneTraits<xsimd::batch<float, A>> {
     static constexpr int kWidth = int(xsimd::batch<float, A>::size);
     using Mask = xsimd::batch_bool<float, A>;
     using Int = xsimd::batch<int32_t, A>;
+    using Double = xsimd::batch<double, A>;
+    static constexpr int kDoubleParts = kWidth / int(xsimd::batch<double, A>::size);
 };
 
 /// The packet of the instruction set the including translation unit is built for.
@@ -38,6 +40,10 @@ template <class A>
 using MP = xsimd::batch_bool<float, A>;
 template <class A>
 using MIP = xsimd::batch_bool<int32_t, A>;
+template <class A>
+using DP = xsimd::batch<double, A>;
+template <class A>
+using MDP = xsimd::batch_bool<double, A>;
 
 template <class A>
 inline FP<A> select(const MP<A>& m, const FP<A>& a, const FP<A>& b) { return xsimd::select(m, a, b); }
@@ -121,6 +127,84 @@ template <class A>
 inline void store(float* p, const FP<A>& x) { x.store_unaligned(p); }
 template <class A>
 inline void store(int32_t* p, const IP<A>& x) { x.store_unaligned(p); }
+// Double packets (simd/lane.h, "The double side"): a float packet's lanes are its two double
+// packets' lanes, low half first. The conversions are the float<->double conversion instructions,
+// exact to double and correctly rounded (to nearest) back to float, as the scalar conversions.
+// (Of xsimd 8.1's mask operators, != on SSE masks is cmpneq, true on two all-ones lanes, and ^ on
+// AVX-512 masks is an or: inequality of masks is spelt (a && !b) || (!a && b).)
+template <class A>
+inline DP<A> select(const MDP<A>& m, const DP<A>& a, const DP<A>& b) { return xsimd::select(m, a, b); }
+template <class A>
+inline DP<A> neg(const DP<A>& x) { return x ^ DP<A>(-0.0); }
+template <class A>
+inline DP<A> sqrt(const DP<A>& x) { return xsimd::sqrt(x); }
+template <class A>
+inline void to_doubles(const FP<A>& x, DP<A>* parts) {
+    static_assert(FP<A>::size == 2 * DP<A>::size, "a float packet is two double packets");
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) {
+        parts[0] = DP<A>(_mm512_cvtps_pd(_mm512_castps512_ps256(x)));
+        parts[1] = DP<A>(_mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(x), 1))));
+        return;
+    }
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_same_v<A, xsimd::avx2>) {
+        parts[0] = DP<A>(_mm256_cvtps_pd(_mm256_castps256_ps128(x)));
+        parts[1] = DP<A>(_mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)));
+        return;
+    }
+#endif
+#if defined(__SSE4_2__)
+    if constexpr (std::is_same_v<A, xsimd::sse4_2>) {
+        parts[0] = DP<A>(_mm_cvtps_pd(x));
+        parts[1] = DP<A>(_mm_cvtps_pd(_mm_movehl_ps(x, x)));
+        return;
+    }
+#endif
+    alignas(64) float f[FP<A>::size];
+    alignas(64) double d[FP<A>::size];
+    x.store_aligned(f);
+    for (size_t i = 0; i < FP<A>::size; ++i) d[i] = double(f[i]);
+    parts[0] = DP<A>::load_aligned(d), parts[1] = DP<A>::load_aligned(d + DP<A>::size);
+}
+template <class A>
+inline FP<A> from_doubles(const DP<A>* parts) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) {
+        const __m512d lo = _mm512_castps_pd(_mm512_castps256_ps512(_mm512_cvtpd_ps(parts[0])));
+        return FP<A>(_mm512_castpd_ps(_mm512_insertf64x4(lo, _mm256_castps_pd(_mm512_cvtpd_ps(parts[1])), 1)));
+    }
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_same_v<A, xsimd::avx2>)
+        return FP<A>(_mm256_insertf128_ps(_mm256_castps128_ps256(_mm256_cvtpd_ps(parts[0])), _mm256_cvtpd_ps(parts[1]), 1));
+#endif
+#if defined(__SSE4_2__)
+    if constexpr (std::is_same_v<A, xsimd::sse4_2>) return FP<A>(_mm_movelh_ps(_mm_cvtpd_ps(parts[0]), _mm_cvtpd_ps(parts[1])));
+#endif
+    alignas(64) double d[FP<A>::size];
+    alignas(64) float f[FP<A>::size];
+    parts[0].store_aligned(d), parts[1].store_aligned(d + DP<A>::size);
+    for (size_t i = 0; i < FP<A>::size; ++i) f[i] = float(d[i]);
+    return FP<A>::load_aligned(f);
+}
+template <class A>
+inline DP<A> round_to_float(const DP<A>& x) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) return DP<A>(_mm512_cvtps_pd(_mm512_cvtpd_ps(x)));
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_same_v<A, xsimd::avx2>) return DP<A>(_mm256_cvtps_pd(_mm256_cvtpd_ps(x)));
+#endif
+#if defined(__SSE4_2__)
+    if constexpr (std::is_same_v<A, xsimd::sse4_2>) return DP<A>(_mm_cvtps_pd(_mm_cvtpd_ps(x)));
+#endif
+    alignas(64) double d[DP<A>::size];
+    x.store_aligned(d);
+    for (size_t i = 0; i < DP<A>::size; ++i) d[i] = double(float(d[i]));
+    return DP<A>::load_aligned(d);
+}
 // Masks to and from bool arrays (the kernel's per-lane flags). xsimd 8.1 converts them one lane at
 // a time through a float buffer, which took 6 % of a render; these widen or narrow the bytes in
 // registers. A bool in memory is the byte 0 or 1.

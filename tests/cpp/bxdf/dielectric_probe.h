@@ -2,7 +2,9 @@
 // packet forms (RoughDielectricT over GGXT and over BeckmannT) built from packet parameters by
 // rough_dielectric_lanes, as the path tracer builds them, evaluated over arrays of cases,
 // kLaneWidth<F> lanes at a time: eval_pdf and sample in both transport modes under three sets of
-// allowed lobes. It is instantiated on float in the test and on each SIMD target's packet in
+// allowed lobes; and the half-vector step itself (dielectric_half_lanes: every field, on the active
+// lanes, the masked lanes' defaults included) and the Fresnel pair (dielectric_fresnel_pair_lanes)
+// at a cosine of its own. It is instantiated on float in the test and on each SIMD target's packet in
 // dielectric_probe_<target>.cpp (built with that target's flags, exporting only its entry point,
 // as the renderer's kernels do).
 // SPDX-License-Identifier: Apache-2.0
@@ -18,6 +20,7 @@ struct In {
     int n = 0;
     const float* q[kRoughDielectricParams];
     const float *wo[3], *wi[3], *u[3];
+    const float* cos_i;  ///< the Fresnel pair's cosine
     const int32_t* kind;
     const bool* active;
 };
@@ -29,7 +32,10 @@ constexpr BxDFFlags kAllowed[kContexts] = {BxDFFlags::All, BxDFFlags::All, BxDFF
                                            BxDFFlags::Transmission | BxDFFlags::Glossy};
 /// Per context: eval (3), pdf, and the sample's valid, wi (3), weight (3), pdf, η and lobe.
 constexpr int kPerContext = 14;
-constexpr int kOutputs = kContexts * kPerContext;
+/// Then the half-vector step: wm (3), dot_o, dot_i, R, T, denom, η'², ok; and the Fresnel pair R, T.
+constexpr int kHalf = kContexts * kPerContext;
+constexpr int kFresnelPair = kHalf + 10;
+constexpr int kOutputs = kFresnelPair + 2;
 /// Outputs, one array of n floats per quantity (masks as 0/1; 0 on inactive and other lanes).
 struct Out {
     float* v[kOutputs];
@@ -66,6 +72,16 @@ void run(const In& in, Out& out) {
             put(lane::select(ggx, sg.eta, sb.eta));
             put(lane::to_float(lane::select(lane::int_mask(ggx), sg.lobe, sb.lobe)));
         }
+        // The half-vector step and the Fresnel pair on the active lanes (lanes of other models
+        // included, at their η of 1.5), as they are: the inactive lanes' defaults are compared too.
+        const M on = lane::load_mask_as<M>(act);
+        auto raw = [&](const F& x) { lane::store(out.v[k++] + o, x); };
+        const DielectricHalfT<F> h = dielectric_half_lanes<F>(wo, wi, dg.eta, on);
+        raw(h.wm.x), raw(h.wm.y), raw(h.wm.z), raw(h.dot_o), raw(h.dot_i), raw(h.R), raw(h.T), raw(h.denom);
+        raw(h.etap2), raw(lane::select(h.ok, F(1.f), F(0.f)));
+        F R, T;
+        dielectric_fresnel_pair_lanes<F>(L(in.cos_i), dg.eta, on, &R, &T);
+        raw(R), raw(T);
     }
 }
 }  // namespace pellucid::dielectric_probe
