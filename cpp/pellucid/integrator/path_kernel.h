@@ -673,7 +673,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     eval_form(is_plastic, plastic);
                     eval_form(is_plastic_b, plastic_b);
                     // The dielectrics and the principled BSDF evaluate f and pdf together (one half
-                    // vector, in double, a lane at a time).
+                    // vector, in double: bxdf/dielectric.h, principled_bsdf.h).
                     auto eval_dielectric = [&](const M& where, const auto& form) {
                         if (!lane::any(where && nee)) return;
                         const auto ep = form.eval_pdf(ctx, wo, wi, where && nee);
