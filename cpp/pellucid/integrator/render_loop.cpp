@@ -145,7 +145,8 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
         const int s0 = done;
         int s1;
         if (film.splats()) {
-            const int k = splat_pass_spp(W, H);
+            // (A time budget keeps passes of 2 spp, so that the render stops close to it.)
+            const int k = opts.time_budget > 0.0 ? 2 : splat_pass_spp(W, H);
             s1 = s0 / k * k + k;
         } else if (seconds_per_spp < 0.0) {
             s1 = s0 + 1;
