@@ -37,12 +37,14 @@ STAGES: List[Tuple[str, str, str]] = [
     ("loading", r"", r"(?i)json|mesh_io|load_|read_|parse|tinyobj|pugi|Mesh::|build_scene|scene_from|build\(|"
                          r"integrate_unit_square|interface_energy|coat_table"),
     ("ray traversal (Embree)", r"libembree", r""),
+    # Our spheres' intersection callbacks, which Embree's traversal calls (geometry/embree_scene.cpp).
+    ("ray traversal (Embree)", r"", r"sphere_intersect|sphere_occluded|sphere_first_root"),
     ("textures", r"OpenImageIO|libOpenImageIO", r""),
     ("textures", r"", r"(?i)texture|bump|perturbed_shading_frame|normal_map"),
     ("film", r"", r"Film::|film_add|FilmSample|filter_taps|gaussian_taps|accumulate_(avx2|any|baseline)"),
     ("camera rays, samplers", r"", r"path_services::start|Camera|Sampler|PCG32|sobol|sample_filter|truncated_gaussian|film_position|pixel_seed"),
     ("hit records", r"", r"fill_hit|fill_packet|fill_triangle|intersect_packet|occluded_packet|Interaction|compute_footprint|"
-                         r"uv_differentials|approximate_dp_dxy|Scene::intersect|Scene::occluded|path_services::trace|refine_sphere_t|"
+                         r"uv_differentials|approximate_dp_dxy|Scene::intersect|Scene::occluded|path_services::trace|"
                          r"hit_vertices|fetch_hit_vertex|EmbreeScene::intersect|EmbreeScene::occluded|"
                          r"path_services::occluded|next_ray|spawn_ray"),
     ("media, subsurface", r"", r"(?i)medium|phase|bssrdf|subsurface|searchlight|grid"),
