@@ -37,7 +37,9 @@
 // changes from pair to pair (a zero weight adds nothing). The accumulation is compiled for the
 // baseline and, on x86-64, for AVX2; a film takes the widest the CPU runs (accumulation_variants;
 // the same bits). A variant with AVX-512 vectors (a target's pair sums in one register) measured
-// slower than AVX2 on our Zen 5 machine, so none is built. The renderer splats 2 samples per pixel
+// slower than AVX2 on our Zen 5 machine, so none is built. Trimming a pair's block to its nonzero
+// taps (4 or 5 columns and rows with σ = ½, nine fixed-size variants chosen per pair) also measured
+// slower: the choice depends on each pair's positions and mispredicts. The renderer splats 2 samples per pixel
 // and pass, so a pair is what splat_pixel receives. With the suite's Gaussian (σ = ½, 4 or 5 taps
 // per axis and pair) this costs about 34 ns a sample on one core of our 2-core machine (weights
 // 30 %, sums 70 %). Tests: tests/cpp/image/test_film_splat.cpp.
