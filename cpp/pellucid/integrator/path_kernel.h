@@ -12,9 +12,10 @@
 // shading frame, the roulette. The BSDF is dispatched per lane group: the lanes of each packet form
 // present (PathSetup::packet_kind; a textured material's where the BSDF built at its hit has one,
 // PathSetup::textured_packet) are shaded by it in one pass, masked; the
-// other lanes go through BSDF one at a time (path_services.h), as do emission, the samplers and
-// the sampling of lights other than mesh emitters (EmitterTable), spheres, constant environments
-// and environment maps (LightTable), until those have packet forms too. Rays that escape the scene
+// other lanes go through BSDF one at a time (path_services.h), as do emission, the samplers'
+// seeding (the independent sampler's numbers are drawn for all lanes at once) and the sampling of
+// lights with neither a row in the light table (LightTable) nor an emitter table (EmitterTable),
+// until those have packet forms too. Rays that escape the scene
 // take the radiance of the lights at infinity as a packet (escaped_radiance). Every lane keeps its
 // own Sampler and the estimates reach the film in (pixel, sample) order, so images do not depend on
 // the thread count.
