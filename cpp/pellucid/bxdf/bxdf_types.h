@@ -87,6 +87,23 @@ struct BxDFSampleT {
     F eta;
     IntT<F> lobe;
 };
+/// A reflection model's sample drawn by picking a lobe and then evaluating the whole model toward wi
+/// (the one-sample MIS estimator over the lobes; Veach 1997, §9.2.4): valid on the lanes `ok` whose
+/// density is positive, weight f/pdf, lobe DiffuseReflection on the lanes `diffuse` (a diffuse lobe
+/// was picked) and GlossyReflection elsewhere.
+template <class F>
+inline BxDFSampleT<F> reflection_sample_from_eval(const V3<F>& wi, const RGB<F>& f, const F& pdf, const MaskT<F>& ok,
+                                                  const MaskT<F>& diffuse) {
+    BxDFSampleT<F> s;
+    s.valid = ok && pdf > F(0.f);
+    s.wi = wi;
+    s.pdf = pdf;
+    s.weight = f / lane::select(s.valid, pdf, F(1.f));
+    s.eta = F(1.f);
+    s.lobe = lane::select(lane::int_mask(diffuse), IntT<F>(int32_t(BxDFFlags::DiffuseReflection)),
+                          IntT<F>(int32_t(BxDFFlags::GlossyReflection)));
+    return s;
+}
 /// The one-lane sample as the scalar BxDF API returns it.
 inline std::optional<BxDFSample> to_optional(const BxDFSampleT<float>& s) {
     if (!s.valid) return std::nullopt;

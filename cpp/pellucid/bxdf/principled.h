@@ -220,16 +220,9 @@ struct Principled2012T {
         }
         const V3<F> i = lane::select(is_d, wd, lane::select(is_s, ws, wc));
         const M ok = go && !(i.z <= F(0.f));
-        BxDFSampleT<F> s;
-        s.wi = lane::select(flip, -i, i);
-        const EvalPdf ep = eval_pdf(ctx, wo, s.wi, where);
-        s.valid = ok && ep.pdf > F(0.f);
-        s.pdf = ep.pdf;
-        s.weight = ep.f / lane::select(s.valid, ep.pdf, F(1.f));
-        s.eta = F(1.f);
-        s.lobe = lane::select(lane::int_mask(is_d), IntT<F>(int32_t(BxDFFlags::DiffuseReflection)),
-                              IntT<F>(int32_t(BxDFFlags::GlossyReflection)));
-        return s;
+        const V3<F> wi = lane::select(flip, -i, i);
+        const EvalPdf ep = eval_pdf(ctx, wo, wi, where);
+        return reflection_sample_from_eval<F>(wi, ep.f, ep.pdf, ok, is_d);
     }
 };
 

@@ -347,15 +347,7 @@ struct PrincipledBSDFT {
         const V3<F> wi = lane::select(is_d, wd, lane::select(is_cc, wc, ws));
         const M ok = where && o.z != F(0.f) && total > F(0.f) && (is_d || (is_cc && ok_c) || (is_spec && ok_s));
         const EvalPdf ep = eval_pdf(ctx, o, wi, ok);
-        BxDFSampleT<F> s;
-        s.valid = ok && ep.pdf > F(0.f);
-        s.pdf = ep.pdf;
-        s.weight = ep.f / lane::select(s.valid, ep.pdf, F(1.f));
-        s.wi = lane::select(flip, -wi, wi);
-        s.eta = F(1.f);
-        s.lobe = lane::select(lane::int_mask(is_d), IntT<F>(int32_t(BxDFFlags::DiffuseReflection)),
-                              IntT<F>(int32_t(BxDFFlags::GlossyReflection)));
-        return s;
+        return reflection_sample_from_eval<F>(lane::select(flip, -wi, wi), ep.f, ep.pdf, ok, is_d);
     }
 };
 
