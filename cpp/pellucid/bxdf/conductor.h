@@ -90,6 +90,26 @@ struct ReflectionPairT {
         const auto pos = ok && c > F(0.f);
         return lane::select(pos, d.pdf_visible(o, wm) / (F(4.f) * lane::select(pos, c, F(1.f))), F(0.f));
     }
+    /// torrance_sparrow_cos(d) into *f and pdf(d) into *pdf, with D(wm) and Λ(o) evaluated once: the
+    /// same operations on the same values as the two calls, so the same bits (o is on the upper side
+    /// already, so microfacet_detail::visible_pdf's flip leaves it as it is). Dist: GGXT or BeckmannT.
+    template <class Dist>
+    void torrance_sparrow_cos_pdf(const Dist& d, F* f, F* pdf) const {
+        const F D = d.D(wm), lo = d.lambda(o);
+        const F co = lane::max(o.z, F(kMinCos)), ci = lane::max(i.z, F(kMinCos));
+        *f = torrance_sparrow_t<F>(D, microfacet_detail::smith_g2<F>(d.separable, lo, d.lambda(i)), co, ci) * ci;
+        const F c = dot(o, wm);
+        const auto pos = ok && c > F(0.f);
+        const F visible = lane::select(o.z != F(0.f) && c > F(0.f), F(1.f) / (F(1.f) + lo) / o.z * D * c, F(0.f));
+        *pdf = lane::select(pos, visible / (F(4.f) * lane::select(pos, c, F(1.f))), F(0.f));
+    }
+};
+
+/// A lobe's f·|cos θi| and sampling density at one (wo, wi), evaluated together.
+template <class F>
+struct EvalPdfT {
+    RGB<F> f;
+    F pdf;
 };
 
 /// The conductor models over a lane type F (simd/lane.h), with exact Fresnel (fresnel_conductor<F>):
@@ -134,6 +154,14 @@ struct MicrofacetConductorT {
         if (!has_flag(ctx.allowed, BxDFFlags::GlossyReflection)) return F(0.f);
         return ReflectionPairT<F>(wo, wi).pdf(d);
     }
+    /// eval and pdf in one pass (ReflectionPairT::torrance_sparrow_cos_pdf): the same bits.
+    EvalPdfT<F> eval_pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi) const {
+        const ReflectionPairT<F> r(wo, wi);
+        F ts, p;
+        r.torrance_sparrow_cos_pdf(d, &ts, &p);
+        const RGB<F> f = fr.scale * fr.fresnel(dot(r.o, r.wm)) * ts;
+        return {lane::select(r.ok, f, RGB<F>(F(0.f))), has_flag(ctx.allowed, BxDFFlags::GlossyReflection) ? p : F(0.f)};
+    }
     BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& /*u_lobe*/, const V2<F>& u) const {
         BxDFSampleT<F> s;
         const auto flip = wo.z < F(0.f);
@@ -141,10 +169,11 @@ struct MicrofacetConductorT {
         const V3<F> m = d.sample_visible(o, u);
         const V3<F> i = -o + F(2.f) * dot(o, m) * m;  // reflect (math/spherical.h)
         s.wi = lane::select(flip, -i, i);
-        s.pdf = pdf(ctx, wo, s.wi);
+        const EvalPdfT<F> ep = eval_pdf(ctx, wo, s.wi);
+        s.pdf = ep.pdf;
         s.valid = wo.z != F(0.f) && i.z > F(0.f) && s.pdf > F(0.f);
         if (!has_flag(ctx.allowed, BxDFFlags::GlossyReflection)) s.valid = MaskT<F>(false);
-        s.weight = eval(ctx, wo, s.wi) / lane::select(s.valid, s.pdf, F(1.f));
+        s.weight = ep.f / lane::select(s.valid, s.pdf, F(1.f));
         s.eta = F(1.f);
         s.lobe = IntT<F>(int32_t(BxDFFlags::GlossyReflection));
         return s;

@@ -301,6 +301,29 @@ struct RoughPlasticT {
         if (lane::any(smooth)) p = lane::select(smooth, SmoothPlasticT<F>{base}.pdf(ctx, wo, wi), p);
         return p;
     }
+    /// eval and pdf in one pass: the coat's D(wm) and Λ(o) and the Fresnel term at θo once; the
+    /// same bits as the two calls.
+    EvalPdfT<F> eval_pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi) const {
+        EvalPdfT<F> out{RGB<F>(F(0.f)), F(0.f)};
+        if (lane::any(!smooth)) {
+            const bool spec_ok = has_flag(ctx.allowed, BxDFFlags::Glossy), diff_ok = has_flag(ctx.allowed, BxDFFlags::Diffuse);
+            const F co = lane::abs(wo.z);
+            const F fr = fresnel_dielectric<F>(co, base.eta), t_o = base.transmittance(co, fr);
+            RGB<F> coat;
+            F pc;
+            coat_eval_pdf(ctx, wo, wi, &coat, &pc);
+            const auto same = wo.z * wi.z > F(0.f);
+            out.f = lane::select(same, coat + base.diffuse(t_o, lane::abs(wi.z)), RGB<F>(F(0.f)));
+            const F p_coat = spec_ok ? (diff_ok ? base.coat_probability(fr, t_o) : F(1.f)) : F(0.f);
+            out.pdf = mixture_pdf(p_coat, diff_ok, wo, wi, pc);
+        }
+        if (lane::any(smooth)) {
+            const SmoothPlasticT<F> sp{base};
+            out.f = lane::select(smooth, sp.eval(ctx, wo, wi), out.f);
+            out.pdf = lane::select(smooth, sp.pdf(ctx, wo, wi), out.pdf);
+        }
+        return out;
+    }
     BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& u_lobe, const V2<F>& u) const {
         BxDFSampleT<F> s{};  // initialised: where every lane is smooth the merge below reads it unset
         if (lane::any(!smooth)) {
@@ -318,11 +341,15 @@ struct RoughPlasticT {
             V3<F> wd = square_to_cosine_hemisphere<F>(u);
             wd.z = lane::select(flip, lane::neg(wd.z), wd.z);
             s.wi = lane::select(coat, lane::select(flip, -i, i), wd);
-            const F pc = coat_pdf(ctx, wo, s.wi);
+            RGB<F> fc;
+            F pc;
+            coat_eval_pdf(ctx, wo, s.wi, &fc, &pc);
             s.pdf = mixture_pdf(p_coat, diff_ok, wo, s.wi, pc);
             s.valid = wo.z != F(0.f) && lane::select(coat, i.z > F(0.f) && pc > F(0.f), MaskT<F>(diff_ok)) && s.pdf > F(0.f);
             if (!has_flag(ctx.allowed, BxDFFlags::Reflection)) s.valid = MaskT<F>(false);
-            s.weight = rough_eval(wo, s.wi, t_o) / lane::select(s.valid, s.pdf, F(1.f));
+            const auto same = wo.z * s.wi.z > F(0.f);  // rough_eval, with the coat's value from above
+            const RGB<F> f = lane::select(same, fc + base.diffuse(t_o, lane::abs(s.wi.z)), RGB<F>(F(0.f)));
+            s.weight = f / lane::select(s.valid, s.pdf, F(1.f));
             s.eta = F(1.f);
             s.lobe = lane::select(lane::int_mask(coat), IntT<F>(int32_t(BxDFFlags::GlossyReflection)),
                                   IntT<F>(int32_t(BxDFFlags::DiffuseReflection)));
@@ -350,6 +377,14 @@ private:
     F coat_pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi) const {
         if (!has_flag(ctx.allowed, BxDFFlags::GlossyReflection)) return F(0.f);
         return ReflectionPairT<F>(wo, wi).pdf(d);
+    }
+    // coat_eval and coat_pdf together (ReflectionPairT::torrance_sparrow_cos_pdf): the same bits.
+    void coat_eval_pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi, RGB<F>* f, F* pdf) const {
+        const ReflectionPairT<F> r(wo, wi);
+        F ts, p;
+        r.torrance_sparrow_cos_pdf(d, &ts, &p);
+        *f = lane::select(r.ok, base.ks * fresnel_dielectric<F>(dot(r.o, r.wm), base.eta) * ts, RGB<F>(F(0.f)));
+        *pdf = has_flag(ctx.allowed, BxDFFlags::GlossyReflection) ? p : F(0.f);
     }
     // Coat plus base (f·|cos θi|), given t_o = t(|cos θo|).
     RGB<F> rough_eval(const V3<F>& wo, const V3<F>& wi, const F& t_o) const {

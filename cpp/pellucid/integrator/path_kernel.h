@@ -669,10 +669,18 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         pdf_fast = lane::select(where, form.pdf(ctx, wo, wi), pdf_fast);
                     };
                     eval_form(is_on, oren);
-                    eval_form(is_rough, rough);
-                    eval_form(is_beckmann, beckmann);
-                    eval_form(is_plastic, plastic);
-                    eval_form(is_plastic_b, plastic_b);
+                    // The microfacet conductors and the plastics evaluate f and pdf together (one
+                    // half vector, D and Λ(wo) once: ReflectionPairT::torrance_sparrow_cos_pdf).
+                    auto eval_pdf_form = [&](const M& where, const auto& form) {
+                        if (!lane::any(where && nee)) return;
+                        const EvalPdfT<F> ep = form.eval_pdf(ctx, wo, wi);
+                        f_fast = lane::select(where, ep.f, f_fast);
+                        pdf_fast = lane::select(where, ep.pdf, pdf_fast);
+                    };
+                    eval_pdf_form(is_rough, rough);
+                    eval_pdf_form(is_beckmann, beckmann);
+                    eval_pdf_form(is_plastic, plastic);
+                    eval_pdf_form(is_plastic_b, plastic_b);
                     // The dielectrics and the principled BSDF evaluate f and pdf together (one half
                     // vector, in double: bxdf/dielectric.h, principled_bsdf.h).
                     auto eval_dielectric = [&](const M& where, const auto& form) {
