@@ -10,7 +10,6 @@
 #include <iterator>
 #include <type_traits>
 
-#include "pellucid/simd/packet.h"
 #include "pellucid/util/error.h"
 
 namespace pellucid {
@@ -34,11 +33,13 @@ bool is_one_pixel_box(const Filter& f) {
     return b && b->radius == 0.5f;
 }
 
-/// Four floats: one tap of the four rows of eval_filter_taps4 (SSE2 or NEON, one IEEE operation per
-/// element).
-typedef float F4 __attribute__((vector_size(16)));
-inline F4 load_f4(const float* p) {
-    F4 v;
+/// Sixteen floats and sixteen int32: one tap of the sixteen rows of eval_filter_taps16. GCC vector
+/// types: one AVX-512 register, two AVX2 or four SSE2/NEON ones, the same IEEE operation per element
+/// on each (no contraction: -ffp-contract=off).
+typedef float F16 __attribute__((vector_size(64)));
+typedef int32_t I16 __attribute__((vector_size(64)));
+inline F16 load_f16(const float* p) {
+    F16 v;
     std::memcpy(&v, p, sizeof v);
     return v;
 }
@@ -47,55 +48,56 @@ inline F4 load_f4(const float* p) {
 constexpr float kTapOffset[kMaxFilterTaps] = {0,  1,  2,  3,  4,  5,  6,  7,  8,  9,  10, 11, 12, 13, 14, 15, 16,
                                               17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31, 32};
 
+/// e^x per element, 0 for x < −87, x clamped to ≤ 88: x = n ln 2 + r, n = round(x / ln 2), ln 2 in two
+/// parts so that n·ln2_hi is exact (Cody & Waite 1980, Software Manual for the Elementary Functions,
+/// ch. 6), e^r by its Taylor series to r⁷ on |r| ≤ ln 2/2 (truncation below 6e-9), times 2^n built in
+/// the exponent field. Only IEEE-rounded operations, so every instruction set gives the same bits.
+__attribute__((always_inline)) inline F16 exp16(F16 x) {
+    const F16 lo = x < -87.f ? F16{} - 87.f : x;
+    const F16 xc = lo > 88.f ? F16{} + 88.f : lo;
+    const F16 n = (xc * 1.44269504f + 12582912.f) - 12582912.f;
+    const F16 r = (xc - n * 0.693359375f) - n * -2.12194440e-4f;
+    const F16 p = 1.f + r * (1.f + r * (0.5f + r * (1.f / 6.f + r * (1.f / 24.f + r * (1.f / 120.f + r * (1.f / 720.f + r * (1.f / 5040.f)))))));
+    const I16 k = (I16)(n + 12582912.f) - (I16)(F16{} + 12582912.f);
+    const F16 two_n = (F16)((k + 127) << 23);
+    const F16 e = p * two_n;
+    return (F16)((I16)e & (x < -87.f ? I16{} : I16{} - 1));
+}
+
 // The Gaussian's taps (kShift: the shifted profile; kN: the number of taps when it is known at
 // compile time, 0 for any n). Each row starts at its middle tap c, at xc = x0 + c, and walks
 // outwards: right with the ratio e(x + 1)/e(x) = exp(−(2x + 1)k), left with e(x − 1)/e(x) =
 // exp(−(1 − 2x)k), each ratio shrinking by q = exp(−2k) a step. The product of the two first ratios
-// is q, so each row takes two exponentials, e(xc) and the right ratio; the eight go through the
-// vector exp (lane::exp) in as many baseline packets as they fill. Every element is one IEEE
-// operation of the lane's own inputs, in the same order whatever kShift and kN.
+// is q, so each row takes two exponentials, e(xc) and the right ratio (exp16). Every element is one
+// IEEE operation of the row's own input, in the same order whatever kShift, kN and the instruction set.
 template <bool kShift, int kN>
-inline void gaussian_taps4_impl(const GaussianFilter& g, const float x0[4], int n_dyn, float (*w)[4]) {
-    using B = NativePacket;
-    constexpr int kB = kLaneWidth<B>;
-    static_assert(kB <= 16, "a baseline packet wider than 16 floats");
+__attribute__((always_inline)) inline void gaussian_taps16_impl(const GaussianFilter& g, const float x0[16], int n_dyn,
+                                                                float (*w)[16]) {
     const int n = kN > 0 ? kN : n_dyn, c = n / 2;
-    const F4 zero = {0.f, 0.f, 0.f, 0.f};
-    const F4 x = load_f4(x0), k = zero + g.m_k;
-    const F4 xc = x + kTapOffset[c];
-    alignas(64) float arg[16] = {};
-    const F4 a_e = -xc * xc * k, a_r = -(2.f * xc + 1.f) * k;
-    std::memcpy(arg, &a_e, sizeof a_e);
-    std::memcpy(arg + 4, &a_r, sizeof a_r);
-    for (int i = 0; i < 8; i += kB) lane::store(arg + i, lane::exp(lane::load_as<B>(arg + i)));
-    const F4 q = zero + g.m_q, radius = zero + g.m_radius;
-    F4 abs_mask;
-    {
-        const uint32_t bits = 0x7fffffffu;
-        const uint32_t b4[4] = {bits, bits, bits, bits};
-        std::memcpy(&abs_mask, b4, sizeof abs_mask);
-    }
-    typedef int32_t I4 __attribute__((vector_size(16)));
-    auto tap = [&](int i, F4 e) {
-        const F4 xi = x + kTapOffset[i];
-        F4 v = e;
+    const F16 zero{};
+    const F16 x = load_f16(x0), k = zero + g.m_k;
+    const F16 xc = x + kTapOffset[c];
+    const F16 ec = exp16(-xc * xc * k), r0 = exp16(-(2.f * xc + 1.f) * k);
+    const F16 q = zero + g.m_q, radius = zero + g.m_radius;
+    auto tap = [&](int i, F16 e) {
+        const F16 xi = x + kTapOffset[i];
+        F16 v;
         if constexpr (kShift) {
-            const F4 d = e - g.m_bias;
+            const F16 d = e - g.m_bias;
             v = zero < d ? d : zero;  // std::max(0, g − g(r))
         } else {
             v = zero < e ? e : zero;  // std::max(0, e) (e − 0 is e)
         }
         // |x| < r (false for NaN, as fabs)
-        const I4 in = (I4)((F4)((I4)xi & (I4)abs_mask) < radius);
-        const F4 out = (F4)((I4)v & in);
+        const I16 in = ((F16)((I16)xi & 0x7fffffff) < radius);
+        const F16 out = (F16)((I16)v & in);
         std::memcpy(w[i], &out, sizeof out);
     };
-    const F4 ec = load_f4(arg), r0 = load_f4(arg + 4);
     // The two walks are independent: the left one's first ratio (a division) starts at once.
-    F4 el_ratio = q / r0;  // exp(−(1 − 2xc)k)
-    F4 el = ec * el_ratio;
+    F16 el_ratio = q / r0;  // exp(−(1 − 2xc)k)
+    F16 el = ec * el_ratio;
     el_ratio *= q;
-    F4 er = ec, er_ratio = r0;
+    F16 er = ec, er_ratio = r0;
     for (int i = c; i < n; ++i) {
         tap(i, er);
         er *= er_ratio;
@@ -109,30 +111,81 @@ inline void gaussian_taps4_impl(const GaussianFilter& g, const float x0[4], int 
 }
 
 template <bool kShift>
-inline void gaussian_taps4_shift(const GaussianFilter& g, const float x0[4], int n, float (*w)[4]) {
+__attribute__((always_inline)) inline void gaussian_taps16_shift(const GaussianFilter& g, const float x0[16], int n,
+                                                                 float (*w)[16]) {
     switch (n) {  // the film's common sizes fully unrolled
-    case 5: return gaussian_taps4_impl<kShift, 5>(g, x0, n, w);
-    case 7: return gaussian_taps4_impl<kShift, 7>(g, x0, n, w);
-    case 3: return gaussian_taps4_impl<kShift, 3>(g, x0, n, w);
-    default: return gaussian_taps4_impl<kShift, 0>(g, x0, n, w);
+    case 5: return gaussian_taps16_impl<kShift, 5>(g, x0, n, w);
+    case 7: return gaussian_taps16_impl<kShift, 7>(g, x0, n, w);
+    case 3: return gaussian_taps16_impl<kShift, 3>(g, x0, n, w);
+    default: return gaussian_taps16_impl<kShift, 0>(g, x0, n, w);
     }
 }
 
-void gaussian_taps4(const GaussianFilter& g, const float x0[4], int n, float (*w)[4]) {
-    if (g.shift) gaussian_taps4_shift<true>(g, x0, n, w);
-    else gaussian_taps4_shift<false>(g, x0, n, w);
+__attribute__((always_inline)) inline void gaussian_taps16(const GaussianFilter& g, const float x0[16], int n, float (*w)[16]) {
+    if (g.shift) gaussian_taps16_shift<true>(g, x0, n, w);
+    else gaussian_taps16_shift<false>(g, x0, n, w);
+}
+
+// The instruction-set variants of the Gaussian's taps (FilterTapsVariant): on x86-64 with GCC,
+// baseline, AVX2 and AVX-512 (a row vector in one register); elsewhere the baseline only.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PELLUCID_TAPS_X86_VARIANTS 1
+#endif
+void gaussian_taps16_baseline(const GaussianFilter& g, const float x0[16], int n, float (*w)[16]) { gaussian_taps16(g, x0, n, w); }
+#ifdef PELLUCID_TAPS_X86_VARIANTS
+__attribute__((target("avx2"))) void gaussian_taps16_avx2(const GaussianFilter& g, const float x0[16], int n, float (*w)[16]) {
+    gaussian_taps16(g, x0, n, w);
+}
+__attribute__((target("avx512f"))) void gaussian_taps16_avx512(const GaussianFilter& g, const float x0[16], int n,
+                                                               float (*w)[16]) {
+    gaussian_taps16(g, x0, n, w);
+}
+#endif
+
+/// The widest taps variant this CPU runs (chosen once).
+FilterTapsVariant widest_taps_variant() {
+    static const FilterTapsVariant v = filter_taps_variants().back();
+    return v;
 }
 }  // namespace
 
-void eval_filter_taps4(const Filter& f, const float x0[4], int n, float (*w)[4]) {
+std::vector<FilterTapsVariant> filter_taps_variants() {
+    std::vector<FilterTapsVariant> v{FilterTapsVariant::Baseline};
+#ifdef PELLUCID_TAPS_X86_VARIANTS
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2")) v.push_back(FilterTapsVariant::AVX2);
+    if (__builtin_cpu_supports("avx512f")) v.push_back(FilterTapsVariant::AVX512);
+#endif
+    return v;
+}
+
+void eval_filter_taps16(const Filter& f, const float x0[16], int n, float (*w)[16]) {
+    eval_filter_taps16(f, x0, n, w, widest_taps_variant());
+}
+
+void eval_filter_taps16(const Filter& f, const float x0[16], int n, float (*w)[16], FilterTapsVariant variant) {
     std::visit([&](const auto& k) {
         if constexpr (std::is_same_v<std::decay_t<decltype(k)>, GaussianFilter>) {
-            gaussian_taps4(k, x0, n, w);
+            switch (variant) {
+#ifdef PELLUCID_TAPS_X86_VARIANTS
+            case FilterTapsVariant::AVX512: return gaussian_taps16_avx512(k, x0, n, w);
+            case FilterTapsVariant::AVX2: return gaussian_taps16_avx2(k, x0, n, w);
+#endif
+            default: return gaussian_taps16_baseline(k, x0, n, w);
+            }
         } else {
             for (int i = 0; i < n; ++i)
-                for (int r = 0; r < 4; ++r) w[i][r] = k.eval(x0[r] + float(i));
+                for (int r = 0; r < 16; ++r) w[i][r] = k.eval(x0[r] + float(i));
         }
     }, f);
+}
+
+void eval_filter_taps4(const Filter& f, const float x0[4], int n, float (*w)[4]) {
+    float x16[16], w16[kMaxFilterTaps][16];
+    for (int r = 0; r < 16; ++r) x16[r] = x0[r % 4];
+    eval_filter_taps16(f, x16, n, w16);
+    for (int i = 0; i < n; ++i)
+        for (int r = 0; r < 4; ++r) w[i][r] = w16[i][r];
 }
 
 Film::Film(int width, int height, std::optional<Filter> splat)
@@ -167,37 +220,59 @@ void Film::splat_pixel(int x, int y, const FilmSample* s, int n) {
     if (n <= 0) return;
     const int m = std::min(m_margin, 16), n_taps = 2 * m + 1;
     SplatSource& src = m_sources[size_t(y) * m_width + x];
-    // The column and row weights of the two samples of a pair (film.h), `a` the first, `b` the
-    // second, tap by tap: w[t] = (a's column weight, a's row weight, b's column, b's row).
-    float w[kMaxFilterTaps][4];
-    const float ox = float(x - m) + 0.5f, oy = float(y - m) + 0.5f;
-    auto taps = [&](float afx, float afy, float bfx, float bfy) {
-        const float x0[4] = {ox - afx, oy - afy, ox - bfx, oy - bfy};
-        eval_filter_taps4(*m_splat, x0, n_taps, w);
+    // The accumulations of this call, in order, each a sample b and its partner a: a pixel whose
+    // last sample waits for its partner pairs it with s[0] (its weights are evaluated again, the
+    // same numbers as when it was splatted); then whole pairs; then a first sample whose partner
+    // comes later (its own weights in both halves, no partner). They run four at a time, so that one
+    // eval_filter_taps16 call gives the weights of four.
+    struct Job {
+        float afx, afy, bfx, bfy;
+        float la[3];  // a's value, when a joins the pair's differences (has_a)
+        bool has_a, add_a;  // add_a: a is added to the sums here too
+        const Spectrum* L;  // b's value
+    };
+    Job jobs[4];
+    int n_jobs = 0;
+    auto flush = [&]() {
+        // Row 4j + r of the weights is job j's a column (r = 0), a row (1), b column (2), b row (3).
+        const float ox = float(x - m) + 0.5f, oy = float(y - m) + 0.5f;
+        float x0[16];
+        for (int j = 0; j < 4; ++j) {
+            const Job& b = jobs[std::min(j, n_jobs - 1)];
+            x0[4 * j + 0] = ox - b.afx, x0[4 * j + 1] = oy - b.afy, x0[4 * j + 2] = ox - b.bfx, x0[4 * j + 3] = oy - b.bfy;
+        }
+        float w[kMaxFilterTaps][16];
+        eval_filter_taps16(*m_splat, x0, n_taps, w);
+        for (int j = 0; j < n_jobs; ++j)
+            accumulate(x, y, m, &w[0][4 * j], jobs[j].has_a ? jobs[j].la : nullptr, jobs[j].add_a, *jobs[j].L);
+        n_jobs = 0;
+    };
+    auto run = [&](float afx, float afy, const float* la, bool add_a, const FilmSample& b) {
+        Job& j = jobs[n_jobs++];
+        j.afx = afx, j.afy = afy, j.bfx = b.fx, j.bfy = b.fy;
+        j.has_a = la != nullptr, j.add_a = add_a, j.L = &b.L;
+        for (int k = 0; k < 3; ++k) j.la[k] = la ? la[k] : 0.f;
+        if (n_jobs == 4) flush();
     };
     int i = 0;
     if (src.n % 2 == 1) {
-        // The pixel's last sample waits for its partner: s[0] completes the pair. Its weights are
-        // evaluated again, in the same call as s[0]'s (the same numbers as when it was splatted).
-        taps(src.last_fx, src.last_fy, s[0].fx, s[0].fy);
-        accumulate(x, y, m, w, src.last_l, false, s[0].L);
+        run(src.last_fx, src.last_fy, src.last_l, false, s[0]);
         src.n += 1;
         i = 1;
     }
     for (; i + 1 < n; i += 2) {  // whole pairs: both samples and their difference in one pass
-        taps(s[i].fx, s[i].fy, s[i + 1].fx, s[i + 1].fy);
         const float la[3] = {s[i].L[0], s[i].L[1], s[i].L[2]};
-        accumulate(x, y, m, w, la, true, s[i + 1].L);
+        run(s[i].fx, s[i].fy, la, true, s[i + 1]);
         src.n += 2;
     }
     if (i < n) {  // the first sample of a pair whose partner comes later
-        taps(s[i].fx, s[i].fy, s[i].fx, s[i].fy);
-        accumulate(x, y, m, w, nullptr, false, s[i].L);
+        run(s[i].fx, s[i].fy, nullptr, false, s[i]);
         src.n += 1;
         src.last_fx = s[i].fx;
         src.last_fy = s[i].fy;
         for (int k = 0; k < 3; ++k) src.last_l[k] = s[i].L[k];
     }
+    if (n_jobs > 0) flush();
 }
 
 namespace {
@@ -207,7 +282,7 @@ struct AccumulateArgs {
     double* sums;
     double* pairs;
     int width, height, x, y, m;
-    const float (*w)[4];
+    const float* w;  // tap t's (a column, a row, b column, b row) at w + 16 t
     const float* la;
     bool add_a;
     const float* L;
@@ -221,11 +296,10 @@ struct AccumulateArgs {
 template <int kM>
 __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs& A) {
     const int m = kM > 0 ? kM : A.m, x = A.x, y = A.y;
-    const float (*w)[4] = A.w;
     // The weights as doubles (exact), so that each target's weight is one product.
     double wd[kMaxFilterTaps][4];
     for (int t = 0; t <= 2 * m; ++t)
-        for (int r = 0; r < 4; ++r) wd[t][r] = double(w[t][r]);
+        for (int r = 0; r < 4; ++r) wd[t][r] = double(A.w[16 * t + r]);
     // Targets inside the film, columns x + i0 .. x + i1, rows y + j0 .. y + j1, that may have a
     // nonzero weight. A sample in [x, x + 1) has a zero tap at one end of its row or the other for
     // about half the offsets (with σ = ½: every offset), so the end taps are tested, without a
@@ -233,7 +307,7 @@ __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs&
     // they are. (Without a partner, w[·][0..1] repeat b's weights.)
     int i0 = -m, i1 = m, j0 = -m, j1 = m;
     if constexpr (kM == 0) {
-        auto nz = [&](int t, int axis) { return int(w[t][axis] > 0.f) | int(w[t][2 + axis] > 0.f); };
+        auto nz = [&](int t, int axis) { return int(A.w[16 * t + axis] > 0.f) | int(A.w[16 * t + 2 + axis] > 0.f); };
         i0 = -m + (1 - nz(0, 0)), i1 = m - (1 - nz(2 * m, 0));
         j0 = -m + (1 - nz(0, 1)), j1 = m - (1 - nz(2 * m, 1));
         i0 = std::max(i0, -x), i1 = std::min(i1, A.width - 1 - x);
@@ -311,7 +385,7 @@ __attribute__((target("avx2"))) void accumulate_avx2(const AccumulateArgs& a) { 
 // a itself first if add_a. The sums are updated in the order a, then b, so a pair gives the bits of
 // two single calls. Every variant does the same IEEE operations per element, in the same order
 // (no contraction: -ffp-contract=off), so all give the same bits.
-void Film::accumulate(int x, int y, int m, const float (*w)[4], const float* la, bool add_a, const Spectrum& L) {
+void Film::accumulate(int x, int y, int m, const float* w, const float* la, bool add_a, const Spectrum& L) {
     static_assert(sizeof(SplatSums) == 4 * sizeof(double) && sizeof(SplatPairSums) == 8 * sizeof(double));
     const float l[3] = {L[0], L[1], L[2]};
     const AccumulateArgs args{reinterpret_cast<double*>(m_sums.data()), reinterpret_cast<double*>(m_pair_sums.data()),

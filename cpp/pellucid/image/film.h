@@ -29,9 +29,10 @@
 // Σ wL); successive differences (von Neumann et al. 1941) would use about a third more of the
 // information but cost about 40 % more per splat.
 //
-// Cost. A pair of samples is added in one pass over its target pixels: the column and row weights
-// of both samples come from one eval_filter_taps4 call (four rows side by side, one vector exp;
-// image/filter.h), and each target's sums are loaded, updated and stored once for the pair. Away
+// Cost. A pair of samples is added in one pass over its target pixels. The column and row weights
+// of four pairs come from one eval_filter_taps16 call (sixteen rows side by side, two vector
+// exponentials; image/filter.h; AVX-512 where the CPU has it, the same bits everywhere), and each
+// target's sums are loaded, updated and stored once for the pair. Away
 // from the border, margins 1 and 2 (σ = ½: 5 taps) update their whole (2m + 1)² block with fixed
 // loop bounds, which costs less than trimming its zero rows and columns with loops whose length
 // changes from pair to pair (a zero weight adds nothing). The accumulation is compiled for the
@@ -39,10 +40,10 @@
 // the same bits). A variant with AVX-512 vectors (a target's pair sums in one register) measured
 // slower than AVX2 on our Zen 5 machine, so none is built. Trimming a pair's block to its nonzero
 // taps (4 or 5 columns and rows with σ = ½, nine fixed-size variants chosen per pair) also measured
-// slower: the choice depends on each pair's positions and mispredicts. The renderer splats 2 samples per pixel
-// and pass, so a pair is what splat_pixel receives. With the suite's Gaussian (σ = ½, 4 or 5 taps
-// per axis and pair) this costs about 34 ns a sample on one core of our 2-core machine (weights
-// 30 %, sums 70 %). Tests: tests/cpp/image/test_film_splat.cpp.
+// slower: the choice depends on each pair's positions and mispredicts. The renderer splats up to 8
+// samples per pixel and pass (splat_pass_spp, render_loop.cpp), so splat_pixel receives up to
+// four pairs at a time. Tests:
+// tests/cpp/image/test_film_splat.cpp, tests/cpp/image/test_filter.cpp.
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <cstdint>
@@ -146,7 +147,8 @@ private:
         uint64_t n = 0;
         float last_fx = 0, last_fy = 0, last_l[3] = {0, 0, 0};
     };
-    void accumulate(int x, int y, int m, const float (*w)[4], const float* la, bool add_a, const Spectrum& L);
+    // w: tap t's weights (a column, a row, b column, b row) at w + 16 t (eval_filter_taps16's rows).
+    void accumulate(int x, int y, int m, const float* w, const float* la, bool add_a, const Spectrum& L);
     // Estimate and variance of pixel i, channel k.
     void pixel_stats(size_t i, double mean[3], double var[3]) const;
 

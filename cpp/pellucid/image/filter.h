@@ -17,6 +17,7 @@
 #include <string>
 #include <type_traits>
 #include <variant>
+#include <vector>
 
 #include "pellucid/math/vec.h"
 #include "pellucid/sampling/warp.h"
@@ -94,7 +95,7 @@ struct GaussianFilter {
     float m_k;       ///< 1/(2σ²)
     float m_bias;    ///< g(r) = e⁻⁸ when shifted, else 0
     float m_erf_r;   ///< erf(r/(σ√2)), the CDF range of the truncated Gaussian
-    float m_q;       ///< exp(−2k), the step of eval_filter_taps4's ratio
+    float m_q;       ///< exp(−2k), the step of eval_filter_taps16's ratio
 };
 using Filter = std::variant<BoxFilter, TentFilter, GaussianFilter>;
 inline Vec2f sample_filter(const Filter& f, Vec2f u) {
@@ -107,18 +108,27 @@ inline float eval_filter(const Filter& f, float x) {
 /// The most taps a row of splat weights has: filters are limited to a 16-pixel radius
 /// (registry.cpp), and a sample in pixel x reaches pixels x − 16 .. x + 16.
 constexpr int kMaxFilterTaps = 2 * 16 + 1;
-/// Four rows of splat weights at once: w[i][r] = f(x0[r] + i) for i < n ≤ kMaxFilterTaps, r < 4 (the
-/// film evaluates the column and row weights of both samples of a pair in one call). The Gaussian
-/// takes two exponentials per row instead of n: with k = 1/(2σ²), e(x + 1) = e(x)·exp(−(2x + 1)k),
-/// that ratio shrinks by exp(−2k) a step, and the ratio leftwards is exp(−2k) over the one
+/// Sixteen rows of splat weights at once: w[i][r] = f(x0[r] + i) for i < n ≤ kMaxFilterTaps, r < 16
+/// (the film evaluates the column and row weights of four pairs of samples in one call). The
+/// Gaussian takes two exponentials per row instead of n: with k = 1/(2σ²), e(x + 1) = e(x)·exp(−(2x
+/// + 1)k), that ratio shrinks by exp(−2k) a step, and the ratio leftwards is exp(−2k) over the one
 /// rightwards; each row starts at its middle tap and walks outwards, so the rounding compounds over
 /// at most m steps (within 1.5e-6 of the profile, relative, for σ ≤ 1.2; test_filter.cpp). The
-/// eight exponentials of a call are one vector exp (lane::exp on the baseline packet) and the
-/// recurrence runs on the four rows side by side (3, 5 and 7 taps in fixed-size code, the same
-/// operations). Defined in film.cpp, which is compiled once for the baseline instruction set, so the
-/// weights are the same on every machine and for every SIMD target of the path tracer. Each lane's
-/// arithmetic depends only on its own x0: a row's weights do not depend on the other rows of the
-/// call.
+/// exponentials are film.cpp's own (Cody–Waite reduction and a polynomial, IEEE-rounded operations
+/// only) and the recurrence runs on the sixteen rows side by side (3, 5 and 7 taps in fixed-size
+/// code, the same operations), compiled for the baseline and, on x86-64, for AVX2 and AVX-512
+/// (FilterTapsVariant): every variant gives the same bits, so the weights are the same on every
+/// machine and for every SIMD target of the path tracer. Each row's arithmetic depends only on its
+/// own x0: a row's weights do not depend on the other rows of the call.
+void eval_filter_taps16(const Filter& f, const float x0[16], int n, float (*w)[16]);
+/// The instruction-set variants of eval_filter_taps16 (the same bits); the call above takes the
+/// widest this CPU runs.
+enum class FilterTapsVariant { Baseline, AVX2, AVX512 };
+/// The variants this build and CPU run, narrowest first (Baseline always).
+std::vector<FilterTapsVariant> filter_taps_variants();
+/// eval_filter_taps16 with the given variant (one of filter_taps_variants(); tests compare them).
+void eval_filter_taps16(const Filter& f, const float x0[16], int n, float (*w)[16], FilterTapsVariant variant);
+/// Four rows: eval_filter_taps16's, the same numbers.
 void eval_filter_taps4(const Filter& f, const float x0[4], int n, float (*w)[4]);
 /// w[i] = f(x0 + i) for i < n ≤ kMaxFilterTaps: one row of eval_filter_taps4, the same numbers.
 inline void eval_filter_taps(const Filter& f, float x0, int n, float* w) {

@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "pellucid/bxdf/microfacet.h"
 #include "pellucid/image/filter.h"
 #include "pellucid/sampling/rng.h"
 #include "pellucid/simd/packet.h"
@@ -151,8 +152,8 @@ TEST(GaussianFilter, MitsubaImportSplatsWithTheShiftedProfile) {
     EXPECT_FALSE(own->film_splatting);
 }
 
-// The film's Gaussian splat weights (eval_filter_taps4: two float exponentials per row from xsimd
-// and a recurrence outwards from the middle tap) against the profile in double precision at the
+// The film's Gaussian splat weights (eval_filter_taps16: two float exponentials per row and a
+// recurrence outwards from the middle tap) against the profile in double precision at the
 // same float abscissa, over 2^16 sample offsets per pixel and every tap of the row: the error,
 // relative to the unshifted Gaussian there, is at most 1.5e-6 up to σ = 1.2 (measured: 4.8e-7 at
 // σ = 0.5, 1.3e-6 at σ = 1.2) and 6e-6 at σ = 4 (measured 5.0e-6; 16 steps each way). A
@@ -185,7 +186,7 @@ TEST(GaussianFilter, SplatWeightsOnADenseGrid) {
         }
 }
 
-// The four rows of one eval_filter_taps4 call are independent: each equals, bit for bit, the row
+// The four rows of one eval_filter_taps4 call (sixteen of eval_filter_taps16) are independent: each equals, bit for bit, the row
 // evaluated alone (the film evaluates a pixel's waiting sample again, beside its partner, and
 // must get the weights it splatted it with).
 TEST(GaussianFilter, SplatWeightRowsAreIndependent) {
@@ -207,29 +208,28 @@ TEST(GaussianFilter, SplatWeightRowsAreIndependent) {
 
 // The film's Gaussian taps are, bit for bit, the recurrence of image/filter.h written out plainly,
 // one row at a time in scalar floats: from the middle tap c, e(xc) = exp(−xc² k) and the ratio
-// exp(−(2xc + 1)k) (the exponentials of the same baseline vector exp, lane::exp), then e *= ratio,
-// ratio *= q rightwards, and leftwards from ratio q / exp(−(2xc + 1)k); each tap is
-// max(0, e − bias) inside the radius and 0 outside. The film takes fixed-size code for 3, 5 and 7
-// taps and a loop for the others, so each row length from 1 to 11 is checked, on offsets where the
-// film puts them and anywhere in ±6 pixels.
+// exp(−(2xc + 1)k) (film.cpp's exponential, which performs the operations of
+// microfacet_detail::exp_t, the reference here), then e *= ratio, ratio *= q rightwards, and leftwards
+// from ratio q / exp(−(2xc + 1)k); each tap is max(0, e − bias) inside the radius and 0 outside. The
+// film takes fixed-size code for 3, 5 and 7 taps and a loop for the others, so each row length from
+// 1 to 11 is checked, on offsets where the film puts them and anywhere in ±6 pixels, with every
+// instruction-set variant of eval_filter_taps16 this machine runs (all must give these bits).
 TEST(GaussianFilter, SplatWeightsAreTheRecurrence) {
-    auto exp_lane = [](float a) {
-        float out[kLaneWidth<NativePacket>];
-        lane::store(out, lane::exp(NativePacket(a)));
-        return out[0];
-    };
+    auto exp_ref = [](float a) { return microfacet_detail::exp_t<float>(a); };
+    const std::vector<FilterTapsVariant> variants = filter_taps_variants();
     PCG32 rng(23, 9);
     for (const GaussianFilter& g : {GaussianFilter(0.5f, true), GaussianFilter(0.5f), GaussianFilter(1.2f, true),
                                     GaussianFilter(0.3f)}) {
         const Filter f(g);
         for (int n = 1; n <= 11; ++n)
-            for (int trial = 0; trial < 400; ++trial) {
-                float x0[4];
+            for (int trial = 0; trial < 100; ++trial) {
+                float x0[16];
                 for (float& v : x0)
                     v = trial % 2 == 0 ? float(-(n / 2)) + 0.5f - rng.next_float() : 12.f * rng.next_float() - 6.f;
-                float rows[kMaxFilterTaps][4];
-                eval_filter_taps4(f, x0, n, rows);
-                for (int r = 0; r < 4; ++r) {
+                float rows[kMaxFilterTaps][16];
+                const FilterTapsVariant variant = variants[size_t(trial) % variants.size()];
+                eval_filter_taps16(f, x0, n, rows, variant);
+                for (int r = 0; r < 16; ++r) {
                     float ref[kMaxFilterTaps];
                     auto tap = [&](int i, float e) {
                         const float xi = x0[r] + float(i);
@@ -238,7 +238,7 @@ TEST(GaussianFilter, SplatWeightsAreTheRecurrence) {
                     };
                     const int c = n / 2;
                     const float xc = x0[r] + float(c);
-                    const float ec = exp_lane(-xc * xc * g.m_k), r0 = exp_lane(-(2.f * xc + 1.f) * g.m_k);
+                    const float ec = exp_ref(-xc * xc * g.m_k), r0 = exp_ref(-(2.f * xc + 1.f) * g.m_k);
                     float e = ec, ratio = r0;
                     for (int i = c; i < n; ++i) {
                         tap(i, e);
@@ -255,7 +255,7 @@ TEST(GaussianFilter, SplatWeightsAreTheRecurrence) {
                     }
                     for (int i = 0; i < n; ++i)
                         ASSERT_EQ(std::memcmp(&rows[i][r], &ref[i], 4), 0)
-                            << to_string(f) << " n " << n << " row " << r << " tap " << i << ": " << rows[i][r] << " vs " << ref[i];
+                            << to_string(f) << " variant " << int(variant) << " n " << n << " row " << r << " tap " << i << ": " << rows[i][r] << " vs " << ref[i];
                 }
             }
     }
