@@ -151,6 +151,9 @@ inline F erfinv_t(const F& x, const F& q) {
     p = F(-0.00417768164f) + p * a;
     p = F(0.246640727f) + p * a;
     p = F(1.50140941f) + p * a;
+    // The tail branch (|x| > 0.9966) only where some lane needs it: the same bits either way.
+    const auto central = w < F(5.f);
+    if (lane::all(central)) return p * x;
     const F b = lane::sqrt(w) - F(3.f);
     F r = F(-0.000200214257f);
     r = F(0.000100950558f) + r * b;
@@ -161,7 +164,7 @@ inline F erfinv_t(const F& x, const F& q) {
     r = F(0.00943887047f) + r * b;
     r = F(1.00167406f) + r * b;
     r = F(2.83297682f) + r * b;
-    return lane::select(w < F(5.f), p, r) * x;
+    return lane::select(central, p, r) * x;
 }
 }  // namespace microfacet_detail
 
