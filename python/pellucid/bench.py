@@ -441,13 +441,27 @@ def equal_time_ratios(rows: Sequence[Row], rung: int, base: str = "mis") -> List
     return out
 
 
+def cpu_model() -> str:
+    """The processor's name (Linux: /proc/cpuinfo's first "model name"), else platform.processor().
+    Timings, and ratios against a peer, hold for this processor only."""
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8", errors="replace") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    import platform
+    return platform.processor() or "unknown processor"
+
+
 def machine_note() -> str:
     try:
         load = os.getloadavg()
         load_s = f"load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}"
     except OSError:
         load_s = "load average unknown"
-    return f"{os.cpu_count()} logical CPUs, {load_s}"
+    return f"{os.cpu_count()} logical CPUs ({cpu_model()}), {load_s}"
 
 
 # --------------------------------------------------------------------------------------- main
