@@ -220,7 +220,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             alignas(64) float b[9][W];
             ST(b[0], d.x), ST(b[1], d.y), ST(b[2], d.z);
             const Point3f o = scene.camera.origin();
-            if (scene.has_textures) {
+            if (scene.needs_footprints) {
                 const V3<F> dx = scene.camera.direction<F>(fx + F(1.f), fy), dy = scene.camera.direction<F>(fx, fy + F(1.f));
                 ST(b[3], dx.x), ST(b[4], dx.y), ST(b[5], dx.z), ST(b[6], dy.x), ST(b[7], dy.y), ST(b[8], dy.z);
             }
@@ -229,7 +229,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 a.cam[i] = false;
                 RayDifferential& r = ray[i];
                 r.set(o, Vec3f(b[0][i], b[1][i], b[2][i]), kInfinity);
-                if (scene.has_textures) {
+                if (scene.needs_footprints) {
                     r.has_differentials = true;
                     r.rx_o = r.ry_o = o;
                     r.rx_d = Vec3f(b[3][i], b[4][i], b[5][i]);
@@ -258,7 +258,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 mat_of[i] = s.face_materials.empty() ? s.material : s.face_materials[h.prim_id];
                 light_of[i] = s.light;
                 if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane ||
-                    (scene.has_textures && is_specular(BxDFFlags(ps.packet_flags[mat_of[i]])))) {
+                    (scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[mat_of[i]])))) {
                     scene.fill_hit(ray[i], h, si[i], scene.has_textures);
                     continue;
                 }
@@ -399,7 +399,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     for (int k = 0, n = ps.packet_count[mat_of[i]]; k < n; ++k) a.q[k][i] = q[k];
                     flags = BxDFFlags(ps.packet_flags[mat_of[i]]);
                     // Delta bounces carry ray differentials on from the hit's footprint.
-                    if (scene.has_textures && full[i]) path_services::footprint(ps, si[i], ray[i]);
+                    if (scene.needs_footprints && full[i]) path_services::footprint(ps, si[i], ray[i]);
                 } else {
                     flags = path_services::bsdf_begin(ps, si[i], ray[i], &bsdf(i));
                     // A textured (or bump- or normal-mapped) material whose BSDF here has a packet
@@ -799,7 +799,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     }
                     const Vec3f wi(a.nwx[i], a.nwy[i], a.nwz[i]);
                     if (ps.media && !a.in_medium[i]) medium[i] = path_services::medium_after(ps, si[i], wi, medium[i]);
-                    if (scene.has_textures && spec_b[i] && !a.in_medium[i] && ray[i].has_differentials)
+                    if (scene.needs_footprints && spec_b[i] && !a.in_medium[i] && ray[i].has_differentials)
                         ray[i] = path_services::next_ray(ps, si[i], ray[i], wi, true, trans_b[i], eta_b[i]);
                     else
                         ray[i].set(Vec3f(ob[0][i], ob[1][i], ob[2][i]), wi, kInfinity);

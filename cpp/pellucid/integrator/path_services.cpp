@@ -265,7 +265,7 @@ void footprint(const PathSetup& ps, SurfaceInteraction& si, const RayDifferentia
 BxDFFlags bsdf_begin(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray, BSDF* out) {
     const Scene& scene = *ps.scene;
     // The pixel footprint, for texture filtering and bump steps (and to carry differentials on).
-    if (scene.has_textures) scene.compute_footprint(si, ray);
+    if (scene.needs_footprints) scene.compute_footprint(si, ray);
     new (out) BSDF(scene.bsdf(si));
     return out->flags();
 }
@@ -331,7 +331,7 @@ bool sample_picked_light(const PathSetup& ps, const SurfaceInteraction& si, int3
 RayDifferential next_ray(const PathSetup& ps, const SurfaceInteraction& si, const RayDifferential& in, const Vec3f& wi,
                          bool specular, bool transmission, float eta) {
     const Scene& scene = *ps.scene;
-    if (scene.has_textures && specular && in.has_differentials)
+    if (scene.needs_footprints && specular && in.has_differentials)
         return scene.specular_differentials(si, in, si.spawn_ray(wi), transmission, eta);
     return RayDifferential(si.spawn_ray(wi));
 }

@@ -109,11 +109,11 @@ inline void film_position(const Scene& scene, bool splat, int x, int y, Sampler&
     *fy = float(y) + 0.5f + off.y;
 }
 /// The camera ray of sample `sampler` in pixel (x, y), through its film position (film_position),
-/// which (fx, fy) receives. Differentials only where textures need footprints.
+/// which (fx, fy) receives. Differentials only where materials read footprints (Scene::needs_footprints).
 inline void camera_sample(const Scene& scene, bool splat, int x, int y, Sampler& sampler, float* fx, float* fy,
                           RayDifferential* out) {
     film_position(scene, splat, x, y, sampler, fx, fy);
-    if (scene.has_textures) {
+    if (scene.needs_footprints) {
         *out = scene.camera.generate_ray_differential(*fx, *fy);
     } else {
         const Ray r = scene.camera.generate_ray(*fx, *fy);

@@ -66,6 +66,18 @@ SubsurfaceParams get_textured_subsurface_params(const SubsurfaceMaterial& m, con
     return p;
 }
 
+bool material_reads_footprint(const MaterialTextures& mt, const TextureList& textures) {
+    for (int i = 0; i < mt.count; ++i)
+        if (texture_reads_footprint(textures, mt.bindings[i].texture)) return true;
+    if (mt.normal_map >= 0 && texture_reads_footprint(textures, uint32_t(mt.normal_map))) return true;
+    if (mt.bump >= 0) {
+        // Mitsuba's model takes the bilinear luminance gradient, which reads no footprint; without
+        // one it falls back to an analytic gradient or to differences over footprint steps.
+        if (mt.bump_model != BumpModel::Mitsuba || !texture_has_luminance_gradient(textures, uint32_t(mt.bump))) return true;
+    }
+    return false;
+}
+
 Vec2f bump_steps(const TextureEvalContext& ctx) {
     // One pixel footprint in u and in v: the mean extent of the footprint's two screen axes
     // (pbrt-v4 §10.5.1 uses the same measure). Without ray differentials there is no footprint,

@@ -76,6 +76,12 @@ struct MaterialTextures {
     bool perturbs_normal() const { return bump >= 0 || normal_map >= 0; }
 };
 
+/// Whether a material with these textures reads its hits' pixel footprints: a bound or normal-map
+/// texture that does (texture_reads_footprint), or a bump map whose steps or gradient do (the
+/// footprint model always; Mitsuba's where its texture has no bilinear luminance gradient). Scenes
+/// without such a material skip the footprints and ray differentials (Scene::needs_footprints).
+bool material_reads_footprint(const MaterialTextures& mt, const TextureList& textures);
+
 /// The texture lookup context of a hit: its position, uv and pixel footprint.
 TextureEvalContext texture_eval_context(const SurfaceInteraction& si);
 

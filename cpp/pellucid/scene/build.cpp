@@ -46,8 +46,10 @@ public:
         resolve_subsurface(m_scene, m_desc.source);  // may add media and materials (docs/subsurface.md)
         m_scene.material_textures.resize(m_scene.materials.size());
         for (const Material& m : m_scene.materials) m_scene.material_bxdfs.push_back(get_bxdf(m, SurfaceInteraction{}));
-        for (const auto& mt : m_scene.material_textures)
+        for (const auto& mt : m_scene.material_textures) {
             m_scene.has_textures = m_scene.has_textures || mt.has_bindings() || mt.perturbs_normal();
+            m_scene.needs_footprints = m_scene.needs_footprints || material_reads_footprint(mt, m_scene.textures);
+        }
         for (const auto& mt : m_scene.material_textures) m_scene.has_one_sided = m_scene.has_one_sided || !mt.two_sided;
         if (m_scene.shapes.empty() && m_scene.lights.empty())
             log_warning(m_desc.source + ": the scene has no shapes and no lights; it renders black");

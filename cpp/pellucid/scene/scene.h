@@ -108,6 +108,9 @@ public:
     std::vector<MaterialTextures> material_textures;  ///< parallel to materials
     TextureList textures;
     bool has_textures = false;  ///< any material reads textures or perturbs normals
+    /// Any material reads its hits' pixel footprints (material_reads_footprint): only then do
+    /// camera rays carry differentials, delta bounces carry them on, and hits get footprints.
+    bool needs_footprints = false;
     bool has_one_sided = false;  ///< any material has two_sided false
     /// The BxDF of a one-sided material seen from behind: flags None (the path ends), eval 0,
     /// pdf 0, and sample() gives nothing (its weight is 0).

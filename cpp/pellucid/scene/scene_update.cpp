@@ -250,6 +250,7 @@ void adopt(Scene& to, Scene& from, bool geometry) {
     to.material_textures = std::move(from.material_textures);
     to.textures = std::move(from.textures);
     to.has_textures = from.has_textures;
+    to.needs_footprints = from.needs_footprints;
     to.has_one_sided = from.has_one_sided;
     to.lights = std::move(from.lights);
     to.infinite_lights = std::move(from.infinite_lights);

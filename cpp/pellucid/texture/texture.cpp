@@ -245,6 +245,32 @@ bool bilinear_gradient_uv(const TextureList& list, uint32_t id, const TextureEva
 }
 }  // namespace
 
+bool texture_reads_footprint(const TextureList& list, uint32_t id) {
+    return std::visit([&](const auto& t) -> bool {
+        using T = std::decay_t<decltype(t)>;
+        if constexpr (std::is_same_v<T, ConstantTexture>) return false;
+        else if constexpr (std::is_same_v<T, ImageTexture>)
+            // Nearest and bilinear lookups of an image kept in memory read no MIP level; the
+            // TextureSystem's lookups are taken as reading the footprint whatever the filter.
+            return t.filter > TextureFilter::Bilinear || !t.handle.texels;
+        else if constexpr (std::is_same_v<T, CheckerboardTexture>) return t.filtered;
+        else if constexpr (std::is_same_v<T, NoiseTexture>) return t.fbm;  // the octaves finer than the footprint drop
+        else if constexpr (std::is_same_v<T, ScaleTexture>) return texture_reads_footprint(list, t.texture);
+        else
+            return texture_reads_footprint(list, t.texture0) || texture_reads_footprint(list, t.texture1) ||
+                   texture_reads_footprint(list, t.amount);
+    }, list[id]);
+}
+
+bool texture_has_luminance_gradient(const TextureList& list, uint32_t id) {
+    return std::visit([&](const auto& t) -> bool {
+        using T = std::decay_t<decltype(t)>;
+        if constexpr (std::is_same_v<T, ConstantTexture> || std::is_same_v<T, ImageTexture>) return true;
+        else if constexpr (std::is_same_v<T, ScaleTexture>) return texture_has_luminance_gradient(list, t.texture);
+        else return false;
+    }, list[id]);
+}
+
 bool texture_luminance_gradient_uv(const TextureList& list, uint32_t id, const TextureEvalContext& ctx, float* dfdu,
                                    float* dfdv) {
     Spectrum du, dv;

@@ -107,6 +107,16 @@ bool texture_gradient_uv(const TextureList& list, uint32_t id, const TextureEval
 bool texture_luminance_gradient_uv(const TextureList& list, uint32_t id, const TextureEvalContext& ctx, float* dfdu,
                                    float* dfdv);
 
+/// Whether texture `id`'s value depends on the context's footprint (dpdx, dpdy, du/dx …): image
+/// textures filtered beyond bilinear (trilinear, anisotropic) or looked up through the
+/// TextureSystem (too large to keep in memory), filtered checkerboards, fBm noise, and scale and mix
+/// textures of such. The others (constant, nearest or bilinear images in memory, point-sampled
+/// checkerboards, plain Perlin noise) give the same bits with or without one, and so do
+/// texture_luminance_gradient_uv's gradients.
+bool texture_reads_footprint(const TextureList& list, uint32_t id);
+/// Whether texture_luminance_gradient_uv has a gradient for texture `id` (whatever the context).
+bool texture_has_luminance_gradient(const TextureList& list, uint32_t id);
+
 /// Perlin's improved noise in [-1, 1] (roughly) and its gradient.
 float perlin_noise(const Vec3f& p, Vec3f* gradient = nullptr);
 
