@@ -98,9 +98,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     uint32_t mat_of[W]{};
     int32_t light_of[W]{};
     // Without media or subsurface scattering, a hit on a sphere or a triangle whose material has a
-    // packet form and emits nothing needs no more than its vertex; in a scene with textures, unless
-    // the material has a delta lobe (a delta bounce carries the hit's footprint on to the next hit
-    // as ray differentials, Scene::specular_differentials).
+    // packet form and emits nothing needs no more than its vertex; in a scene whose materials read
+    // pixel footprints (Scene::needs_footprints), unless the material has a delta lobe (a delta
+    // bounce carries the hit's footprint on to the next hit as ray differentials,
+    // Scene::specular_differentials).
     const bool vertex_lanes = !(ps.media || ps.subsurface);
     HitVertexInputs<W> hv{};
     struct alignas(64) Arrays {
