@@ -243,8 +243,11 @@ void Film::splat_pixel(int x, int y, const FilmSample* s, int n) {
         }
         float w[kMaxFilterTaps][16];
         eval_filter_taps16(*m_splat, x0, n_taps, w);
-        for (int j = 0; j < n_jobs; ++j)
-            accumulate(x, y, m, &w[0][4 * j], jobs[j].has_a ? jobs[j].la : nullptr, jobs[j].add_a, *jobs[j].L);
+        const float* la[4];
+        bool add_a[4];
+        const Spectrum* L[4];
+        for (int j = 0; j < n_jobs; ++j) la[j] = jobs[j].has_a ? jobs[j].la : nullptr, add_a[j] = jobs[j].add_a, L[j] = jobs[j].L;
+        accumulate(x, y, m, &w[0][0], n_jobs, la, add_a, L);
         n_jobs = 0;
     };
     auto run = [&](float afx, float afy, const float* la, bool add_a, const FilmSample& b) {
@@ -287,15 +290,24 @@ struct AccumulateArgs {
     bool add_a;
     const float* L;
 };
+/// Up to four accumulations at one pixel (Film::accumulate): job k's weights at w + 4k (stride 16).
+struct AccumulateBatch {
+    double* sums;
+    double* pairs;
+    int width, height, x, y, m, n;
+    const float* w;
+    const float* la[4];
+    bool add_a[4];
+    float L[4][3];
+};
 
-// The accumulation, written once for every instruction set (Film::AccumulationVariant). kM > 0: the
-// film's margin is kM and the whole (2kM + 1)² block of targets lies inside the film, so the loops
-// have fixed bounds and every target of the block is updated (the trimmed targets have weight 0
-// for both samples, and adding 0 leaves a sum's bits as they are: no sum is ever −0, as the sums
-// start at +0 and x + (−x) is +0). kM = 0: any margin and position, trimmed.
-template <int kM>
+// One accumulation, written once for every instruction set (Film::AccumulationVariant), at any
+// margin and position: its targets trimmed to the film and to the nonzero end taps. (Inside the
+// film, margins 1 and 2 take accumulate_block, which updates the whole (2m + 1)² block: a target
+// with weight 0 for both samples adds 0, which leaves a sum's bits as they are, as no sum is ever
+// −0: the sums start at +0 and x + (−x) is +0.)
 __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs& A) {
-    const int m = kM > 0 ? kM : A.m, x = A.x, y = A.y;
+    const int m = A.m, x = A.x, y = A.y;
     // The weights as doubles (exact), so that each target's weight is one product.
     double wd[kMaxFilterTaps][4];
     for (int t = 0; t <= 2 * m; ++t)
@@ -306,7 +318,7 @@ __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs&
     // branch; a zero weight inside the block adds w·(1, L) = 0, which leaves a finite sum's bits as
     // they are. (Without a partner, w[·][0..1] repeat b's weights.)
     int i0 = -m, i1 = m, j0 = -m, j1 = m;
-    if constexpr (kM == 0) {
+    {
         auto nz = [&](int t, int axis) { return int(A.w[16 * t + axis] > 0.f) | int(A.w[16 * t + 2 + axis] > 0.f); };
         i0 = -m + (1 - nz(0, 0)), i1 = m - (1 - nz(2 * m, 0));
         j0 = -m + (1 - nz(0, 1)), j1 = m - (1 - nz(2 * m, 1));
@@ -356,13 +368,63 @@ __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs&
     else pair_rows(std::false_type{});
 }
 
-// Every margin, and the fixed-bound block of the common margins 1 and 2 (σ = ½: 5 taps) away from
-// the film's border.
-__attribute__((always_inline)) inline void accumulate_any(const AccumulateArgs& a) {
-    const bool inside = a.x >= a.m && a.y >= a.m && a.x + a.m < a.width && a.y + a.m < a.height;
-    if (inside && a.m == 2) accumulate_impl<2>(a);
-    else if (inside && a.m == 1) accumulate_impl<1>(a);
-    else accumulate_impl<0>(a);
+// The n accumulations of a batch, in order, on the whole (2kM + 1)² block inside the film: each
+// target's sums are loaded once, take every job's updates in the order accumulate_impl applies them
+// (a, then b, then the pair sums), and are stored once. Each sum receives the same IEEE operations
+// in the same order as from n accumulate_impl calls, so the bits are the same; only the loads and
+// stores between the jobs are gone (a job without a partner leaves the pair sums as they are).
+template <int kM>
+__attribute__((always_inline)) inline void accumulate_block(const AccumulateBatch& B) {
+    constexpr int kT = 2 * kM + 1;
+    const int n = B.n, x = B.x, y = B.y;
+    double wd[4][kT][4];
+    D4 l4[4], lp4[4];
+    bool has_a[4], add_a[4];
+    for (int k = 0; k < n; ++k) {
+        for (int t = 0; t < kT; ++t)
+            for (int r = 0; r < 4; ++r) wd[k][t][r] = double(B.w[16 * t + 4 * k + r]);
+        l4[k] = D4{1.0, double(B.L[k][0]), double(B.L[k][1]), double(B.L[k][2])};
+        has_a[k] = B.la[k] != nullptr, add_a[k] = B.add_a[k];
+        lp4[k] = has_a[k] ? D4{1.0, double(B.la[k][0]), double(B.la[k][1]), double(B.la[k][2])} : l4[k];
+    }
+    for (int j = -kM; j <= kM; ++j) {
+        const size_t row = size_t(y + j) * B.width + x;
+        double* sums = B.sums + 4 * row;
+        double* pairs = B.pairs + 8 * row;
+        for (int i = -kM; i <= kM; ++i) {
+            D4 t = load4(sums + 4 * i), q0 = load4(pairs + 8 * i), q1 = load4(pairs + 8 * i + 4);
+            for (int k = 0; k < n; ++k) {
+                const double wb = wd[k][i + kM][2] * wd[k][j + kM][3];
+                const D4 b = l4[k] * wb;
+                if (!has_a[k]) {
+                    t = t + b;
+                    continue;
+                }
+                const double wa = wd[k][i + kM][0] * wd[k][j + kM][1];
+                const D4 a = lp4[k] * wa;
+                if (add_a[k]) t += a;
+                t = t + b;
+                const D4 d = b - a;
+                q0 = q0 + d * d;
+                q1 = q1 + d * d[0];
+            }
+            store4(sums + 4 * i, t);
+            store4(pairs + 8 * i, q0);
+            store4(pairs + 8 * i + 4, q1);
+        }
+    }
+}
+
+// A batch: the fixed-bound block for margins 1 and 2 inside the film, else one trimmed
+// accumulation after the other.
+__attribute__((always_inline)) inline void accumulate_batch(const AccumulateBatch& B) {
+    const bool inside = B.x >= B.m && B.y >= B.m && B.x + B.m < B.width && B.y + B.m < B.height;
+    if (inside && B.m == 2) return accumulate_block<2>(B);
+    if (inside && B.m == 1) return accumulate_block<1>(B);
+    for (int k = 0; k < B.n; ++k) {
+        const AccumulateArgs a{B.sums, B.pairs, B.width, B.height, B.x, B.y, B.m, B.w + 4 * k, B.la[k], B.add_a[k], B.L[k]};
+        accumulate_impl(a);
+    }
 }
 }  // namespace
 
@@ -374,26 +436,31 @@ __attribute__((always_inline)) inline void accumulate_any(const AccumulateArgs& 
 #endif
 
 namespace {
-void accumulate_baseline(const AccumulateArgs& a) { accumulate_any(a); }
+void accumulate_baseline(const AccumulateBatch& b) { accumulate_batch(b); }
 #ifdef PELLUCID_FILM_X86_VARIANTS
-__attribute__((target("avx2"))) void accumulate_avx2(const AccumulateArgs& a) { accumulate_any(a); }
+__attribute__((target("avx2"))) void accumulate_avx2(const AccumulateBatch& b) { accumulate_batch(b); }
 #endif
 }  // namespace
 
-// Adds sample b (weights w[·][2], w[·][3], value L) to the sums of every target pixel; with a
-// partner a (weights w[·][0], w[·][1], value la; la null for none) also the pair's differences, and
-// a itself first if add_a. The sums are updated in the order a, then b, so a pair gives the bits of
-// two single calls. Every variant does the same IEEE operations per element, in the same order
-// (no contraction: -ffp-contract=off), so all give the same bits.
-void Film::accumulate(int x, int y, int m, const float* w, const float* la, bool add_a, const Spectrum& L) {
+// Accumulation k of n adds sample b (weights w[·][4k + 2], w[·][4k + 3], value L[k]) to the sums of
+// every target pixel; with a partner a (weights w[·][4k], w[·][4k + 1], value la[k]; null for none)
+// also the pair's differences, and a itself first if add_a[k]. The sums are updated in the order a,
+// then b, accumulation after accumulation, so a pair gives the bits of two single calls and a batch
+// those of its accumulations one by one. Every variant does the same IEEE operations per element, in
+// the same order (no contraction: -ffp-contract=off), so all give the same bits.
+void Film::accumulate(int x, int y, int m, const float* w, int n, const float* const* la, const bool* add_a,
+                      const Spectrum* const* L) {
     static_assert(sizeof(SplatSums) == 4 * sizeof(double) && sizeof(SplatPairSums) == 8 * sizeof(double));
-    const float l[3] = {L[0], L[1], L[2]};
-    const AccumulateArgs args{reinterpret_cast<double*>(m_sums.data()), reinterpret_cast<double*>(m_pair_sums.data()),
-                              m_width, m_height, x, y, m, w, la, add_a, l};
+    AccumulateBatch b{reinterpret_cast<double*>(m_sums.data()), reinterpret_cast<double*>(m_pair_sums.data()),
+                      m_width, m_height, x, y, m, n, w, {}, {}, {}};
+    for (int k = 0; k < n; ++k) {
+        b.la[k] = la[k], b.add_a[k] = add_a[k];
+        for (int c = 0; c < 3; ++c) b.L[k][c] = (*L[k])[c];
+    }
 #ifdef PELLUCID_FILM_X86_VARIANTS
-    if (m_variant == AccumulationVariant::AVX2) return accumulate_avx2(args);
+    if (m_variant == AccumulationVariant::AVX2) return accumulate_avx2(b);
 #endif
-    accumulate_baseline(args);
+    accumulate_baseline(b);
 }
 
 std::vector<Film::AccumulationVariant> Film::accumulation_variants() {

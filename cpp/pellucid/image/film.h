@@ -31,11 +31,12 @@
 //
 // Cost. A pair of samples is added in one pass over its target pixels. The column and row weights
 // of four pairs come from one eval_filter_taps16 call (sixteen rows side by side, two vector
-// exponentials; image/filter.h; AVX-512 where the CPU has it, the same bits everywhere), and each
-// target's sums are loaded, updated and stored once for the pair. Away
+// exponentials; image/filter.h; AVX-512 where the CPU has it, the same bits everywhere). Away
 // from the border, margins 1 and 2 (σ = ½: 5 taps) update their whole (2m + 1)² block with fixed
 // loop bounds, which costs less than trimming its zero rows and columns with loops whose length
-// changes from pair to pair (a zero weight adds nothing). The accumulation is compiled for the
+// changes from pair to pair (a zero weight adds nothing), and each target's sums are loaded once,
+// updated by the four pairs in order and stored once (the bits of one pair after the other);
+// elsewhere the pairs go one by one, trimmed to the film. The accumulation is compiled for the
 // baseline and, on x86-64, for AVX2; a film takes the widest the CPU runs (accumulation_variants;
 // the same bits). A variant with AVX-512 vectors (a target's pair sums in one register) measured
 // slower than AVX2 on our Zen 5 machine, so none is built. Trimming a pair's block to its nonzero
@@ -147,8 +148,11 @@ private:
         uint64_t n = 0;
         float last_fx = 0, last_fy = 0, last_l[3] = {0, 0, 0};
     };
-    // w: tap t's weights (a column, a row, b column, b row) at w + 16 t (eval_filter_taps16's rows).
-    void accumulate(int x, int y, int m, const float* w, const float* la, bool add_a, const Spectrum& L);
+    // n ≤ 4 accumulations at pixel (x, y), in order: accumulation k's weights (a column, a row, b
+    // column, b row) of tap t at w + 16 t + 4 k (eval_filter_taps16's rows), its partner's value
+    // la[k] (null: none), whether the partner is added too, and b's value *L[k].
+    void accumulate(int x, int y, int m, const float* w, int n, const float* const* la, const bool* add_a,
+                    const Spectrum* const* L);
     // Estimate and variance of pixel i, channel k.
     void pixel_stats(size_t i, double mean[3], double var[3]) const;
 

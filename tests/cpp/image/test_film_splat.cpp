@@ -230,8 +230,9 @@ TEST(FilmSplat, PixelRunsEqualSingleSplats) {
     // Film::splat_pixel (the renderer's path) adds a pixel's samples pair by pair in one pass; it
     // must give, bit for bit, the sums (and so the mean and variance images) of one splat() per
     // sample and those of the reference above:
-    // runs of 1 to 5 samples, so pairs start inside a run, span two runs of one pixel, and span runs
-    // of different pixels (the second sample re-evaluates its partner's taps), on a 7×6 film (pixels
+    // runs of 1 to 9 samples, so pairs start inside a run, span two runs of one pixel, and span runs
+    // of different pixels (the second sample re-evaluates its partner's taps), and a run fills one
+    // batch of four accumulations or more (splat_pixel adds four at a time), on a 7×6 film (pixels
     // whose block is cut by the border, and pixels whose whole block is inside, which margins 1 and
     // 2 take on fixed bounds), with Gaussians (shifted or not) reaching 2 and 3 pixels, a tent and a
     // box of radius 1.5; and through every variant of the accumulation this CPU runs (AVX2 and the
@@ -250,7 +251,7 @@ TEST(FilmSplat, PixelRunsEqualSingleSplats) {
             b.set_accumulation_variant(variant);
             ReferenceFilm ref(W, H, filter);
             PCG32 rng(7, 3);
-            const int runs[] = {1, 2, 3, 5, 4, 1, 1, 2};
+            const int runs[] = {1, 2, 3, 5, 4, 8, 9, 7};
             for (int pass = 0; pass < 3; ++pass)
                 for (int y = 0; y < H; ++y)
                     for (int x = 0; x < W; ++x) {
