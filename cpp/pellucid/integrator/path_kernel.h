@@ -670,30 +670,23 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         pdf_fast = lane::select(where, form.pdf(ctx, wo, wi), pdf_fast);
                     };
                     eval_form(is_on, oren);
-                    // The microfacet conductors and the plastics evaluate f and pdf together (one
-                    // half vector, D and Λ(wo) once: ReflectionPairT::torrance_sparrow_cos_pdf).
-                    auto eval_pdf_form = [&](const M& where, const auto& form) {
-                        if (!lane::any(where && nee)) return;
-                        const EvalPdfT<F> ep = form.eval_pdf(ctx, wo, wi);
+                    // The forms that evaluate f and pdf together: the microfacet conductors and the
+                    // plastics (one half vector, D and Λ(wo) once: ReflectionPairT::
+                    // torrance_sparrow_cos_pdf), the dielectrics and the principled BSDFs (one half
+                    // vector, in double: bxdf/dielectric.h, principled_bsdf.h; on the lanes given).
+                    auto merge = [&](const M& where, const auto& ep) {
                         f_fast = lane::select(where, ep.f, f_fast);
                         pdf_fast = lane::select(where, ep.pdf, pdf_fast);
                     };
-                    eval_pdf_form(is_rough, rough);
-                    eval_pdf_form(is_beckmann, beckmann);
-                    eval_pdf_form(is_plastic, plastic);
-                    eval_pdf_form(is_plastic_b, plastic_b);
-                    // The dielectrics and the principled BSDF evaluate f and pdf together (one half
-                    // vector, in double: bxdf/dielectric.h, principled_bsdf.h).
-                    auto eval_dielectric = [&](const M& where, const auto& form) {
-                        if (!lane::any(where && nee)) return;
-                        const auto ep = form.eval_pdf(ctx, wo, wi, where && nee);
-                        f_fast = lane::select(where, ep.f, f_fast);
-                        pdf_fast = lane::select(where, ep.pdf, pdf_fast);
-                    };
-                    eval_dielectric(is_rdiel, rdiel);
-                    eval_dielectric(is_rdiel_b, rdiel_b);
-                    eval_dielectric(is_princ, princ);
-                    eval_dielectric(is_princ12, princ12);
+                    auto due = [&](const M& where) { return lane::any(where && nee); };
+                    if (due(is_rough)) merge(is_rough, rough.eval_pdf(ctx, wo, wi));
+                    if (due(is_beckmann)) merge(is_beckmann, beckmann.eval_pdf(ctx, wo, wi));
+                    if (due(is_plastic)) merge(is_plastic, plastic.eval_pdf(ctx, wo, wi));
+                    if (due(is_plastic_b)) merge(is_plastic_b, plastic_b.eval_pdf(ctx, wo, wi));
+                    if (due(is_rdiel)) merge(is_rdiel, rdiel.eval_pdf(ctx, wo, wi, is_rdiel && nee));
+                    if (due(is_rdiel_b)) merge(is_rdiel_b, rdiel_b.eval_pdf(ctx, wo, wi, is_rdiel_b && nee));
+                    if (due(is_princ)) merge(is_princ, princ.eval_pdf(ctx, wo, wi, is_princ && nee));
+                    if (due(is_princ12)) merge(is_princ12, princ12.eval_pdf(ctx, wo, wi, is_princ12 && nee));
                     f_fast = lane::select(off, RGB<F>(F(0.f)), soften(f_fast, wi, wi_w));
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
                     const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
