@@ -312,8 +312,7 @@ struct RoughPlasticT {
             RGB<F> coat;
             F pc;
             coat_eval_pdf(ctx, wo, wi, &coat, &pc);
-            const auto same = wo.z * wi.z > F(0.f);
-            out.f = lane::select(same, coat + base.diffuse(t_o, lane::abs(wi.z)), RGB<F>(F(0.f)));
+            out.f = with_base(coat, wo, wi, t_o);
             const F p_coat = spec_ok ? (diff_ok ? base.coat_probability(fr, t_o) : F(1.f)) : F(0.f);
             out.pdf = mixture_pdf(p_coat, diff_ok, wo, wi, pc);
         }
@@ -347,9 +346,7 @@ struct RoughPlasticT {
             s.pdf = mixture_pdf(p_coat, diff_ok, wo, s.wi, pc);
             s.valid = wo.z != F(0.f) && lane::select(coat, i.z > F(0.f) && pc > F(0.f), MaskT<F>(diff_ok)) && s.pdf > F(0.f);
             if (!has_flag(ctx.allowed, BxDFFlags::Reflection)) s.valid = MaskT<F>(false);
-            const auto same = wo.z * s.wi.z > F(0.f);  // rough_eval, with the coat's value from above
-            const RGB<F> f = lane::select(same, fc + base.diffuse(t_o, lane::abs(s.wi.z)), RGB<F>(F(0.f)));
-            s.weight = f / lane::select(s.valid, s.pdf, F(1.f));
+            s.weight = with_base(fc, wo, s.wi, t_o) / lane::select(s.valid, s.pdf, F(1.f));
             s.eta = F(1.f);
             s.lobe = lane::select(lane::int_mask(coat), IntT<F>(int32_t(BxDFFlags::GlossyReflection)),
                                   IntT<F>(int32_t(BxDFFlags::DiffuseReflection)));
@@ -387,9 +384,11 @@ private:
         *pdf = has_flag(ctx.allowed, BxDFFlags::GlossyReflection) ? p : F(0.f);
     }
     // Coat plus base (f·|cos θi|), given t_o = t(|cos θo|).
-    RGB<F> rough_eval(const V3<F>& wo, const V3<F>& wi, const F& t_o) const {
+    RGB<F> rough_eval(const V3<F>& wo, const V3<F>& wi, const F& t_o) const { return with_base(coat_eval(wo, wi), wo, wi, t_o); }
+    // The coat's value (coat_eval's) plus the base, 0 off wo's hemisphere.
+    RGB<F> with_base(const RGB<F>& coat, const V3<F>& wo, const V3<F>& wi, const F& t_o) const {
         const auto same = wo.z * wi.z > F(0.f);
-        return lane::select(same, coat_eval(wo, wi) + base.diffuse(t_o, lane::abs(wi.z)), RGB<F>(F(0.f)));
+        return lane::select(same, coat + base.diffuse(t_o, lane::abs(wi.z)), RGB<F>(F(0.f)));
     }
     // p_coat · pdf_coat + (1 − p_coat) |cos θi|/π (the latter when the base may be sampled).
     static F mixture_pdf(const F& p_coat, bool diff_ok, const V3<F>& wo, const V3<F>& wi, const F& pdf_coat) {

@@ -180,14 +180,6 @@ void eval_filter_taps16(const Filter& f, const float x0[16], int n, float (*w)[1
     }, f);
 }
 
-void eval_filter_taps4(const Filter& f, const float x0[4], int n, float (*w)[4]) {
-    float x16[16], w16[kMaxFilterTaps][16];
-    for (int r = 0; r < 16; ++r) x16[r] = x0[r % 4];
-    eval_filter_taps16(f, x16, n, w16);
-    for (int i = 0; i < n; ++i)
-        for (int r = 0; r < 4; ++r) w[i][r] = w16[i][r];
-}
-
 Film::Film(int width, int height, std::optional<Filter> splat)
     : m_width(width), m_height(height), m_splat(std::move(splat)), m_variant(accumulation_variants().back()) {
     if (m_splat && is_one_pixel_box(*m_splat)) m_splat.reset();
@@ -225,33 +217,23 @@ void Film::splat_pixel(int x, int y, const FilmSample* s, int n) {
     // same numbers as when it was splatted); then whole pairs; then a first sample whose partner
     // comes later (its own weights in both halves, no partner). They run four at a time, so that one
     // eval_filter_taps16 call gives the weights of four.
-    struct Job {
-        float afx, afy, bfx, bfy;
-        float la[3];  // a's value, when a joins the pair's differences (has_a)
-        bool has_a, add_a;  // add_a: a is added to the sums here too
-        const Spectrum* L;  // b's value
-    };
-    Job jobs[4];
+    SplatJob jobs[4];
     int n_jobs = 0;
     auto flush = [&]() {
         // Row 4j + r of the weights is job j's a column (r = 0), a row (1), b column (2), b row (3).
         const float ox = float(x - m) + 0.5f, oy = float(y - m) + 0.5f;
         float x0[16];
         for (int j = 0; j < 4; ++j) {
-            const Job& b = jobs[std::min(j, n_jobs - 1)];
+            const SplatJob& b = jobs[std::min(j, n_jobs - 1)];
             x0[4 * j + 0] = ox - b.afx, x0[4 * j + 1] = oy - b.afy, x0[4 * j + 2] = ox - b.bfx, x0[4 * j + 3] = oy - b.bfy;
         }
         float w[kMaxFilterTaps][16];
         eval_filter_taps16(*m_splat, x0, n_taps, w);
-        const float* la[4];
-        bool add_a[4];
-        const Spectrum* L[4];
-        for (int j = 0; j < n_jobs; ++j) la[j] = jobs[j].has_a ? jobs[j].la : nullptr, add_a[j] = jobs[j].add_a, L[j] = jobs[j].L;
-        accumulate(x, y, m, &w[0][0], n_jobs, la, add_a, L);
+        accumulate(x, y, m, &w[0][0], n_jobs, jobs);
         n_jobs = 0;
     };
     auto run = [&](float afx, float afy, const float* la, bool add_a, const FilmSample& b) {
-        Job& j = jobs[n_jobs++];
+        SplatJob& j = jobs[n_jobs++];
         j.afx = afx, j.afy = afy, j.bfx = b.fx, j.bfy = b.fy;
         j.has_a = la != nullptr, j.add_a = add_a, j.L = &b.L;
         for (int k = 0; k < 3; ++k) j.la[k] = la ? la[k] : 0.f;
@@ -442,20 +424,19 @@ __attribute__((target("avx2"))) void accumulate_avx2(const AccumulateBatch& b) {
 #endif
 }  // namespace
 
-// Accumulation k of n adds sample b (weights w[·][4k + 2], w[·][4k + 3], value L[k]) to the sums of
-// every target pixel; with a partner a (weights w[·][4k], w[·][4k + 1], value la[k]; null for none)
-// also the pair's differences, and a itself first if add_a[k]. The sums are updated in the order a,
+// Job k of n adds sample b (weights w[·][4k + 2], w[·][4k + 3], value *L) to the sums of every
+// target pixel; with a partner a (weights w[·][4k], w[·][4k + 1], value la, where has_a) also the
+// pair's differences, and a itself first if add_a. The sums are updated in the order a,
 // then b, accumulation after accumulation, so a pair gives the bits of two single calls and a batch
 // those of its accumulations one by one. Every variant does the same IEEE operations per element, in
 // the same order (no contraction: -ffp-contract=off), so all give the same bits.
-void Film::accumulate(int x, int y, int m, const float* w, int n, const float* const* la, const bool* add_a,
-                      const Spectrum* const* L) {
+void Film::accumulate(int x, int y, int m, const float* w, int n, const SplatJob* jobs) {
     static_assert(sizeof(SplatSums) == 4 * sizeof(double) && sizeof(SplatPairSums) == 8 * sizeof(double));
     AccumulateBatch b{reinterpret_cast<double*>(m_sums.data()), reinterpret_cast<double*>(m_pair_sums.data()),
                       m_width, m_height, x, y, m, n, w, {}, {}, {}};
     for (int k = 0; k < n; ++k) {
-        b.la[k] = la[k], b.add_a[k] = add_a[k];
-        for (int c = 0; c < 3; ++c) b.L[k][c] = (*L[k])[c];
+        b.la[k] = jobs[k].has_a ? jobs[k].la : nullptr, b.add_a[k] = jobs[k].add_a;
+        for (int c = 0; c < 3; ++c) b.L[k][c] = (*jobs[k].L)[c];
     }
 #ifdef PELLUCID_FILM_X86_VARIANTS
     if (m_variant == AccumulationVariant::AVX2) return accumulate_avx2(b);

@@ -148,11 +148,18 @@ private:
         uint64_t n = 0;
         float last_fx = 0, last_fy = 0, last_l[3] = {0, 0, 0};
     };
-    // n ≤ 4 accumulations at pixel (x, y), in order: accumulation k's weights (a column, a row, b
-    // column, b row) of tap t at w + 16 t + 4 k (eval_filter_taps16's rows), its partner's value
-    // la[k] (null: none), whether the partner is added too, and b's value *L[k].
-    void accumulate(int x, int y, int m, const float* w, int n, const float* const* la, const bool* add_a,
-                    const Spectrum* const* L);
+    // One accumulation of splat_pixel: sample b at (bfx, bfy) with value *L, and its partner a at
+    // (afx, afy) with value la where has_a (add_a: a is added to the sums here too; without a
+    // partner, a is b's own position).
+    struct SplatJob {
+        float afx, afy, bfx, bfy;
+        float la[3];
+        bool has_a, add_a;
+        const Spectrum* L;
+    };
+    // n ≤ 4 accumulations at pixel (x, y), in order; job k's weights (a column, a row, b column,
+    // b row) of tap t at w + 16 t + 4 k (eval_filter_taps16's rows).
+    void accumulate(int x, int y, int m, const float* w, int n, const SplatJob* jobs);
     // Estimate and variance of pixel i, channel k.
     void pixel_stats(size_t i, double mean[3], double var[3]) const;
 

@@ -128,13 +128,11 @@ enum class FilterTapsVariant { Baseline, AVX2, AVX512 };
 std::vector<FilterTapsVariant> filter_taps_variants();
 /// eval_filter_taps16 with the given variant (one of filter_taps_variants(); tests compare them).
 void eval_filter_taps16(const Filter& f, const float x0[16], int n, float (*w)[16], FilterTapsVariant variant);
-/// Four rows: eval_filter_taps16's, the same numbers.
-void eval_filter_taps4(const Filter& f, const float x0[4], int n, float (*w)[4]);
-/// w[i] = f(x0 + i) for i < n ≤ kMaxFilterTaps: one row of eval_filter_taps4, the same numbers.
+/// w[i] = f(x0 + i) for i < n ≤ kMaxFilterTaps: one row of eval_filter_taps16, the same numbers.
 inline void eval_filter_taps(const Filter& f, float x0, int n, float* w) {
-    float rows[kMaxFilterTaps][4];
-    const float x4[4] = {x0, x0, x0, x0};
-    eval_filter_taps4(f, x4, n, rows);
+    float x16[16], rows[kMaxFilterTaps][16];
+    for (float& v : x16) v = x0;
+    eval_filter_taps16(f, x16, n, rows);
     for (int i = 0; i < n; ++i) w[i] = rows[i][0];
 }
 inline float filter_radius(const Filter& f) {

@@ -262,15 +262,6 @@ bool texture_reads_footprint(const TextureList& list, uint32_t id) {
     }, list[id]);
 }
 
-bool texture_has_luminance_gradient(const TextureList& list, uint32_t id) {
-    return std::visit([&](const auto& t) -> bool {
-        using T = std::decay_t<decltype(t)>;
-        if constexpr (std::is_same_v<T, ConstantTexture> || std::is_same_v<T, ImageTexture>) return true;
-        else if constexpr (std::is_same_v<T, ScaleTexture>) return texture_has_luminance_gradient(list, t.texture);
-        else return false;
-    }, list[id]);
-}
-
 bool texture_luminance_gradient_uv(const TextureList& list, uint32_t id, const TextureEvalContext& ctx, float* dfdu,
                                    float* dfdv) {
     Spectrum du, dv;
@@ -278,6 +269,12 @@ bool texture_luminance_gradient_uv(const TextureList& list, uint32_t id, const T
     *dfdu = du.luminance();
     *dfdv = dv.luminance();
     return true;
+}
+
+bool texture_has_luminance_gradient(const TextureList& list, uint32_t id) {
+    // Whether bilinear_gradient_uv answers depends on the texture's type only, not on the context.
+    float du, dv;
+    return texture_luminance_gradient_uv(list, id, TextureEvalContext{}, &du, &dv);
 }
 
 std::string to_string(const Texture& tex) {

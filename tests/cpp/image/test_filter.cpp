@@ -1,7 +1,7 @@
 // The Gaussian pixel filter's two profiles (image/filter.h): values at known points, the shifted
 // profile against Mitsuba 3's, continuity at the radius, and filter sampling from the shifted
 // profile (χ² against the profile, α = 0.01 over the four histograms; monotone in u), and the Mitsuba
-// importer's choice of it; the film's splat weights (eval_filter_taps4) against the profile on a
+// importer's choice of it; the film's splat weights (eval_filter_taps16) against the profile on a
 // dense grid, the independence of their four rows, and their bits against the recurrence written
 // out one row at a time.
 // SPDX-License-Identifier: Apache-2.0
@@ -186,19 +186,19 @@ TEST(GaussianFilter, SplatWeightsOnADenseGrid) {
         }
 }
 
-// The four rows of one eval_filter_taps4 call (sixteen of eval_filter_taps16) are independent: each equals, bit for bit, the row
-// evaluated alone (the film evaluates a pixel's waiting sample again, beside its partner, and
-// must get the weights it splatted it with).
+// The sixteen rows of one eval_filter_taps16 call are independent: each equals, bit for bit, the
+// row evaluated alone (the film evaluates a pixel's waiting sample again, beside its partner and
+// other pairs, and must get the weights it splatted it with).
 TEST(GaussianFilter, SplatWeightRowsAreIndependent) {
     PCG32 rng(11, 5);
     for (const Filter& f : {Filter(GaussianFilter(0.5f, true)), Filter(GaussianFilter(1.2f)), Filter(TentFilter{1.5f})}) {
         const int n = 2 * int(std::ceil(filter_radius(f) - 0.5f)) + 1;
         for (int trial = 0; trial < 1000; ++trial) {
-            float x0[4];
+            float x0[16];
             for (float& v : x0) v = float(-n / 2) + 0.5f - rng.next_float();
-            float rows[kMaxFilterTaps][4], alone[kMaxFilterTaps];
-            eval_filter_taps4(f, x0, n, rows);
-            for (int r = 0; r < 4; ++r) {
+            float rows[kMaxFilterTaps][16], alone[kMaxFilterTaps];
+            eval_filter_taps16(f, x0, n, rows);
+            for (int r = 0; r < 16; ++r) {
                 eval_filter_taps(f, x0[r], n, alone);
                 for (int i = 0; i < n; ++i) ASSERT_EQ(std::memcmp(&rows[i][r], &alone[i], 4), 0) << to_string(f) << " row " << r;
             }
