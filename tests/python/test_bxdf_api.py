@@ -56,7 +56,7 @@ def test_shapes_and_consistency(desc: dict) -> None:
     np.testing.assert_allclose(f[ok] / p[ok, None], s.weight[ok], rtol=2e-3, atol=1e-5)
     # Sampled lobes are a subset of the declared flags.
     assert np.all((s.lobe & ~np.uint32(b.flags)) == 0)
-    assert repr(b).startswith("bsdf(") and "Material[" in repr(b)
+    assert repr(b).startswith("bsdf(" + desc["type"] + "[") and " -> " in repr(b)
 
 
 def test_lambertian_albedo_equals_reflectance() -> None:

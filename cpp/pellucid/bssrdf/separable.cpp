@@ -11,20 +11,22 @@
 
 namespace pellucid {
 
-void subsurface_coefficients(const SubsurfaceParams& p, bssrdf::Diffusion model, Spectrum* sigma_a, Spectrum* sigma_s) {
+void subsurface_coefficients(const SubsurfaceParams& p, const TexEval& tex, bssrdf::Diffusion model, Spectrum* sigma_a,
+                             Spectrum* sigma_s) {
     if (!p.from_albedo) {
-        *sigma_a = p.sigma_a * p.scale;
-        *sigma_s = p.sigma_s * p.scale;
+        *sigma_a = tex(p.sigma_a) * p.scale;
+        *sigma_s = tex(p.sigma_s) * p.scale;
         return;
     }
     // The reduced coefficients come from the inversion; σs = σ's/(1 − g).
-    const float one_minus_g = 1.f - p.g;
+    const float one_minus_g = 1.f - tex(p.g), eta = relative_eta(p.boundary, tex);
+    const Spectrum albedo = tex(p.albedo), mfp_rgb = tex(p.mfp);
     for (int c = 0; c < 3; ++c) {
-        const float mfp = p.mfp[c];
+        const float mfp = mfp_rgb[c];
         float sa = 0.f, ss = 0.f;
-        if (p.albedo[c] >= 1.f) {
+        if (albedo[c] >= 1.f) {
             ss = 1.f / mfp;  // lossless: σ't = σ's = 1/mfp
-        } else if (!bssrdf::from_diffuse(model, p.albedo[c], mfp, 0.f, p.eta(), &sa, &ss)) {
+        } else if (!bssrdf::from_diffuse(model, albedo[c], mfp, 0.f, eta, &sa, &ss)) {
             sa = 1.f / mfp;  // albedo 0 (or below the model's range): an absorber
             ss = 0.f;
         }
@@ -33,15 +35,17 @@ void subsurface_coefficients(const SubsurfaceParams& p, bssrdf::Diffusion model,
     }
 }
 
-SeparableBSSRDF make_separable_bssrdf(const SubsurfaceParams& p, bssrdf::Diffusion model, uint32_t shape) {
+SeparableBSSRDF make_separable_bssrdf(const SubsurfaceParams& p, const TexEval& tex, bssrdf::Diffusion model,
+                                      uint32_t shape) {
     SeparableBSSRDF b;
     Spectrum sa, ss;
-    subsurface_coefficients(p, model, &sa, &ss);
-    b.eta = p.eta();
+    subsurface_coefficients(p, tex, model, &sa, &ss);
+    const float g = tex(p.g);
+    b.eta = relative_eta(p.boundary, tex);
     b.exit_norm = bssrdf::exit_lobe_norm(b.eta);
     const bssrdf::BoundaryMoments moments = bssrdf::boundary_moments(b.eta);
     for (int c = 0; c < 3; ++c) {
-        b.profile[c] = bssrdf::Profile::make(model, sa[c], ss[c], p.g, moments);
+        b.profile[c] = bssrdf::Profile::make(model, sa[c], ss[c], g, moments);
         b.r_max[c] = b.profile[c].r_max();
     }
     b.shape = shape;
@@ -51,10 +55,10 @@ SeparableBSSRDF make_separable_bssrdf(const SubsurfaceParams& p, bssrdf::Diffusi
 
 SeparableBSSRDF bssrdf_at(const Scene& scene, const SeparableBSSRDF& b, const SurfaceInteraction& si) {
     const MaterialTextures& mt = scene.material_textures[si.material_id];
-    const auto* m = std::get_if<SubsurfaceMaterial>(&scene.materials[si.material_id]);
-    if (!mt.has_bindings() || !m) return b;
+    const auto* m = std::get_if<SubsurfaceParams>(&scene.materials[si.material_id]);
+    if (!mt.has_textured_params() || !m) return b;
     const TextureEvalContext ctx = texture_eval_context(si);
-    return make_separable_bssrdf(get_textured_subsurface_params(*m, mt, scene.textures, ctx), b.model, b.shape);
+    return make_separable_bssrdf(*m, TexEval(scene.textures, ctx), b.model, b.shape);
 }
 
 Spectrum SeparableBSSRDF::sp(float r) const {

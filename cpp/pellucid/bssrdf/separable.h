@@ -35,7 +35,9 @@ class Scene;
 /// Per channel σa, σs (1/scene unit) and g of a `subsurface` material: its sigma_a/sigma_s × scale,
 /// or its albedo + mfp inverted by the model's profile (bssrdf::from_diffuse; albedo 1: σa = 0).
 /// `model` is the diffusion model the inversion uses (the random walk uses the better dipole's).
-void subsurface_coefficients(const SubsurfaceParams& p, bssrdf::Diffusion model, Spectrum* sigma_a, Spectrum* sigma_s);
+/// The parameters are read through `tex` (TexEval{}: their constants).
+void subsurface_coefficients(const SubsurfaceParams& p, const TexEval& tex, bssrdf::Diffusion model, Spectrum* sigma_a,
+                             Spectrum* sigma_s);
 
 struct SeparableBSSRDF {
     bssrdf::Profile profile[3];
@@ -55,8 +57,10 @@ struct SeparableBSSRDF {
     bool exit_sample(const Vec2f& u, BxDFSample* out) const;
 };
 
-/// The BSSRDF of material parameters p under a diffusion model, for the given shape.
-SeparableBSSRDF make_separable_bssrdf(const SubsurfaceParams& p, bssrdf::Diffusion model, uint32_t shape);
+/// The BSSRDF of material parameters p, read through `tex`, under a diffusion model, for the given
+/// shape.
+SeparableBSSRDF make_separable_bssrdf(const SubsurfaceParams& p, const TexEval& tex, bssrdf::Diffusion model,
+                                      uint32_t shape);
 
 /// The BSSRDF at a hit of a material with textured parameters: b's model and shape with the
 /// material's parameters evaluated at si (its footprint set). b itself where nothing is textured.

@@ -20,8 +20,8 @@ Vec3f principled2012_detail::principled2012_gtr1_normal(float alpha, const Vec2f
     return spherical_direction(st, ct, 2.f * kPi * u.y);
 }
 
-Principled::Principled(const PrincipledParams& p) {
-    PrincipledParams c = p;
+Principled::Principled(const PrincipledInputs& p) {
+    PrincipledInputs c = p;
     c.base_color = clamp_zero(p.base_color);
     for (float* v : {&c.metallic, &c.roughness, &c.specular, &c.specular_tint, &c.sheen, &c.sheen_tint, &c.clearcoat,
                      &c.clearcoat_gloss, &c.anisotropic})

@@ -60,7 +60,7 @@ namespace pellucid {
 enum class PrincipledVariant : uint8_t { Burley2012, Burley2015 };
 
 /// Parameters of both models; the 2015 fields are read only by PrincipledBSDF.
-struct PrincipledParams {
+struct PrincipledInputs {
     Spectrum base_color{0.8f};
     float metallic = 0.f, roughness = 0.5f, specular = 0.5f, specular_tint = 0.f;
     float sheen = 0.f, sheen_tint = 0.5f, clearcoat = 0.f, clearcoat_gloss = 1.f, anisotropic = 0.f;
@@ -250,7 +250,7 @@ inline Principled2012T<F> principled2012_lanes(const MaskT<F>& where, Q q) {
 
 class Principled {
 public:
-    explicit Principled(const PrincipledParams& p = PrincipledParams{});
+    explicit Principled(const PrincipledInputs& p = PrincipledInputs{});
     Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
         return m_l.eval_pdf(ctx, wo, wi, true).f;
     }

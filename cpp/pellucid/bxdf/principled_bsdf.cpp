@@ -58,7 +58,7 @@ Spectrum PrincipledBSDF::schlick(const Spectrum& r0, float cos_i, float eta) {
     return principled_detail::schlick<float>(r0, cos_i, eta);
 }
 
-PrincipledBSDF::PrincipledBSDF(const PrincipledParams& p) : m_spec(1.f), m_trans(1.f) {
+PrincipledBSDF::PrincipledBSDF(const PrincipledInputs& p) : m_spec(1.f), m_trans(1.f) {
     m_thin = p.thin;
     m_base = clamp_zero(p.base_color);
     for (int c = 0; c < 3; ++c)

@@ -378,7 +378,7 @@ class PrincipledBSDF {
 public:
     /// Reads the 2015 fields of `p` (the `variant` field is not consulted). Scalars are clamped to
     /// their ranges ([0, 1]; diffuse_transmission [0, 2]; η > 0).
-    explicit PrincipledBSDF(const PrincipledParams& p = PrincipledParams{});
+    explicit PrincipledBSDF(const PrincipledInputs& p = PrincipledInputs{});
     Spectrum eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
     float pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
     std::optional<BxDFSample> sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe, const Vec2f& u) const;

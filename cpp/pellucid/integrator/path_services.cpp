@@ -176,9 +176,9 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
         const MaterialTextures& mt = scene.material_textures[m];
         if (!mt.two_sided) continue;
         // A subsurface boundary's transmission goes through the probe (subsurface_entry).
-        if (std::holds_alternative<SubsurfaceMaterial>(scene.materials[m])) continue;
+        if (std::holds_alternative<SubsurfaceParams>(scene.materials[m])) continue;
         const BxDF& b = scene.material_bxdfs[m];
-        if (mt.has_bindings() || mt.perturbs_normal()) {
+        if (mt.has_textured_params() || mt.perturbs_normal()) {
             // Built at each hit (textures, a bump or normal map): the packet form of the model shades
             // it where its BSDF there has one (packet_form).
             float q[kPacketParams];

@@ -20,8 +20,7 @@ BxDFContext context_for(const std::string& mode) {
 BSDFProbe BSDFProbe::from_desc(const Node& node, const std::string& mode, const std::string& source) {
     BxDFContext ctx = context_for(mode);
     Material m = build_material(node, source, "");
-    SurfaceInteraction si;
-    BxDF b = get_bxdf(m, si);
+    BxDF b = make_bxdf(m);
     return BSDFProbe{std::move(m), std::move(b), ctx};
 }
 

@@ -13,7 +13,7 @@ class Node;
 
 struct BSDFProbe {
     Material material;
-    BxDF bxdf;        ///< get_bxdf at a default SurfaceInteraction (local frame = world frame, uv = 0)
+    BxDF bxdf;        ///< make_bxdf of its constants (local frame = world frame)
     BxDFContext ctx;  ///< transport mode; all lobes allowed
 
     /// `node` is one material object (`{"type": "rough_conductor", ...}`); mode is "radiance" or

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <type_traits>
 
 #include "pellucid/bxdf/ior.h"
 #include "pellucid/scene/properties.h"
@@ -14,7 +15,6 @@
 #include "pellucid/util/log.h"
 #include "pellucid/material/textured.h"
 #include "pellucid/scene/texture_builder.h"
-#include <type_traits>
 
 namespace pellucid {
 namespace {
@@ -35,40 +35,38 @@ float read_nonneg(Properties& p, const std::string& key, float def, float hi) {
     return v;
 }
 
-/// Reads a material's parameters into its Params struct `q`; a parameter given as a texture (an
-/// object with a "type", or the name of one of the scene's textures) is recorded as a binding to
-/// its field in q (material/textured.h), and the field keeps its default as the constant value.
+/// Reads a material's parameters into its Params fields; a parameter given as a texture (an object
+/// with a "type", or the name of one of the scene's textures) binds its Tex field to that texture
+/// (material/tex.h), which keeps its default as the constant value, and lists the texture in the
+/// material's MaterialTextures.
 class Binder {
 public:
-    template <class P>
-    Binder(Properties& p, const BuildContext& ctx, P& q)
-        : m_p(p), m_ctx(ctx), m_base(reinterpret_cast<char*>(&q)), m_size(sizeof(P)) {
-        static_assert(std::is_standard_layout_v<P>, "texture bindings address Params fields by byte offset");
-    }
+    Binder(Properties& p, const BuildContext& ctx) : m_p(p), m_ctx(ctx) {}
     Properties& props() { return m_p; }
 
     /// A colour with channels in [lo, hi] (error outside).
-    void colour(const std::string& key, Spectrum& field, float lo = 0.f, float hi = 1.f) {
-        if (bind(key, &field, TextureBinding::Kind::Spectrum, TextureBinding::Op::Identity, lo, hi, true, false)) return;
-        field = m_p.get_spectrum(key, field);
-        m_p.check_spectrum_range(key, field, lo, hi);
+    void colour(const std::string& key, Tex<Spectrum>& field, float lo = 0.f, float hi = 1.f) {
+        if (bind(key, field, TexMap::Identity, lo, hi, true, false)) return;
+        field.value = m_p.get_spectrum(key, field.value);
+        m_p.check_spectrum_range(key, field.value, lo, hi);
     }
-    /// A float ≥ 0 (error below 0), clamped to `hi` with a warning; op maps the value (r → r²).
-    bool nonneg(const std::string& key, float& field, float hi, TextureBinding::Op op = TextureBinding::Op::Identity) {
-        if (bind(key, &field, TextureBinding::Kind::Float, op, 0.f, hi, true)) return true;
-        float v = read_nonneg(m_p, key, field, hi);
-        field = op == TextureBinding::Op::Square ? v * v : v;
+    /// A float ≥ 0 (error below 0), clamped to `hi` with a warning; `map` maps the value (r → r²).
+    bool nonneg(const std::string& key, Tex<float>& field, float hi, TexMap map = TexMap::Identity) {
+        if (bind(key, field, map, 0.f, hi, true)) return true;
+        float v = read_nonneg(m_p, key, field.value, hi);
+        field.value = map == TexMap::Square ? v * v : v;
         return false;
     }
     /// A float in [lo, hi] (error outside).
-    void range(const std::string& key, float& field, float lo, float hi) {
-        if (bind(key, &field, TextureBinding::Kind::Float, TextureBinding::Op::Identity, lo, hi, true, false)) return;
-        field = m_p.check_range(key, m_p.get_float(key, field), lo, hi);
+    void range(const std::string& key, Tex<float>& field, float lo, float hi) {
+        if (bind(key, field, TexMap::Identity, lo, hi, true, false)) return;
+        field.value = m_p.check_range(key, m_p.get_float(key, field.value), lo, hi);
     }
     /// Bind `key` to `field` if its value is a texture; true if it was. The texture's values must lie
     /// in [lo, hi] (TextureBuilder::check_range); above hi they are clamped when `clamp_high`.
-    bool bind(const std::string& key, void* field, TextureBinding::Kind kind, TextureBinding::Op op, float lo,
-              float hi, bool names_ok, bool clamp_high = true) {
+    template <class T>
+    bool bind(const std::string& key, Tex<T>& field, TexMap map, float lo, float hi, bool names_ok,
+              bool clamp_high = true) {
         if (!m_p.has(key)) return false;
         const Node* n = m_p.get_node(key);
         bool is_tex = n->is_object() || (names_ok && m_ctx.textures && m_ctx.textures->is_texture(*n, true));
@@ -76,35 +74,25 @@ public:
         if (!m_ctx.textures || !m_ctx.material_textures)
             m_p.fail(key, "a texture is only allowed in a scene (this interface takes constant parameters)");
         MaterialTextures& mt = *m_ctx.material_textures;
-        if (mt.count >= MaterialTextures::kMaxBindings)
-            m_p.fail(key, "too many textured parameters (at most " + std::to_string(MaterialTextures::kMaxBindings) + ")");
+        if (mt.count >= MaterialTextures::kMaxTextured)
+            m_p.fail(key, "too many textured parameters (at most " + std::to_string(MaterialTextures::kMaxTextured) + ")");
         uint32_t id = m_ctx.textures->texture(*n, m_p.key_path(key));
-        m_ctx.textures->check_range(id, m_p.key_path(key), lo, hi, kind == TextureBinding::Kind::Float, clamp_high);
-        ptrdiff_t off = static_cast<char*>(field) - m_base;
-        PELLUCID_CHECK(off >= 0 && size_t(off) < m_size, "texture binding outside its Params struct");
-        mt.bindings[mt.count++] = TextureBinding{id, uint16_t(off), kind, op, lo, hi};
-        last_bound = mt.count - 1;
+        m_ctx.textures->check_range(id, m_p.key_path(key), lo, hi, std::is_same_v<T, float>, clamp_high);
+        field.texture = int32_t(id);
+        field.map = map;
+        field.lo = lo;
+        field.hi = hi;
+        mt.bound[mt.count++] = id;
         return true;
     }
-    /// The same texture bound to a second field (alpha → alpha_u and alpha_v).
-    void duplicate_last(void* field) {
-        MaterialTextures& mt = *m_ctx.material_textures;
-        PELLUCID_CHECK(mt.count < MaterialTextures::kMaxBindings, "too many texture bindings");
-        TextureBinding b = mt.bindings[last_bound];
-        b.offset = uint16_t(static_cast<char*>(field) - m_base);
-        mt.bindings[mt.count++] = b;
-    }
-    int last_bound = -1;
 
 private:
     Properties& m_p;
     const BuildContext& m_ctx;
-    char* m_base;
-    size_t m_size;
 };
 
 /// An IOR: a number > 0, a name of bxdf/ior.h, or a texture (values clamped to [1e-3, 10]).
-void read_ior(Binder& b, const std::string& key, const char* def_name, float& field) {
+void read_ior(Binder& b, const std::string& key, const char* def_name, Tex<float>& field) {
     Properties& p = b.props();
     const Node* n = p.has(key) ? p.get_node(key) : nullptr;
     if (!n) {
@@ -117,10 +105,10 @@ void read_ior(Binder& b, const std::string& key, const char* def_name, float& fi
             field = dielectric_ior(n->as_string());
             return;
         }
-        if (b.bind(key, &field, TextureBinding::Kind::Float, TextureBinding::Op::Identity, 1e-3f, 10.f, true)) return;
+        if (b.bind(key, field, TexMap::Identity, 1e-3f, 10.f, true)) return;
         p.fail(key, "unknown IOR name '" + n->as_string() + "' (known: " + join_names(names) + ")");
     }
-    if (b.bind(key, &field, TextureBinding::Kind::Float, TextureBinding::Op::Identity, 1e-3f, 10.f, false)) return;
+    if (b.bind(key, field, TexMap::Identity, 1e-3f, 10.f, false)) return;
     if (!n->is_number()) p.fail(key, std::string("expected a number or an IOR name, got a ") + n->kind_name());
     float v = float(n->as_number());
     if (!(v > 0.f) || !std::isfinite(v)) p.fail(key, "value " + format_float(v) + " must be > 0");
@@ -138,28 +126,22 @@ void read_microfacet(Binder& b, MicrofacetParams& m) {
     bool has_alpha = p.has("alpha"), has_uv = p.has("alpha_u") || p.has("alpha_v"), has_r = p.has("roughness");
     if (int(has_alpha) + int(has_uv) + int(has_r) > 1)
         p.fail(has_r ? "roughness" : "alpha_u", "give only one of alpha, alpha_u/alpha_v, roughness");
-    using Op = TextureBinding::Op;
     if (has_r || has_alpha) {
         // roughness: α = r² (Burley 2012 §5.4, microfacet.h alpha_from_roughness).
+        // A bound texture keeps the default α = 0.1 as its constant.
         const char* key = has_r ? "roughness" : "alpha";
-        Op op = has_r ? Op::Square : Op::Identity;
-        if (b.bind(key, &m.alpha_u, TextureBinding::Kind::Float, op, 0.f, 1.f, true)) {
-            b.duplicate_last(&m.alpha_v);
-            return;
+        if (!b.bind(key, m.alpha_u, has_r ? TexMap::Square : TexMap::Identity, 0.f, 1.f, true)) {
+            float v = read_nonneg(p, key, has_r ? 0.f : 0.1f, 1.f);
+            m.alpha_u = has_r ? v * v : v;
         }
-        float v = read_nonneg(p, key, has_r ? 0.f : 0.1f, 1.f);
-        m.alpha_u = m.alpha_v = has_r ? v * v : v;
+        m.alpha_v = m.alpha_u;  // one texture (or constant) for both
         return;
     }
     if (has_uv) {
         if (!p.has("alpha_u")) p.fail("", "missing required key 'alpha_u' (alpha_v given)");
-        bool u_bound = b.nonneg("alpha_u", m.alpha_u, 1.f);
-        if (p.has("alpha_v")) {
-            b.nonneg("alpha_v", m.alpha_v, 1.f);
-        } else {
-            m.alpha_v = m.alpha_u;
-            if (u_bound) b.duplicate_last(&m.alpha_v);
-        }
+        b.nonneg("alpha_u", m.alpha_u, 1.f);
+        if (p.has("alpha_v")) b.nonneg("alpha_v", m.alpha_v, 1.f);
+        else m.alpha_v = m.alpha_u;
         return;
     }
     m.alpha_u = m.alpha_v = 0.1f;
@@ -176,15 +158,15 @@ void read_conductor_ior(Binder& b, ConductorIORParams& c) {
         c.eta = Spectrum(1.f);
         c.k = Spectrum(0.f);
         // Textured eta is clamped to [1e-3, 100], k to [0, 100].
-        if (!b.bind("eta", &c.eta, TextureBinding::Kind::Spectrum, TextureBinding::Op::Identity, 1e-3f, 100.f, true)) {
+        if (!b.bind("eta", c.eta, TexMap::Identity, 1e-3f, 100.f, true)) {
             c.eta = p.get_spectrum("eta", Spectrum(1.f));
             for (int i = 0; i < 3; ++i)
-                if (!(c.eta[i] > 0.f)) p.fail("eta", "value " + format_float(c.eta[i]) + " must be > 0");
+                if (!(c.eta.value[i] > 0.f)) p.fail("eta", "value " + format_float(c.eta.value[i]) + " must be > 0");
         }
-        if (!b.bind("k", &c.k, TextureBinding::Kind::Spectrum, TextureBinding::Op::Identity, 0.f, 100.f, true)) {
+        if (!b.bind("k", c.k, TexMap::Identity, 0.f, 100.f, true)) {
             c.k = p.get_spectrum("k", Spectrum(0.f));
             for (int i = 0; i < 3; ++i)
-                if (c.k[i] < 0.f) p.fail("k", "value " + format_float(c.k[i]) + " must be >= 0");
+                if (c.k.value[i] < 0.f) p.fail("k", "value " + format_float(c.k.value[i]) + " must be >= 0");
         }
         return;
     }
@@ -220,36 +202,29 @@ void read_plastic(Binder& b, PlasticParams& q) {
 }
 
 /// coat_transmittance of rough_plastic. "rough" tabulates the coat once per material (bxdf/plastic.h,
-/// RoughCoatTable): a textured α or IOR would need a table per hit, so it is an error (checked on the
-/// texture bindings recorded for q's α and IOR fields).
-void read_coat_transmittance(Properties& p, const BuildContext& ctx, RoughPlasticParams& q) {
+/// RoughCoatTable): a textured α or IOR would need a table per hit, so it is an error (checked on
+/// q's α and IOR fields).
+void read_coat_transmittance(Properties& p, RoughPlasticParams& q) {
     std::string c = p.get_choice("coat_transmittance", "smooth", "coat transmittance", {"smooth", "rough"});
     q.coat_transmittance = c == "rough" ? CoatTransmittance::Rough : CoatTransmittance::Smooth;
     if (q.coat_transmittance != CoatTransmittance::Rough) return;
     if (q.plastic.variant == PlasticVariant::Sum)
         p.fail("coat_transmittance", "'rough' is not used by variant 'sum' (use 'coupled' or 'linear')");
-    if (!ctx.material_textures) return;
-    const char* base = reinterpret_cast<const char*>(&q);
-    auto off = [&](const void* f) { return size_t(static_cast<const char*>(f) - base); };
-    const MaterialTextures& mt = *ctx.material_textures;
-    for (int i = 0; i < mt.count; ++i) {
-        size_t o = mt.bindings[i].offset;
-        std::string key;
-        if (o == off(&q.plastic.int_ior)) key = "int_ior";
-        else if (o == off(&q.plastic.ext_ior)) key = "ext_ior";
-        else if (o == off(&q.microfacet.alpha_u) || o == off(&q.microfacet.alpha_v))
-            for (const char* k : {"roughness", "alpha", "alpha_u", "alpha_v"})
-                if (key.empty() && p.has(k)) key = k;
-        if (!key.empty())
-            p.fail(key, "a texture is not allowed with coat_transmittance 'rough' (the coat's transmittance "
-                        "table is built once per material; give a constant, or use coat_transmittance 'smooth')");
-    }
+    const char* key = q.plastic.int_ior.textured()   ? "int_ior"
+                      : q.plastic.ext_ior.textured() ? "ext_ior"
+                                                     : nullptr;
+    if (!key && (q.microfacet.alpha_u.textured() || q.microfacet.alpha_v.textured()))
+        for (const char* k : {"roughness", "alpha", "alpha_u", "alpha_v"})
+            if (!key && p.has(k)) key = k;
+    if (key)
+        p.fail(key, "a texture is not allowed with coat_transmittance 'rough' (the coat's transmittance "
+                    "table is built once per material; give a constant, or use coat_transmittance 'smooth')");
 }
 }  // namespace
 
 Material build_lambertian(Properties& p, const BuildContext& ctx) {
-    DiffuseMaterial m;
-    Binder b(p, ctx, m);
+    LambertianParams m;
+    Binder b(p, ctx);
     m.reflectance = Spectrum(0.5f);
     b.colour("reflectance", m.reflectance);
     return m;
@@ -257,7 +232,7 @@ Material build_lambertian(Properties& p, const BuildContext& ctx) {
 
 Material build_oren_nayar(Properties& p, const BuildContext& ctx) {
     OrenNayarParams q;
-    Binder b(p, ctx, q);
+    Binder b(p, ctx);
     q.reflectance = Spectrum(0.5f);
     b.colour("reflectance", q.reflectance);
     std::string v = p.get_choice("variant", "eon", "variant", {"eon", "classic"});
@@ -272,16 +247,16 @@ Material build_oren_nayar(Properties& p, const BuildContext& ctx) {
         q.roughness = 0.5f;
         b.nonneg("roughness", q.roughness, 1.f);
     }
-    return OrenNayarMaterial(q);
+    return q;
 }
 
 Material build_conductor(Properties& p, const BuildContext& ctx) {
     ConductorParams q;
-    Binder b(p, ctx, q);
+    Binder b(p, ctx);
     read_conductor_ior(b, q.ior);
     q.specular_reflectance = Spectrum(1.f);
     b.colour("specular_reflectance", q.specular_reflectance);
-    return ConductorMaterial(q);
+    return q;
 }
 
 // Kulla-Conty energy compensation: our albedo tables are tabulated for GGX only.
@@ -299,39 +274,39 @@ bool read_multiple_scattering(Properties& p, const MicrofacetParams& m) {
 
 Material build_rough_conductor(Properties& p, const BuildContext& ctx) {
     RoughConductorParams q;
-    Binder b(p, ctx, q);
+    Binder b(p, ctx);
     read_microfacet(b, q.microfacet);
     read_conductor_ior(b, q.ior);
     q.specular_reflectance = Spectrum(1.f);
     b.colour("specular_reflectance", q.specular_reflectance);
     q.multiple_scattering = read_multiple_scattering(p, q.microfacet);
-    return RoughConductorMaterial(q);
+    return q;
 }
 
 Material build_dielectric(Properties& p, const BuildContext& ctx) {
     DielectricParams q;
-    Binder b(p, ctx, q);
+    Binder b(p, ctx);
     read_dielectric(b, q);
-    return DielectricMaterial(q);
+    return q;
 }
 Material build_thin_dielectric(Properties& p, const BuildContext& ctx) {
-    DielectricParams q;
-    Binder b(p, ctx, q);
+    ThinDielectricParams q;
+    Binder b(p, ctx);
     read_dielectric(b, q);
-    return ThinDielectricMaterial(q);
+    return q;
 }
 Material build_rough_dielectric(Properties& p, const BuildContext& ctx) {
     RoughDielectricParams q;
-    Binder b(p, ctx, q);
+    Binder b(p, ctx);
     read_microfacet(b, q.microfacet);
     read_dielectric(b, q.dielectric);
     q.multiple_scattering = read_multiple_scattering(p, q.microfacet);
-    return RoughDielectricMaterial(q);
+    return q;
 }
 
 Material build_subsurface(Properties& p, const BuildContext& ctx) {
     SubsurfaceParams q;
-    Binder b(p, ctx, q);
+    Binder b(p, ctx);
     const std::string model =
         p.get_choice("model", "auto", "model", {"auto", "dipole", "better_dipole", "random_walk", "coated"});
     q.model = model == "dipole"          ? SubsurfaceModel::Dipole
@@ -361,27 +336,27 @@ Material build_subsurface(Properties& p, const BuildContext& ctx) {
             p.fail("scale", "value " + format_float(q.scale) + " must be > 0 and finite");
     }
     b.range("g", q.g, -0.999f, 0.999f);
-    return SubsurfaceMaterial(q);
+    return q;
 }
 
 Material build_plastic(Properties& p, const BuildContext& ctx) {
     PlasticParams q;
-    Binder b(p, ctx, q);
+    Binder b(p, ctx);
     read_plastic(b, q);
-    return PlasticMaterial(q);
+    return q;
 }
 Material build_rough_plastic(Properties& p, const BuildContext& ctx) {
     RoughPlasticParams q;
-    Binder b(p, ctx, q);
+    Binder b(p, ctx);
     read_microfacet(b, q.microfacet);
     read_plastic(b, q.plastic);
-    read_coat_transmittance(p, ctx, q);
-    return RoughPlasticMaterial(q);
+    read_coat_transmittance(p, q);
+    return q;
 }
 
 Material build_principled(Properties& p, const BuildContext& ctx) {
     PrincipledParams q;
-    Binder b(p, ctx, q);
+    Binder b(p, ctx);
     std::string v = p.get_choice("variant", "2012", "variant", {"2012", "2015"});
     q.variant = v == "2015" ? PrincipledVariant::Burley2015 : PrincipledVariant::Burley2012;
     bool v2015 = q.variant == PrincipledVariant::Burley2015;
@@ -421,7 +396,7 @@ Material build_principled(Properties& p, const BuildContext& ctx) {
         }
         if (q.thin) b.range("diffuse_transmission", q.diffuse_transmission, 0.f, 2.f);
     }
-    return PrincipledMaterial(q);
+    return q;
 }
 
 namespace {
@@ -472,6 +447,7 @@ Material build_material(const Node& node, const BuildContext& ctx, const std::st
         p.fail("type", unknown_type_message("material", type, names));
     }
     Material m = it->second(p, ctx);
+    prepare_material(m);
     read_normal_perturbation(p, ctx);
     if (p.has("two_sided")) {
         if (!ctx.material_textures)

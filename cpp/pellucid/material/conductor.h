@@ -22,52 +22,25 @@
 // JSON: {"type": "rough_conductor", "material": "Al", "alpha_u": 0.05, "alpha_v": 0.3,
 //        "multiple_scattering": true}
 #pragma once
-#include <string>
-
 #include "pellucid/bxdf/bxdf.h"
-#include "pellucid/geometry/interaction.h"
 #include "pellucid/material/params.h"
 
 namespace pellucid {
 
+/// `conductor`.
 struct ConductorParams {
     ConductorIORParams ior;
-    Spectrum specular_reflectance{1.f};
+    Tex<Spectrum> specular_reflectance{Spectrum(1.f)};
 };
 
-class ConductorMaterial {
-public:
-    explicit ConductorMaterial(const ConductorParams& p) : m_p(p) {}
-    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
-    /// The BxDF of `p`: params() with textured fields written in (material/textured.h).
-    BxDF bxdf_for(const ConductorParams& p) const;
-    const ConductorParams& params() const { return m_p; }
-    std::string to_string() const;
-
-private:
-    ConductorParams m_p;
-};
-
+/// `rough_conductor`.
 struct RoughConductorParams {
     MicrofacetParams microfacet;
     ConductorIORParams ior;
-    Spectrum specular_reflectance{1.f};
+    Tex<Spectrum> specular_reflectance{Spectrum(1.f)};
     bool multiple_scattering = false;
-};
-
-class RoughConductorMaterial {
-public:
-    /// With multiple_scattering, computes Kulla–Conty's Fresnel average once.
-    explicit RoughConductorMaterial(const RoughConductorParams& p);
-    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
-    /// The BxDF of `p`: params() with textured fields written in (material/textured.h), reusing
-    /// the Fresnel average computed at construction while p's eta, k and fresnel are params()'s.
-    BxDF bxdf_for(const RoughConductorParams& p) const;
-    const RoughConductorParams& params() const { return m_p; }
-    std::string to_string() const;
-
-private:
-    RoughConductorParams m_p;
-    ConductorFresnelAverage m_fresnel_avg;  // fresnel.h
+    /// Derived at load (prepare_material): Kulla–Conty's Fresnel average of the constant η, k, used
+    /// wherever a hit's η, k are those (ConductorFresnelAverage::get).
+    ConductorFresnelAverage fresnel_avg;
 };
 }  // namespace pellucid

@@ -16,68 +16,29 @@
 // Kulla–Conty compensation of the reflection + transmission energy, ggx only; bxdf/kulla_conty.h).
 // JSON: {"type": "rough_dielectric", "int_ior": 1.5, "alpha": 0.3, "multiple_scattering": true}
 #pragma once
-#include <string>
-
 #include "pellucid/bxdf/bxdf.h"
-#include "pellucid/geometry/interaction.h"
 #include "pellucid/material/params.h"
 
 namespace pellucid {
 
+/// `dielectric`.
 struct DielectricParams {
-    float int_ior = 1.5046f, ext_ior = 1.000277f;
-    Spectrum specular_reflectance{1.f}, specular_transmittance{1.f};
-    float eta() const { return int_ior / ext_ior; }
-    std::string to_string() const;
+    Tex<float> int_ior{1.5046f}, ext_ior{1.000277f};
+    Tex<Spectrum> specular_reflectance{Spectrum(1.f)}, specular_transmittance{Spectrum(1.f)};
 };
+/// The relative IOR int_ior / ext_ior at a hit (or of the constants, TexEval{}).
+inline float relative_eta(const DielectricParams& p, const TexEval& tex) { return tex(p.int_ior) / tex(p.ext_ior); }
 
-class DielectricMaterial {
-public:
-    explicit DielectricMaterial(const DielectricParams& p) : m_p(p) {}
-    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
-    BxDF bxdf_for(const DielectricParams& p) const {
-        return SmoothDielectric(p.eta(), p.specular_reflectance, p.specular_transmittance);
-    }
-    const DielectricParams& params() const { return m_p; }
-    std::string to_string() const { return "DielectricMaterial[" + m_p.to_string() + "]"; }
+/// `thin_dielectric`: the parameters of `dielectric`.
+struct ThinDielectricParams : DielectricParams {};
 
-private:
-    DielectricParams m_p;
-};
-
-class ThinDielectricMaterial {
-public:
-    explicit ThinDielectricMaterial(const DielectricParams& p) : m_p(p) {}
-    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
-    BxDF bxdf_for(const DielectricParams& p) const {
-        return ThinDielectric(p.eta(), p.specular_reflectance, p.specular_transmittance);
-    }
-    const DielectricParams& params() const { return m_p; }
-    std::string to_string() const { return "ThinDielectricMaterial[" + m_p.to_string() + "]"; }
-
-private:
-    DielectricParams m_p;
-};
-
+/// `rough_dielectric`.
 struct RoughDielectricParams {
     MicrofacetParams microfacet;
     DielectricParams dielectric;
     bool multiple_scattering = false;
-};
-
-class RoughDielectricMaterial {
-public:
-    /// With multiple_scattering, computes the Kulla–Conty set-up's Fresnel average once.
-    explicit RoughDielectricMaterial(const RoughDielectricParams& p);
-    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
-    /// The BxDF of `p`: params() with textured fields written in (material/textured.h), reusing
-    /// the Fresnel average computed at construction while p's IOR is params()'s.
-    BxDF bxdf_for(const RoughDielectricParams& p) const;
-    const RoughDielectricParams& params() const { return m_p; }
-    std::string to_string() const;
-
-private:
-    RoughDielectricParams m_p;
-    DielectricFresnelAverage m_fresnel_avg;  // RoughDielectric::multiscatter_fresnel_average (fresnel.h)
+    /// Derived at load (prepare_material): the Kulla–Conty set-up's Fresnel average of the constant
+    /// η (RoughDielectric::multiscatter_fresnel_average), used wherever a hit's η is that one.
+    DielectricFresnelAverage fresnel_avg;
 };
 }  // namespace pellucid

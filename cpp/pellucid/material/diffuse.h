@@ -19,40 +19,21 @@
 // Lambertian. There is no mapping between σ and r: they are different models.
 // JSON: {"type": "oren_nayar", "reflectance": 0.7, "variant": "classic", "sigma": 30}
 #pragma once
-#include <string>
-
 #include "pellucid/bxdf/bxdf.h"
-#include "pellucid/geometry/interaction.h"
 #include "pellucid/material/params.h"
 
 namespace pellucid {
 
 /// `lambertian` (the default material of shapes without one).
-struct DiffuseMaterial {
-    Spectrum reflectance{0.5f};
-    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(*this); }
-    BxDF bxdf_for(const DiffuseMaterial& p) const { return Lambertian(p.reflectance); }
-    const DiffuseMaterial& params() const { return *this; }  ///< its own Params struct
-    std::string to_string() const { return "DiffuseMaterial[reflectance=" + format_spectrum(reflectance) + "]"; }
+struct LambertianParams {
+    Tex<Spectrum> reflectance{Spectrum(0.5f)};
 };
 
+/// `oren_nayar`.
 struct OrenNayarParams {
-    Spectrum reflectance{0.5f};
+    Tex<Spectrum> reflectance{Spectrum(0.5f)};
     OrenNayarVariant variant = OrenNayarVariant::EON;
-    float sigma_degrees = 20.f;  ///< classic
-    float roughness = 0.5f;      ///< eon
-};
-
-class OrenNayarMaterial {
-public:
-    explicit OrenNayarMaterial(const OrenNayarParams& p) : m_p(p) {}
-    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
-    /// The BxDF of `p`: params() with textured fields written in (material/textured.h).
-    BxDF bxdf_for(const OrenNayarParams& p) const;
-    const OrenNayarParams& params() const { return m_p; }
-    std::string to_string() const;
-
-private:
-    OrenNayarParams m_p;
+    Tex<float> sigma_degrees{20.f};  ///< classic
+    Tex<float> roughness{0.5f};      ///< eon
 };
 }  // namespace pellucid

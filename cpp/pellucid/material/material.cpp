@@ -1,4 +1,5 @@
-// Materials: their BxDFs built from Params (with the constants precomputed at construction) and to_string.
+// Materials: each model's BxDF from its Params (make_bxdf), the constants derived at load
+// (prepare_material) and to_string.
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/material/material.h"
 
@@ -18,138 +19,25 @@ std::string format_spectrum(const Spectrum& s) {
     if (s.r == s.g && s.g == s.b) return format_float(s.r);
     return "[" + format_float(s.r) + ", " + format_float(s.g) + ", " + format_float(s.b) + "]";
 }
+std::string format_tex(const Tex<float>& t) {
+    return t.textured() ? "texture " + std::to_string(t.texture) : format_float(t.value);
+}
+std::string format_tex(const Tex<Spectrum>& t) {
+    return t.textured() ? "texture " + std::to_string(t.texture) : format_spectrum(t.value);
+}
+
 std::string to_string(MicrofacetType t) { return t == MicrofacetType::GGX ? "ggx" : "beckmann"; }
 
 std::string MicrofacetParams::to_string() const {
     std::string s = "distribution=" + pellucid::to_string(distribution);
-    s += alpha_u == alpha_v ? ", alpha=" + format_float(alpha_u)
-                            : ", alpha_u=" + format_float(alpha_u) + ", alpha_v=" + format_float(alpha_v);
+    const bool iso = alpha_u.texture == alpha_v.texture && alpha_u.value == alpha_v.value;
+    s += iso ? ", alpha=" + format_tex(alpha_u) : ", alpha_u=" + format_tex(alpha_u) + ", alpha_v=" + format_tex(alpha_v);
     return shadowing == SmithShadowing::Separable ? s + ", shadowing=separable" : s;
 }
 std::string ConductorIORParams::to_string() const {
-    std::string s = preset < 0 ? "eta=" + format_spectrum(eta) + ", k=" + format_spectrum(k)
+    std::string s = preset < 0 ? "eta=" + format_tex(eta) + ", k=" + format_tex(k)
                                : "material=" + conductor_names().at(size_t(preset));
     return s + ", fresnel=" + (schlick ? "schlick" : "exact");
-}
-std::string DielectricParams::to_string() const {
-    return "int_ior=" + format_float(int_ior) + ", ext_ior=" + format_float(ext_ior) +
-           ", specular_reflectance=" + format_spectrum(specular_reflectance) +
-           ", specular_transmittance=" + format_spectrum(specular_transmittance);
-}
-std::string PlasticParams::to_string() const {
-    return "diffuse_reflectance=" + format_spectrum(diffuse_reflectance) +
-           ", specular_reflectance=" + format_spectrum(specular_reflectance) + ", int_ior=" + format_float(int_ior) +
-           ", ext_ior=" + format_float(ext_ior) + ", variant=" + pellucid::to_string(variant);
-}
-
-namespace {
-ConductorFresnel make_fresnel(const ConductorIORParams& p) {
-    return p.schlick ? ConductorFresnel::schlick_from(p.eta, p.k) : ConductorFresnel{p.eta, p.k};
-}
-BxDF make_oren_nayar(const OrenNayarParams& p) {
-    float rough = p.variant == OrenNayarVariant::Classic ? radians(p.sigma_degrees) : p.roughness;
-    return OrenNayar(p.reflectance, rough, p.variant);
-}
-template <class D>
-D make_distribution(const MicrofacetParams& m) {
-    return D(m.alpha_u, m.alpha_v, m.shadowing);
-}
-BxDF make_rough_conductor(const RoughConductorParams& p, const ConductorFresnelAverage* fresnel_avg) {
-    ConductorFresnel fr = make_fresnel(p.ior);
-    if (p.microfacet.distribution == MicrofacetType::Beckmann)
-        return RoughConductorBeckmann(make_distribution<Beckmann>(p.microfacet), fr, p.specular_reflectance);
-    return RoughConductor(make_distribution<GGX>(p.microfacet), fr, p.specular_reflectance, p.multiple_scattering,
-                          fresnel_avg);
-}
-// `distribution` picks the template argument (as make_rough_conductor); Kulla–Conty is GGX only
-// (the builder rejects beckmann + multiple_scattering).
-BxDF make_rough_dielectric(const RoughDielectricParams& p, const DielectricFresnelAverage* fresnel_avg) {
-    const DielectricParams& d = p.dielectric;
-    const MicrofacetParams& m = p.microfacet;
-    if (m.distribution == MicrofacetType::Beckmann)
-        return RoughDielectric<Beckmann>(make_distribution<Beckmann>(m), d.eta(), d.specular_reflectance,
-                                         d.specular_transmittance);
-    return RoughDielectric<GGX>(make_distribution<GGX>(m), d.eta(), d.specular_reflectance, d.specular_transmittance,
-                                p.multiple_scattering, fresnel_avg);
-}
-// RoughPlastic takes p.coat_table when it was built for p's α and η, and otherwise builds or finds
-// the table (bxdf/plastic.h).
-template <class D>
-RoughPlastic<D> make_rough_plastic(const RoughPlasticParams& p, const DielectricFresnelAverage* fresnel_avg) {
-    const PlasticParams& q = p.plastic;
-    return RoughPlastic<D>(make_distribution<D>(p.microfacet), q.int_ior / q.ext_ior, q.diffuse_reflectance,
-                           q.specular_reflectance, q.variant, p.coat_transmittance, p.coat_table, fresnel_avg);
-}
-}  // namespace
-
-BxDF OrenNayarMaterial::bxdf_for(const OrenNayarParams& p) const { return make_oren_nayar(p); }
-std::string OrenNayarMaterial::to_string() const {
-    bool classic = m_p.variant == OrenNayarVariant::Classic;
-    return "OrenNayarMaterial[reflectance=" + format_spectrum(m_p.reflectance) +
-           (classic ? ", variant=classic, sigma=" + format_float(m_p.sigma_degrees) + " deg"
-                    : ", variant=eon, roughness=" + format_float(m_p.roughness)) + "]";
-}
-
-BxDF ConductorMaterial::bxdf_for(const ConductorParams& p) const {
-    return SmoothConductor<ConductorFresnel>(make_fresnel(p.ior), p.specular_reflectance);
-}
-std::string ConductorMaterial::to_string() const {
-    return "ConductorMaterial[" + m_p.ior.to_string() +
-           ", specular_reflectance=" + format_spectrum(m_p.specular_reflectance) + "]";
-}
-
-RoughConductorMaterial::RoughConductorMaterial(const RoughConductorParams& p) : m_p(p) {
-    if (p.multiple_scattering && p.microfacet.distribution == MicrofacetType::GGX)
-        m_fresnel_avg = ConductorFresnelAverage::of(make_fresnel(p.ior));
-}
-BxDF RoughConductorMaterial::bxdf_for(const RoughConductorParams& p) const {
-    return make_rough_conductor(p, &m_fresnel_avg);
-}
-std::string RoughConductorMaterial::to_string() const {
-    return "RoughConductorMaterial[" + m_p.microfacet.to_string() + ", " + m_p.ior.to_string() +
-           ", specular_reflectance=" + format_spectrum(m_p.specular_reflectance) +
-           ", multiple_scattering=" + (m_p.multiple_scattering ? "true" : "false") + "]";
-}
-
-RoughDielectricMaterial::RoughDielectricMaterial(const RoughDielectricParams& p) : m_p(p) {
-    if (p.multiple_scattering && p.microfacet.distribution == MicrofacetType::GGX)
-        m_fresnel_avg = RoughDielectric<GGX>::multiscatter_fresnel_average(p.dielectric.eta());
-}
-BxDF RoughDielectricMaterial::bxdf_for(const RoughDielectricParams& p) const {
-    return make_rough_dielectric(p, &m_fresnel_avg);
-}
-std::string RoughDielectricMaterial::to_string() const {
-    return "RoughDielectricMaterial[" + m_p.microfacet.to_string() + ", " + m_p.dielectric.to_string() +
-           ", multiple_scattering=" + (m_p.multiple_scattering ? "true" : "false") + "]";
-}
-
-// The sum variant has no R̄ (bxdf/plastic.h), so no average to compute.
-PlasticMaterial::PlasticMaterial(const PlasticParams& p) : m_p(p) {
-    if (p.variant != PlasticVariant::Sum) m_fresnel_avg = DielectricFresnelAverage::of(p.int_ior / p.ext_ior);
-}
-BxDF PlasticMaterial::bxdf_for(const PlasticParams& p) const {
-    return SmoothPlastic(p.int_ior / p.ext_ior, p.diffuse_reflectance, p.specular_reflectance, p.variant,
-                         &m_fresnel_avg);
-}
-std::string PlasticMaterial::to_string() const { return "PlasticMaterial[" + m_p.to_string() + "]"; }
-
-// The coat table is resolved here, once, by building the BxDF: a textured material's per-hit BxDF
-// (material/textured.h) copies these Params and so reuses it. A rough coat's R̄ comes from its
-// table, not from the Fresnel average.
-RoughPlasticMaterial::RoughPlasticMaterial(const RoughPlasticParams& p) : m_p(p) {
-    const PlasticParams& q = p.plastic;
-    if (q.variant != PlasticVariant::Sum) m_fresnel_avg = DielectricFresnelAverage::of(q.int_ior / q.ext_ior);
-    m_p.coat_table = p.microfacet.distribution == MicrofacetType::Beckmann
-                         ? make_rough_plastic<Beckmann>(m_p, &m_fresnel_avg).base().coat_table()
-                         : make_rough_plastic<GGX>(m_p, &m_fresnel_avg).base().coat_table();
-}
-BxDF RoughPlasticMaterial::bxdf_for(const RoughPlasticParams& p) const {
-    if (p.microfacet.distribution == MicrofacetType::Beckmann) return make_rough_plastic<Beckmann>(p, &m_fresnel_avg);
-    return make_rough_plastic<GGX>(p, &m_fresnel_avg);
-}
-std::string RoughPlasticMaterial::to_string() const {
-    return "RoughPlasticMaterial[" + m_p.microfacet.to_string() + ", " + m_p.plastic.to_string() +
-           ", coat_transmittance=" + pellucid::to_string(m_p.coat_transmittance) + "]";
 }
 
 std::string to_string(SubsurfaceModel m) {
@@ -162,37 +50,202 @@ std::string to_string(SubsurfaceModel m) {
     }
     return "?";
 }
-std::string SubsurfaceParams::to_string() const {
-    std::string s = "model=" + pellucid::to_string(model) + ", int_ior=" + format_float(boundary.int_ior) +
-                    ", ext_ior=" + format_float(boundary.ext_ior);
-    s += from_albedo ? ", albedo=" + format_spectrum(albedo) + ", mfp=" + format_spectrum(mfp)
-                     : ", sigma_a=" + format_spectrum(sigma_a) + ", sigma_s=" + format_spectrum(sigma_s) +
-                           ", scale=" + format_float(scale);
-    s += ", g=" + format_float(g);
-    return rough ? s + ", " + microfacet.to_string() : s;
+
+namespace {
+ConductorFresnel make_fresnel(const ConductorIORParams& p, const TexEval& tex) {
+    const Spectrum eta = tex(p.eta), k = tex(p.k);
+    return p.schlick ? ConductorFresnel::schlick_from(eta, k) : ConductorFresnel{eta, k};
 }
-// The boundary has no Kulla–Conty term, hence no Fresnel average.
-BxDF SubsurfaceMaterial::bxdf_for(const SubsurfaceParams& p) const {
-    if (!p.rough) return SmoothDielectric(p.eta(), Spectrum(1.f), Spectrum(1.f));
-    RoughDielectricParams r;
-    r.microfacet = p.microfacet;
-    r.dielectric = p.boundary;
-    return make_rough_dielectric(r, nullptr);
+template <class D>
+D make_distribution(const MicrofacetParams& m, const TexEval& tex) {
+    return D(tex(m.alpha_u), tex(m.alpha_v), m.shadowing);
+}
+// `distribution` picks the template argument; Kulla–Conty is GGX only (the builder rejects
+// beckmann + multiple_scattering).
+BxDF make_rough_dielectric(const MicrofacetParams& m, const DielectricParams& d, bool multiple_scattering,
+                           const DielectricFresnelAverage* fresnel_avg, const TexEval& tex) {
+    const float eta = relative_eta(d, tex);
+    const Spectrum r = tex(d.specular_reflectance), t = tex(d.specular_transmittance);
+    if (m.distribution == MicrofacetType::Beckmann)
+        return RoughDielectric<Beckmann>(make_distribution<Beckmann>(m, tex), eta, r, t);
+    return RoughDielectric<GGX>(make_distribution<GGX>(m, tex), eta, r, t, multiple_scattering, fresnel_avg);
+}
+// RoughPlastic takes p.coat_table when it was built for the hit's α and η, and otherwise builds or
+// finds the table (bxdf/plastic.h).
+template <class D>
+RoughPlastic<D> make_rough_plastic(const RoughPlasticParams& p, const TexEval& tex) {
+    const PlasticParams& q = p.plastic;
+    return RoughPlastic<D>(make_distribution<D>(p.microfacet, tex), relative_eta(q, tex), tex(q.diffuse_reflectance),
+                           tex(q.specular_reflectance), q.variant, p.coat_transmittance, p.coat_table, &q.fresnel_avg);
+}
+std::string bool_string(bool b) { return b ? "true" : "false"; }
+std::string dielectric_string(const DielectricParams& d) {
+    return "int_ior=" + format_tex(d.int_ior) + ", ext_ior=" + format_tex(d.ext_ior) +
+           ", specular_reflectance=" + format_tex(d.specular_reflectance) +
+           ", specular_transmittance=" + format_tex(d.specular_transmittance);
+}
+std::string plastic_string(const PlasticParams& p) {
+    return "diffuse_reflectance=" + format_tex(p.diffuse_reflectance) +
+           ", specular_reflectance=" + format_tex(p.specular_reflectance) + ", int_ior=" + format_tex(p.int_ior) +
+           ", ext_ior=" + format_tex(p.ext_ior) + ", variant=" + pellucid::to_string(p.variant);
+}
+}  // namespace
+
+// ---- make_bxdf: one per model ----
+
+BxDF make_bxdf(const LambertianParams& p, const TexEval& tex) { return Lambertian(tex(p.reflectance)); }
+
+BxDF make_bxdf(const OrenNayarParams& p, const TexEval& tex) {
+    const bool classic = p.variant == OrenNayarVariant::Classic;
+    const float rough = classic ? radians(tex(p.sigma_degrees)) : tex(p.roughness);
+    return OrenNayar(tex(p.reflectance), rough, p.variant);
 }
 
-std::string PrincipledMaterial::to_string() const {
-    const PrincipledParams& p = m_p;
-    return "PrincipledMaterial[base_color=" + format_spectrum(p.base_color) + ", metallic=" + format_float(p.metallic) +
-           ", roughness=" + format_float(p.roughness) + ", specular=" + format_float(p.specular) +
-           ", specular_tint=" + format_float(p.specular_tint) + ", sheen=" + format_float(p.sheen) +
-           ", sheen_tint=" + format_float(p.sheen_tint) + ", clearcoat=" + format_float(p.clearcoat) +
-           ", clearcoat_gloss=" + format_float(p.clearcoat_gloss) + ", anisotropic=" + format_float(p.anisotropic) +
-           (p.variant == PrincipledVariant::Burley2015
-                ? ", variant=2015, specular_transmission=" + format_float(p.specular_transmission) +
-                      ", flatness=" + format_float(p.flatness) + ", eta=" +
-                      (p.eta > 0.f ? format_float(p.eta) : std::string("from specular")) +
-                      (p.thin ? ", thin, diffuse_transmission=" + format_float(p.diffuse_transmission) : "")
-                : std::string()) +
-           "]";
+BxDF make_bxdf(const ConductorParams& p, const TexEval& tex) {
+    return SmoothConductor<ConductorFresnel>(make_fresnel(p.ior, tex), tex(p.specular_reflectance));
+}
+
+BxDF make_bxdf(const RoughConductorParams& p, const TexEval& tex) {
+    const ConductorFresnel fr = make_fresnel(p.ior, tex);
+    const Spectrum ks = tex(p.specular_reflectance);
+    if (p.microfacet.distribution == MicrofacetType::Beckmann)
+        return RoughConductorBeckmann(make_distribution<Beckmann>(p.microfacet, tex), fr, ks);
+    return RoughConductor(make_distribution<GGX>(p.microfacet, tex), fr, ks, p.multiple_scattering, &p.fresnel_avg);
+}
+
+BxDF make_bxdf(const DielectricParams& p, const TexEval& tex) {
+    return SmoothDielectric(relative_eta(p, tex), tex(p.specular_reflectance), tex(p.specular_transmittance));
+}
+BxDF make_bxdf(const ThinDielectricParams& p, const TexEval& tex) {
+    return ThinDielectric(relative_eta(p, tex), tex(p.specular_reflectance), tex(p.specular_transmittance));
+}
+BxDF make_bxdf(const RoughDielectricParams& p, const TexEval& tex) {
+    return make_rough_dielectric(p.microfacet, p.dielectric, p.multiple_scattering, &p.fresnel_avg, tex);
+}
+
+BxDF make_bxdf(const PlasticParams& p, const TexEval& tex) {
+    return SmoothPlastic(relative_eta(p, tex), tex(p.diffuse_reflectance), tex(p.specular_reflectance), p.variant,
+                         &p.fresnel_avg);
+}
+BxDF make_bxdf(const RoughPlasticParams& p, const TexEval& tex) {
+    if (p.microfacet.distribution == MicrofacetType::Beckmann) return make_rough_plastic<Beckmann>(p, tex);
+    return make_rough_plastic<GGX>(p, tex);
+}
+
+BxDF make_bxdf(const PrincipledParams& p, const TexEval& tex) {
+    PrincipledInputs in;
+    in.base_color = tex(p.base_color);
+    in.metallic = tex(p.metallic);
+    in.roughness = tex(p.roughness);
+    in.specular = tex(p.specular);
+    in.specular_tint = tex(p.specular_tint);
+    in.sheen = tex(p.sheen);
+    in.sheen_tint = tex(p.sheen_tint);
+    in.clearcoat = tex(p.clearcoat);
+    in.clearcoat_gloss = tex(p.clearcoat_gloss);
+    in.anisotropic = tex(p.anisotropic);
+    in.specular_transmission = tex(p.specular_transmission);
+    in.flatness = tex(p.flatness);
+    in.diffuse_transmission = tex(p.diffuse_transmission);
+    in.eta = tex(p.eta);
+    in.variant = p.variant;
+    in.thin = p.thin;
+    return p.variant == PrincipledVariant::Burley2015 ? BxDF(PrincipledBSDF(in)) : BxDF(Principled(in));
+}
+
+// The boundary has no Kulla–Conty term, hence no Fresnel average.
+BxDF make_bxdf(const SubsurfaceParams& p, const TexEval& tex) {
+    if (!p.rough) return SmoothDielectric(relative_eta(p.boundary, tex), Spectrum(1.f), Spectrum(1.f));
+    return make_rough_dielectric(p.microfacet, p.boundary, false, nullptr, tex);
+}
+
+// ---- constants derived at load ----
+
+namespace {
+template <class P>
+void prepare(P&) {}
+void prepare(RoughConductorParams& p) {
+    if (p.multiple_scattering && p.microfacet.distribution == MicrofacetType::GGX)
+        p.fresnel_avg = ConductorFresnelAverage::of(make_fresnel(p.ior, TexEval{}));
+}
+void prepare(RoughDielectricParams& p) {
+    if (p.multiple_scattering && p.microfacet.distribution == MicrofacetType::GGX)
+        p.fresnel_avg = RoughDielectric<GGX>::multiscatter_fresnel_average(relative_eta(p.dielectric, TexEval{}));
+}
+// The sum variant has no R̄ (bxdf/plastic.h), so no average to compute.
+void prepare(PlasticParams& p) {
+    if (p.variant != PlasticVariant::Sum) p.fresnel_avg = DielectricFresnelAverage::of(relative_eta(p, TexEval{}));
+}
+// The coat table is resolved once, by building the BxDF of the constants; every per-hit BxDF of a
+// textured material reuses it. A rough coat's R̄ comes from its table, not from the Fresnel average.
+void prepare(RoughPlasticParams& p) {
+    prepare(p.plastic);
+    p.coat_table = nullptr;
+    p.coat_table = p.microfacet.distribution == MicrofacetType::Beckmann
+                       ? make_rough_plastic<Beckmann>(p, TexEval{}).base().coat_table()
+                       : make_rough_plastic<GGX>(p, TexEval{}).base().coat_table();
+}
+}  // namespace
+
+void prepare_material(Material& m) {
+    std::visit([](auto& p) { prepare(p); }, m);
+}
+
+// ---- to_string ----
+
+namespace {
+std::string describe(const LambertianParams& p) { return "lambertian[reflectance=" + format_tex(p.reflectance) + "]"; }
+std::string describe(const OrenNayarParams& p) {
+    const bool classic = p.variant == OrenNayarVariant::Classic;
+    return "oren_nayar[reflectance=" + format_tex(p.reflectance) +
+           (classic ? ", variant=classic, sigma=" + format_tex(p.sigma_degrees) + " deg"
+                    : ", variant=eon, roughness=" + format_tex(p.roughness)) + "]";
+}
+std::string describe(const ConductorParams& p) {
+    return "conductor[" + p.ior.to_string() + ", specular_reflectance=" + format_tex(p.specular_reflectance) + "]";
+}
+std::string describe(const RoughConductorParams& p) {
+    return "rough_conductor[" + p.microfacet.to_string() + ", " + p.ior.to_string() +
+           ", specular_reflectance=" + format_tex(p.specular_reflectance) +
+           ", multiple_scattering=" + bool_string(p.multiple_scattering) + "]";
+}
+std::string describe(const DielectricParams& p) { return "dielectric[" + dielectric_string(p) + "]"; }
+std::string describe(const ThinDielectricParams& p) { return "thin_dielectric[" + dielectric_string(p) + "]"; }
+std::string describe(const RoughDielectricParams& p) {
+    return "rough_dielectric[" + p.microfacet.to_string() + ", " + dielectric_string(p.dielectric) +
+           ", multiple_scattering=" + bool_string(p.multiple_scattering) + "]";
+}
+std::string describe(const PlasticParams& p) { return "plastic[" + plastic_string(p) + "]"; }
+std::string describe(const RoughPlasticParams& p) {
+    return "rough_plastic[" + p.microfacet.to_string() + ", " + plastic_string(p.plastic) +
+           ", coat_transmittance=" + pellucid::to_string(p.coat_transmittance) + "]";
+}
+std::string describe(const PrincipledParams& p) {
+    std::string s = "principled[base_color=" + format_tex(p.base_color) + ", metallic=" + format_tex(p.metallic) +
+                    ", roughness=" + format_tex(p.roughness) + ", specular=" + format_tex(p.specular) +
+                    ", specular_tint=" + format_tex(p.specular_tint) + ", sheen=" + format_tex(p.sheen) +
+                    ", sheen_tint=" + format_tex(p.sheen_tint) + ", clearcoat=" + format_tex(p.clearcoat) +
+                    ", clearcoat_gloss=" + format_tex(p.clearcoat_gloss) + ", anisotropic=" + format_tex(p.anisotropic);
+    if (p.variant == PrincipledVariant::Burley2015) {
+        const bool from_specular = !p.eta.textured() && !(p.eta.value > 0.f);
+        s += ", variant=2015, specular_transmission=" + format_tex(p.specular_transmission) +
+             ", flatness=" + format_tex(p.flatness) + ", eta=" + (from_specular ? "from specular" : format_tex(p.eta));
+        if (p.thin) s += ", thin, diffuse_transmission=" + format_tex(p.diffuse_transmission);
+    }
+    return s + "]";
+}
+std::string describe(const SubsurfaceParams& p) {
+    std::string s = "subsurface[model=" + pellucid::to_string(p.model) + ", int_ior=" + format_tex(p.boundary.int_ior) +
+                    ", ext_ior=" + format_tex(p.boundary.ext_ior);
+    s += p.from_albedo ? ", albedo=" + format_tex(p.albedo) + ", mfp=" + format_tex(p.mfp)
+                       : ", sigma_a=" + format_tex(p.sigma_a) + ", sigma_s=" + format_tex(p.sigma_s) +
+                             ", scale=" + format_float(p.scale);
+    s += ", g=" + format_tex(p.g);
+    return (p.rough ? s + ", " + p.microfacet.to_string() : s) + "]";
+}
+}  // namespace
+
+std::string to_string(const Material& m) {
+    return std::visit([](const auto& p) { return describe(p); }, m);
 }
 }  // namespace pellucid

@@ -18,58 +18,30 @@
 // JSON: {"type": "rough_plastic", "diffuse_reflectance": [0.1, 0.3, 0.6], "alpha": 0.2,
 //        "variant": "linear", "coat_transmittance": "rough"}
 #pragma once
-#include <string>
-
 #include "pellucid/bxdf/bxdf.h"
-#include "pellucid/geometry/interaction.h"
 #include "pellucid/material/params.h"
 
 namespace pellucid {
 
+/// `plastic`.
 struct PlasticParams {
-    Spectrum diffuse_reflectance{0.5f}, specular_reflectance{1.f};
-    float int_ior = 1.49f, ext_ior = 1.000277f;
+    Tex<Spectrum> diffuse_reflectance{Spectrum(0.5f)}, specular_reflectance{Spectrum(1.f)};
+    Tex<float> int_ior{1.49f}, ext_ior{1.000277f};
     PlasticVariant variant = PlasticVariant::Coupled;
-    std::string to_string() const;
+    /// Derived at load (prepare_material): the Fresnel average of R̄ for the constant η, used
+    /// wherever a hit's η is that one (none for the sum variant, which has no R̄).
+    DielectricFresnelAverage fresnel_avg;
 };
+/// The coat's relative IOR int_ior / ext_ior at a hit (or of the constants, TexEval{}).
+inline float relative_eta(const PlasticParams& p, const TexEval& tex) { return tex(p.int_ior) / tex(p.ext_ior); }
 
-class PlasticMaterial {
-public:
-    explicit PlasticMaterial(const PlasticParams& p);
-    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
-    /// The BxDF of `p`: params() with textured fields written in (material/textured.h). The Fresnel
-    /// average of R̄ comes from the one computed at construction while p's IOR is params()'s.
-    BxDF bxdf_for(const PlasticParams& p) const;
-    const PlasticParams& params() const { return m_p; }
-    std::string to_string() const;
-
-private:
-    PlasticParams m_p;
-    DielectricFresnelAverage m_fresnel_avg;  // of params()'s η (fresnel.h)
-};
-
+/// `rough_plastic`.
 struct RoughPlasticParams {
     MicrofacetParams microfacet;
     PlasticParams plastic;
     CoatTransmittance coat_transmittance = CoatTransmittance::Smooth;
-    /// Derived, not a scene parameter: the coat table the material resolved at build (nullptr for
-    /// the smooth transmittance). Carried here so that the per-hit rebuild of a textured material
-    /// (material/textured.h copies these Params) reuses it instead of looking it up.
+    /// Derived at load (prepare_material): the coat table of the constant α and η (nullptr for the
+    /// smooth transmittance); the builder allows no texture on those with the rough one.
     const RoughCoatTable* coat_table = nullptr;
-};
-
-class RoughPlasticMaterial {
-public:
-    /// Resolves params().coat_table and computes the Fresnel average of R̄ once.
-    explicit RoughPlasticMaterial(const RoughPlasticParams& p);
-    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
-    /// The BxDF of `p` (as PlasticMaterial::bxdf_for; p.coat_table is reused when it matches).
-    BxDF bxdf_for(const RoughPlasticParams& p) const;
-    const RoughPlasticParams& params() const { return m_p; }
-    std::string to_string() const;
-
-private:
-    RoughPlasticParams m_p;
-    DielectricFresnelAverage m_fresnel_avg;  // of params()'s η (fresnel.h)
 };
 }  // namespace pellucid

@@ -26,26 +26,20 @@
 // JSON: {"type": "principled", "base_color": [0.8, 0.2, 0.1], "roughness": 0.4, "clearcoat": 1}
 //       {"type": "principled", "variant": "2015", "specular_transmission": 1, "eta": 1.33, "roughness": 0.2}
 #pragma once
-#include <string>
-
 #include "pellucid/bxdf/bxdf.h"
-#include "pellucid/geometry/interaction.h"
 #include "pellucid/material/params.h"
 
 namespace pellucid {
 
-class PrincipledMaterial {
-public:
-    explicit PrincipledMaterial(const PrincipledParams& p) : m_p(p) {}
-    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
-    /// The BxDF of `p`: params() with textured fields written in (material/textured.h).
-    BxDF bxdf_for(const PrincipledParams& p) const {
-        return p.variant == PrincipledVariant::Burley2015 ? BxDF(PrincipledBSDF(p)) : BxDF(Principled(p));
-    }
-    const PrincipledParams& params() const { return m_p; }
-    std::string to_string() const;
-
-private:
-    PrincipledParams m_p;
+/// `principled`: the fields of PrincipledInputs (bxdf/principled.h), each a Tex but the variant and
+/// `thin`.
+struct PrincipledParams {
+    Tex<Spectrum> base_color{Spectrum(0.8f)};
+    Tex<float> metallic{0.f}, roughness{0.5f}, specular{0.5f}, specular_tint{0.f};
+    Tex<float> sheen{0.f}, sheen_tint{0.5f}, clearcoat{0.f}, clearcoat_gloss{1.f}, anisotropic{0.f};
+    Tex<float> specular_transmission{0.f}, flatness{0.f}, diffuse_transmission{0.f};
+    Tex<float> eta{0.f};  ///< 0 = derived from `specular`
+    PrincipledVariant variant = PrincipledVariant::Burley2012;
+    bool thin = false;
 };
 }  // namespace pellucid

@@ -20,7 +20,6 @@
 #include <string>
 
 #include "pellucid/bxdf/bxdf.h"
-#include "pellucid/geometry/interaction.h"
 #include "pellucid/material/dielectric.h"
 #include "pellucid/material/params.h"
 
@@ -41,25 +40,9 @@ struct SubsurfaceParams {
     /// from_albedo: the interior is given by albedo + mfp (inverted per channel by the diffusion
     /// model's closed form, bssrdf/profile.h from_diffuse), else by sigma_a, sigma_s (× scale).
     bool from_albedo = true;
-    Spectrum sigma_a{0.f}, sigma_s{0.f};
+    Tex<Spectrum> sigma_a{Spectrum(0.f)}, sigma_s{Spectrum(0.f)};
     float scale = 1.f;
-    Spectrum albedo{0.8f}, mfp{0.05f};
-    float g = 0.f;
-    float eta() const { return boundary.int_ior / boundary.ext_ior; }
-    std::string to_string() const;
-};
-
-class SubsurfaceMaterial {
-public:
-    explicit SubsurfaceMaterial(const SubsurfaceParams& p) : m_p(p) {}
-    /// The boundary's BxDF: SmoothDielectric, or RoughDielectric of the distribution.
-    BxDF get_bxdf(const SurfaceInteraction&) const { return bxdf_for(m_p); }
-    /// The boundary's BxDF for `p`: params() with textured fields written in (material/textured.h).
-    BxDF bxdf_for(const SubsurfaceParams& p) const;
-    const SubsurfaceParams& params() const { return m_p; }
-    std::string to_string() const { return "SubsurfaceMaterial[" + m_p.to_string() + "]"; }
-
-private:
-    SubsurfaceParams m_p;
+    Tex<Spectrum> albedo{Spectrum(0.8f)}, mfp{Spectrum(0.05f)};
+    Tex<float> g{0.f};
 };
 }  // namespace pellucid

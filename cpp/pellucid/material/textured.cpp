@@ -3,28 +3,9 @@
 #include "pellucid/material/textured.h"
 
 #include <cmath>
-#include <cstring>
 
 namespace pellucid {
 namespace {
-
-template <class P>
-void apply_bindings(P& params, const MaterialTextures& mt, const TextureList& textures, const TextureEvalContext& ctx) {
-    static_assert(std::is_standard_layout_v<P>, "texture bindings address Params fields by byte offset");
-    char* base = reinterpret_cast<char*>(&params);
-    for (int i = 0; i < mt.count; ++i) {
-        const TextureBinding& b = mt.bindings[i];
-        Spectrum v = eval_texture(textures, b.texture, ctx);
-        if (b.kind == TextureBinding::Kind::Float) {
-            float f = clamp(v.average(), b.lo, b.hi);
-            if (b.op == TextureBinding::Op::Square) f *= f;
-            std::memcpy(base + b.offset, &f, sizeof f);
-        } else {
-            for (int c = 0; c < 3; ++c) v[c] = clamp(v[c], b.lo, b.hi);
-            std::memcpy(base + b.offset, &v, sizeof v);
-        }
-    }
-}
 
 // Height B (already scaled) at the hit shifted by (du, dv) in uv, and by the matching first-order
 // move of the position for solid textures.
@@ -49,26 +30,9 @@ TextureEvalContext texture_eval_context(const SurfaceInteraction& si) {
     return ctx;
 }
 
-BxDF get_textured_bxdf(const Material& m, const MaterialTextures& mt, const TextureList& textures,
-                       const TextureEvalContext& ctx, const SurfaceInteraction& si) {
-    if (!mt.has_bindings()) return get_bxdf(m, si);
-    return std::visit([&](const auto& mat) -> BxDF {
-        auto p = mat.params();
-        apply_bindings(p, mt, textures, ctx);
-        return mat.bxdf_for(p);
-    }, m);
-}
-
-SubsurfaceParams get_textured_subsurface_params(const SubsurfaceMaterial& m, const MaterialTextures& mt,
-                                                const TextureList& textures, const TextureEvalContext& ctx) {
-    SubsurfaceParams p = m.params();
-    apply_bindings(p, mt, textures, ctx);
-    return p;
-}
-
 bool material_reads_footprint(const MaterialTextures& mt, const TextureList& textures) {
     for (int i = 0; i < mt.count; ++i)
-        if (texture_reads_footprint(textures, mt.bindings[i].texture)) return true;
+        if (texture_reads_footprint(textures, mt.bound[i])) return true;
     if (mt.normal_map >= 0 && texture_reads_footprint(textures, uint32_t(mt.normal_map))) return true;
     if (mt.bump >= 0) {
         // Mitsuba's model takes the bilinear luminance gradient, which reads no footprint; without

@@ -2,38 +2,22 @@
 // parameters when some of them vary over the surface.
 // SPDX-License-Identifier: Apache-2.0
 //
-// Design: a material keeps its `*Params` struct of constants (the values used where no texture is
-// bound) and, per textured parameter, a TextureBinding: which texture, which field of the Params
-// struct (a byte offset), and how to map the texture value into it (identity, r → α = r², clamp).
-// At a hit, get_textured_bxdf() copies the Params, writes the evaluated textures into the bound
-// fields and builds the BxDF from the copy with the material's bxdf_for(), the function that built
-// its untextured BxDF: one generic path for every material. bxdf_for() reuses the constants the
-// material precomputed from its constant Params (Fresnel averages) unless the fields they depend
-// on, the IOR, are textured: then they are computed at every hit (one 32-point quadrature; three
-// for a conductor's η, k). Materials without textures use Scene::material_bxdfs (no per-hit work).
-// A material's Params must be standard layout for the offsets to be meaningful (checked by
-// static_assert next to each binding site in builders.cpp).
+// Design: a material's Params struct holds each parameter as a Tex (material/tex.h), a constant or
+// a texture of the scene; the builders bind a Tex to a texture and list the texture in the
+// material's MaterialTextures. At a hit, the model's make_bxdf (material/material.h) reads its
+// parameters through a TexEval over the scene's textures and the hit's lookup context: one function
+// per model, with no per-hit copying of Params. It reuses the constants derived from the constant
+// parameters at load (Fresnel averages) unless the fields they depend on, the IOR, are textured:
+// then they are computed at every hit (one 32-point quadrature; three for a conductor's η, k).
+// Materials without textures use Scene::material_bxdfs (no per-hit work).
 #pragma once
-#include <cstddef>
 #include <cstdint>
-#include <type_traits>
 
 #include "pellucid/bxdf/bsdf.h"
 #include "pellucid/geometry/interaction.h"
-#include "pellucid/material/material.h"
 #include "pellucid/texture/texture.h"
 
 namespace pellucid {
-
-struct TextureBinding {
-    enum class Kind : uint8_t { Spectrum, Float };
-    enum class Op : uint8_t { Identity, Square };  ///< Square: perceptual roughness r → α = r²
-    uint32_t texture = 0;
-    uint16_t offset = 0;  ///< byte offset of the target field in the material's Params struct
-    Kind kind = Kind::Spectrum;
-    Op op = Op::Identity;
-    float lo = 0.f, hi = 1.f;  ///< the parameter's valid range; texture values are clamped into it
-};
 
 /// How a bump map turns heights into a shading normal (key `bump_model`).
 ///  - Footprint (default): the bumped surface F' = F + B·n with its B·∂n/∂u term, ∂B/∂u from the
@@ -54,8 +38,8 @@ enum class InvalidNormals : uint8_t { Bend, Mirror, Keep };
 
 /// Everything textured about one material (fixed size: no heap, copied with the scene).
 struct MaterialTextures {
-    static constexpr int kMaxBindings = 16;
-    TextureBinding bindings[kMaxBindings];
+    static constexpr int kMaxTextured = 16;
+    uint32_t bound[kMaxTextured] = {};  ///< the textures bound to the material's Tex parameters
     int count = 0;
     int32_t bump = -1;        ///< height texture B (world units × bump_scale), or -1
     float bump_scale = 1.f;
@@ -72,7 +56,7 @@ struct MaterialTextures {
     /// (dot(wo, shading n) ≤ 0) scatter nothing (Scene::bsdf), as Mitsuba 3's one-sided BSDFs.
     bool two_sided = true;
 
-    bool has_bindings() const { return count > 0; }
+    bool has_textured_params() const { return count > 0; }
     bool perturbs_normal() const { return bump >= 0 || normal_map >= 0; }
 };
 
@@ -84,15 +68,6 @@ bool material_reads_footprint(const MaterialTextures& mt, const TextureList& tex
 
 /// The texture lookup context of a hit: its position, uv and pixel footprint.
 TextureEvalContext texture_eval_context(const SurfaceInteraction& si);
-
-/// The BxDF of material `m` at a hit whose parameters come from `mt`'s textures.
-BxDF get_textured_bxdf(const Material& m, const MaterialTextures& mt, const TextureList& textures,
-                       const TextureEvalContext& ctx, const SurfaceInteraction& si);
-
-/// The parameters of a `subsurface` material at a hit whose parameters come from `mt`'s textures
-/// (the probe builds the hit's BSSRDF from them, bssrdf/separable.h).
-SubsurfaceParams get_textured_subsurface_params(const SubsurfaceMaterial& m, const MaterialTextures& mt,
-                                                const TextureList& textures, const TextureEvalContext& ctx);
 
 /// Shading frame with a bump map (by mt.bump_model, see the .cpp) or a tangent-space normal map
 /// applied, and invalid normals treated by mt.invalid_normals. Returns the new shading frame.

@@ -45,9 +45,9 @@ public:
         root.check_unqueried();
         resolve_subsurface(m_scene, m_desc.source);  // may add media and materials (docs/subsurface.md)
         m_scene.material_textures.resize(m_scene.materials.size());
-        for (const Material& m : m_scene.materials) m_scene.material_bxdfs.push_back(get_bxdf(m, SurfaceInteraction{}));
+        for (const Material& m : m_scene.materials) m_scene.material_bxdfs.push_back(make_bxdf(m));
         for (const auto& mt : m_scene.material_textures) {
-            m_scene.has_textures = m_scene.has_textures || mt.has_bindings() || mt.perturbs_normal();
+            m_scene.has_textures = m_scene.has_textures || mt.has_textured_params() || mt.perturbs_normal();
             m_scene.needs_footprints = m_scene.needs_footprints || material_reads_footprint(mt, m_scene.textures);
         }
         for (const auto& mt : m_scene.material_textures) m_scene.has_one_sided = m_scene.has_one_sided || !mt.two_sided;
@@ -198,7 +198,7 @@ private:
         if (*null_surface && m->is_object()) check_null_material(*m, path_join(path, "material"));
         if (!m || *null_surface) {
             if (m_default_material < 0) {
-                m_scene.materials.push_back(DiffuseMaterial{});
+                m_scene.materials.push_back(LambertianParams{});
                 m_scene.material_names.push_back("<default>");
                 m_default_material = int(m_scene.materials.size() - 1);
             }

@@ -160,13 +160,13 @@ RayDifferential Scene::specular_differentials(const SurfaceInteraction& si, cons
 BSDF Scene::textured_bsdf(const SurfaceInteraction& si) const {
     const MaterialTextures& mt = material_textures[si.material_id];
     const TextureEvalContext ctx = texture_eval_context(si);
-    if (!mt.has_bindings()) {  // only the normal is perturbed: the prebuilt BxDF
+    if (!mt.has_textured_params()) {  // only the normal is perturbed: the prebuilt BxDF
         const Frame frame = perturbed_shading_frame(mt, textures, ctx, si);
         BSDF b = BSDF::borrowing(&material_bxdfs[si.material_id], frame, si.ng);
         if (mt.terminator_softening) b.soften_terminator(si.shading.n, mt.terminator_model);
         return b;
     }
-    BxDF bxdf = get_textured_bxdf(materials[si.material_id], mt, textures, ctx, si);
+    BxDF bxdf = make_bxdf(materials[si.material_id], TexEval(textures, ctx));
     if (!mt.perturbs_normal()) return BSDF(bxdf, si.shading, si.ng);
     BSDF b(bxdf, perturbed_shading_frame(mt, textures, ctx, si), si.ng);
     if (mt.terminator_softening) b.soften_terminator(si.shading.n, mt.terminator_model);

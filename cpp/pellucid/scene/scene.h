@@ -80,7 +80,7 @@ public:
     /// Does the hit's material read textures (so that its footprint is needed)?
     bool needs_textures(const SurfaceInteraction& si) const {
         const MaterialTextures& mt = material_textures[si.material_id];
-        return mt.has_bindings() || mt.perturbs_normal();
+        return mt.has_textured_params() || mt.perturbs_normal();
     }
     /// Set the hit's pixel footprint (dpdx, dpdy, du/dx …): from the ray's differentials when it
     /// carries them, else the camera's approximation (perspective.h approximate_dp_dxy).
@@ -102,8 +102,9 @@ public:
     std::vector<ShapeRecord> shapes;
     std::vector<Material> materials;
     std::vector<std::string> material_names;
-    /// Each material's BxDF at an untextured hit (every parameter a constant), built once at scene
-    /// build: parallel to materials. The only prebuilt copy (materials hold Params, material.h).
+    /// Each material's BxDF at an untextured hit (every parameter a constant: make_bxdf with
+    /// TexEval{}), built once at scene build: parallel to materials. Materials are plain Params
+    /// (material.h) and hold no BxDF.
     std::vector<BxDF> material_bxdfs;
     std::vector<MaterialTextures> material_textures;  ///< parallel to materials
     TextureList textures;

@@ -55,17 +55,23 @@ std::string fmt(float v) { return format_float(v); }
 
 Material coated_material(const SubsurfaceParams& p, const Spectrum& rd) {
     PlasticParams q;
-    for (int c = 0; c < 3; ++c) q.diffuse_reflectance[c] = std::min(std::max(rd[c], 0.f), 1.f);
+    for (int c = 0; c < 3; ++c) q.diffuse_reflectance.value[c] = std::min(std::max(rd[c], 0.f), 1.f);
     q.specular_reflectance = Spectrum(1.f);
-    q.int_ior = p.boundary.int_ior;
-    q.ext_ior = p.boundary.ext_ior;
+    q.int_ior = p.boundary.int_ior.value;  // the far field takes the constants
+    q.ext_ior = p.boundary.ext_ior.value;
     q.variant = PlasticVariant::Linear;  // ρ(θo) = F(θo) + Kd (1 − F(θo)): the BSSRDF's far field
-    if (!p.rough) return PlasticMaterial(q);
-    RoughPlasticParams r;
-    r.microfacet = p.microfacet;
-    r.plastic = q;
-    r.coat_transmittance = CoatTransmittance::Smooth;
-    return RoughPlasticMaterial(r);
+    Material m = q;
+    if (p.rough) {
+        RoughPlasticParams r;
+        r.microfacet = p.microfacet;
+        r.microfacet.alpha_u = p.microfacet.alpha_u.value;
+        r.microfacet.alpha_v = p.microfacet.alpha_v.value;
+        r.plastic = q;
+        r.coat_transmittance = CoatTransmittance::Smooth;
+        m = r;
+    }
+    prepare_material(m);
+    return m;
 }
 }  // namespace
 
@@ -76,9 +82,10 @@ void resolve_subsurface(Scene& scene, const std::string& source) {
     for (uint32_t id = 0; id < scene.shapes.size(); ++id) {
         ShapeRecord& s = scene.shapes[id];
         if (s.null_surface) continue;
-        const auto* mat = std::get_if<SubsurfaceMaterial>(&scene.materials[s.material]);
+        const auto* mat = std::get_if<SubsurfaceParams>(&scene.materials[s.material]);
         if (!mat) continue;
-        const SubsurfaceParams& p = mat->params();
+        const SubsurfaceParams& p = *mat;
+        const float g = p.g.value, eta = relative_eta(p.boundary, TexEval{});
         const std::string where = s.name + " (material '" + scene.material_names[s.material] + "')";
         const ObjectMetrics m = object_metrics(scene, s);
         if (m.open_edges)
@@ -90,18 +97,29 @@ void resolve_subsurface(Scene& scene, const std::string& source) {
             throw Error(format_error(source, path_join(s.name, "interior"),
                                      "a shape with a subsurface material has its interior from the material; "
                                      "remove 'interior'"));
+        // Only the diffusion models read the interior's textures at each hit; the random walk's
+        // medium and the coated stand-in are built once from constants.
+        const char* textured = p.from_albedo ? (p.albedo.textured() ? "albedo" : p.mfp.textured() ? "mfp" : nullptr)
+                                             : (p.sigma_a.textured() ? "sigma_a" : p.sigma_s.textured() ? "sigma_s" : nullptr);
+        if (!textured && p.g.textured()) textured = "g";
+        if (textured && (p.model == SubsurfaceModel::RandomWalk || p.model == SubsurfaceModel::Coated))
+            throw Error(format_error(source, s.name, "material '" + scene.material_names[s.material] + "': '" +
+                                                         textured + "' is a texture, which model '" +
+                                                         to_string(p.model) + "' cannot vary over the surface (its " +
+                                                         "interior is built once); use 'dipole', 'better_dipole' or "
+                                                         "'auto', or give a constant"));
         Spectrum sa, ss;
-        subsurface_coefficients(p, bssrdf::Diffusion::BetterDipole, &sa, &ss);
+        subsurface_coefficients(p, TexEval{}, bssrdf::Diffusion::BetterDipole, &sa, &ss);
         SubsurfaceChoice c;
         c.shape = id;
         c.thickness = m.thickness;
         c.footprint = m.distance * scene.camera.pixel_angle();
         float min_albedo = 1.f;
         for (int k = 0; k < 3; ++k) {
-            const bssrdf::Profile pr = bssrdf::Profile::make(bssrdf::Diffusion::BetterDipole, sa[k], ss[k], p.g, p.eta());
+            const bssrdf::Profile pr = bssrdf::Profile::make(bssrdf::Diffusion::BetterDipole, sa[k], ss[k], g, eta);
             c.diffusion_length = std::max(c.diffusion_length, pr.diffusion_length());
             c.mean_free_path = std::max(c.mean_free_path, pr.mean_free_path());
-            const float sps = ss[k] * (1.f - p.g), spt = sa[k] + sps;
+            const float sps = ss[k] * (1.f - g), spt = sa[k] + sps;
             min_albedo = std::min(min_albedo, spt > 0.f ? sps / spt : 0.f);
         }
         c.min_albedo = min_albedo;
@@ -112,7 +130,12 @@ void resolve_subsurface(Scene& scene, const std::string& source) {
                                                          fmt(m.size) + " across: check the coefficients' units "
                                                          "(sigma_a/sigma_s are per scene unit; scale converts)"));
         const bool scatters = ss.max_component() > 0.f;
-        if (!scatters) {
+        if (textured) {
+            c.model = p.model == SubsurfaceModel::Dipole ? SubsurfaceModel::Dipole : SubsurfaceModel::BetterDipole;
+            c.reason = p.model == SubsurfaceModel::Auto ? std::string("textured interior ('") + textured +
+                                                              "'): only the diffusion models read it at each hit"
+                                                        : "as the material asks";
+        } else if (!scatters) {
             c.model = SubsurfaceModel::RandomWalk;
             c.reason = "no scattering: an absorbing dielectric";
             log_warning(format_error(source, s.name, "the subsurface material does not scatter (sigma_s = 0): it "
@@ -141,7 +164,7 @@ void resolve_subsurface(Scene& scene, const std::string& source) {
             case SubsurfaceModel::BetterDipole: {
                 const auto d = c.model == SubsurfaceModel::Dipole ? bssrdf::Diffusion::Dipole : bssrdf::Diffusion::BetterDipole;
                 scene.shape_subsurface[id] = int32_t(scene.subsurface.size());
-                scene.subsurface.push_back(make_separable_bssrdf(p, d, id));
+                scene.subsurface.push_back(make_separable_bssrdf(p, TexEval{}, d, id));
                 break;
             }
             case SubsurfaceModel::RandomWalk: {
@@ -149,10 +172,10 @@ void resolve_subsurface(Scene& scene, const std::string& source) {
                 if (it == medium_of.end()) {
                     HomogeneousMedium hm;
                     Spectrum rw_a, rw_s;
-                    subsurface_coefficients(p, bssrdf::Diffusion::BetterDipole, &rw_a, &rw_s);
+                    subsurface_coefficients(p, TexEval{}, bssrdf::Diffusion::BetterDipole, &rw_a, &rw_s);
                     hm.sigma_a = rw_a;
                     hm.sigma_s = rw_s;
-                    if (p.g != 0.f) hm.phase = HGPhase(p.g);
+                    if (g != 0.f) hm.phase = HGPhase(g);
                     hm.name = "<interior of " + scene.material_names[s.material] + ">";
                     it = medium_of.emplace(s.material, int32_t(scene.media.size())).first;
                     scene.media.push_back(hm);
@@ -163,7 +186,7 @@ void resolve_subsurface(Scene& scene, const std::string& source) {
             case SubsurfaceModel::Coated: {
                 auto it = coated_of.find(s.material);
                 if (it == coated_of.end()) {
-                    const SeparableBSSRDF b = make_separable_bssrdf(p, bssrdf::Diffusion::BetterDipole, id);
+                    const SeparableBSSRDF b = make_separable_bssrdf(p, TexEval{}, bssrdf::Diffusion::BetterDipole, id);
                     it = coated_of.emplace(s.material, uint32_t(scene.materials.size())).first;
                     scene.materials.push_back(coated_material(p, b.total()));
                     scene.material_names.push_back(scene.material_names[s.material] + " <coated>");

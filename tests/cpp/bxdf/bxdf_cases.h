@@ -288,8 +288,8 @@ struct BxDFCases<RoughPlastic<D>> {
 
 template <>
 struct BxDFCases<Principled> {
-    static PrincipledParams params(float metallic, float rough, float cc, float sheen, float aniso) {
-        PrincipledParams p;
+    static PrincipledInputs params(float metallic, float rough, float cc, float sheen, float aniso) {
+        PrincipledInputs p;
         p.base_color = Spectrum(0.6f, 0.3f, 0.15f);
         p.metallic = metallic;
         p.roughness = rough;
@@ -309,7 +309,7 @@ struct BxDFCases<Principled> {
         for (float r : {0.f, 1e-3f, 0.5f, 1.f})
             for (float m : {0.f, 1.f})
                 for (float c : {0.f, 1.f}) {
-                    PrincipledParams p = params(m, r, c, 1.f, 1.f);
+                    PrincipledInputs p = params(m, r, c, 1.f, 1.f);
                     p.clearcoat_gloss = 1.f;
                     v.emplace_back(p);
                     p.base_color = Spectrum(0.f);
@@ -324,8 +324,8 @@ struct BxDFCases<Principled> {
 // white furnace of 1 (principled_bsdf.h, "Energy").
 template <>
 struct BxDFCases<PrincipledBSDF> {
-    static PrincipledParams params(float metallic, float rough, float spec_trans, float eta) {
-        PrincipledParams p;
+    static PrincipledInputs params(float metallic, float rough, float spec_trans, float eta) {
+        PrincipledInputs p;
         p.variant = PrincipledVariant::Burley2015;
         p.base_color = Spectrum(0.6f, 0.3f, 0.15f);
         p.metallic = metallic;
@@ -335,32 +335,32 @@ struct BxDFCases<PrincipledBSDF> {
         return p;
     }
     static std::vector<Case<PrincipledBSDF>> cases() {
-        PrincipledParams a = params(0.f, 0.6f, 0.f, 0.f);
+        PrincipledInputs a = params(0.f, 0.6f, 0.f, 0.f);
         a.clearcoat = 1.f;
         a.clearcoat_gloss = 0.7f;
         a.sheen = 0.5f;
         a.sheen_tint = 0.5f;
         a.flatness = 0.5f;
-        PrincipledParams glass = params(0.f, 0.5f, 1.f, 1.5f);  // α = 0.25: resolved by the χ² cells
+        PrincipledInputs glass = params(0.f, 0.5f, 1.f, 1.5f);  // α = 0.25: resolved by the χ² cells
         glass.base_color = Spectrum(0.9f, 0.8f, 0.6f);
-        PrincipledParams mixed = params(0.3f, 0.5f, 0.6f, 1.f / 1.33f);
+        PrincipledInputs mixed = params(0.3f, 0.5f, 0.6f, 1.f / 1.33f);
         mixed.anisotropic = 0.5f;
         mixed.specular_tint = 0.5f;
         mixed.clearcoat = 0.5f;
         // α_c = 0.05: at gloss 1 (α_c = 0.001) the clear coat's pdf is so peaked that the ~1e-7
         // direction change of a frame round trip (the bumped suite) moves it by more than 1e-3.
         mixed.clearcoat_gloss = 0.5f;
-        PrincipledParams metal = params(1.f, 0.4f, 0.f, 0.f);
+        PrincipledInputs metal = params(1.f, 0.4f, 0.f, 0.f);
         metal.base_color = Spectrum(0.9f, 0.6f, 0.3f);
         metal.anisotropic = 0.8f;
         // Thin: the specular transmission (support not symmetric) without diffuse transmission, so
         // that reciprocity sees it alone; diffuse transmission in the second case.
-        PrincipledParams thin = params(0.f, 0.5f, 0.5f, 1.5f);
+        PrincipledInputs thin = params(0.f, 0.5f, 0.5f, 1.5f);
         thin.thin = true;
         thin.sheen = 0.3f;
         thin.specular_tint = 0.4f;
         thin.anisotropic = 0.3f;
-        PrincipledParams thin_diffuse = params(0.f, 0.7f, 0.f, 1.33f);
+        PrincipledInputs thin_diffuse = params(0.f, 0.7f, 0.f, 1.33f);
         thin_diffuse.thin = true;
         thin_diffuse.diffuse_transmission = 1.2f;
         thin_diffuse.flatness = 0.5f;
@@ -388,7 +388,7 @@ struct BxDFCases<PrincipledBSDF> {
                 for (float m : {0.f, 1.f})
                     for (float st : {0.f, 0.5f, 1.f})
                         for (float eta : sweep_etas()) {
-                            PrincipledParams p = params(m, r, st, eta);
+                            PrincipledInputs p = params(m, r, st, eta);
                             p.thin = thin;
                             p.clearcoat = 1.f;
                             p.sheen = 1.f;

@@ -66,7 +66,7 @@ std::vector<Principled> materials() {
                     for (float clearcoat : {0.f, 0.6f})
                         for (float specular : {0.f, 0.5f, 1.f})
                             for (float specular_tint : {0.f, 0.7f}) {
-                                PrincipledParams p;
+                                PrincipledInputs p;
                                 p.base_color = bases[n % 4];
                                 p.metallic = metallic;
                                 p.roughness = roughness;

@@ -22,8 +22,8 @@ namespace {
 Vec3f dir(float theta, float phi) {
     return Vec3f(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
 }
-PrincipledParams p2015() {
-    PrincipledParams p;
+PrincipledInputs p2015() {
+    PrincipledInputs p;
     p.variant = PrincipledVariant::Burley2015;
     p.sheen_tint = 0.f;
     p.clearcoat_gloss = 0.f;
@@ -42,7 +42,7 @@ std::string material_error(const std::string& json) {
     return "";
 }
 BxDF bxdf_of(const std::string& json) {
-    return get_bxdf(build_material(parse_json(json, "m.json"), "scene.json", "materials.m"), SurfaceInteraction{});
+    return make_bxdf(build_material(parse_json(json, "m.json"), "scene.json", "materials.m"));
 }
 }  // namespace
 
@@ -55,7 +55,7 @@ TEST(PrincipledBSDF, EtaFromSpecularInvertsR0) {
     }
     EXPECT_EQ(PrincipledBSDF::eta_from_specular(0.f), 1.f);
     // With specular transmission η = 1 is moved off 1 (a refracting lobe needs η ≠ 1).
-    PrincipledParams p = p2015();
+    PrincipledInputs p = p2015();
     p.specular = 0.f;
     EXPECT_EQ(PrincipledBSDF(p).eta(), 1.f);
     p.specular_transmission = 0.5f;
@@ -78,7 +78,7 @@ TEST(PrincipledBSDF, AlphaFromRoughness) {
     a = PrincipledBSDF::alpha_from_roughness(0.f, 1.f);
     EXPECT_EQ(a.x, 1e-3f);
     EXPECT_EQ(a.y, 1e-3f);
-    PrincipledParams p = p2015();
+    PrincipledInputs p = p2015();
     p.thin = true;
     p.roughness = 0.6f;
     p.eta = 1.4f;
@@ -93,7 +93,7 @@ TEST(PrincipledBSDF, AlphaFromRoughness) {
 TEST(PrincipledBSDF, LobeWeights) {
     Vec3f wo = dir(0.6f, 0.3f), wr = dir(0.9f, 2.8f), wt = dir(2.6f, 3.6f);
     auto f = [&](float m, float t, const Vec3f& wi) {
-        PrincipledParams p = p2015();
+        PrincipledInputs p = p2015();
         p.base_color = Spectrum(0.7f, 0.5f, 0.3f);
         p.metallic = m;
         p.specular_transmission = t;
@@ -110,7 +110,7 @@ TEST(PrincipledBSDF, LobeWeights) {
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(tm[c], (1.f - m) * 0.3f * t1[c], 1e-6f * t1[c] + 1e-9f);
     }
     // Transmission is tinted by √base; Radiance divides it by η'² (η' = 1.5 from outside).
-    PrincipledParams p = p2015();
+    PrincipledInputs p = p2015();
     p.base_color = Spectrum(0.64f, 0.36f, 0.16f);
     p.specular_transmission = 1.f;
     p.eta = 1.5f;
@@ -133,7 +133,7 @@ TEST(PrincipledBSDF, DiffuseAndClearcoatClosedForms) {
     float fss = (1.f + (0.5f * rr - 1.f) * fo) * (1.f + (0.5f * rr - 1.f) * fi);
     float f_ss = 1.25f * (fss * (1.f / (co + ci) - 0.5f) + 0.5f);
     // Thin, no specular lobes: exactly the diffuse terms, weighted by (1 − d_t), d_t = diff_trans/2.
-    PrincipledParams p = p2015();
+    PrincipledInputs p = p2015();
     p.thin = true;
     p.base_color = Spectrum(0.5f);
     p.roughness = r;
@@ -147,7 +147,7 @@ TEST(PrincipledBSDF, DiffuseAndClearcoatClosedForms) {
     EXPECT_NEAR(PrincipledBSDF(p).eval(kRad, wo, wt).r, 0.25f * 0.5f * kInvPi * std::fabs(wt.z), 1e-7f);
     // Clearcoat at wo = wi = z: ¼·clearcoat·S(0.04)·D_GTR1(1) with G = 1, S(0.04, 1) = 0.04 (and no
     // 1/(4 cos θo cos θi), as Mitsuba defines the lobe).
-    PrincipledParams q = p2015();
+    PrincipledInputs q = p2015();
     q.clearcoat_gloss = 0.5f;
     Vec3f z(0.f, 0.f, 1.f);
     Spectrum without = PrincipledBSDF(q).eval(kRad, z, z);
@@ -167,7 +167,7 @@ TEST(PrincipledBSDF, MatchesMitsubaPointwise) {
         Spectrum f;
         float pdf;
     };
-    PrincipledParams cfg[4];
+    PrincipledInputs cfg[4];
     cfg[0] = p2015();
     cfg[0].base_color = Spectrum(0.8f, 0.4f, 0.2f);
     cfg[0].roughness = 0.4f;
@@ -232,7 +232,7 @@ TEST(PrincipledBSDF, MatchesMitsubaPointwise) {
 // Not energy-conserving (principled_bsdf.h, "Energy"): a white base at high roughness reflects more
 // than it receives at grazing incidence. Mean sample weight over 2·10⁵ samples (SE < 2e-3).
 TEST(PrincipledBSDF, WhiteBaseExceedsOneAtGrazing) {
-    PrincipledParams p = p2015();
+    PrincipledInputs p = p2015();
     p.base_color = Spectrum(1.f);
     p.roughness = 1.f;
     PrincipledBSDF b(p);
@@ -291,7 +291,7 @@ TEST(PrincipledBSDF, SpecTransSampleWeightIsShadowingOnly) {
     const Spectrum base(0.9f, 0.95f, 1.f);
     int checked = 0, transmitted = 0;
     for (const Case& c : {Case{0.1f, 0.f, 1.5f}, Case{0.5f, 0.f, 1.5f}, Case{0.3f, 0.5f, 1.33f}}) {
-        PrincipledParams p = p2015();
+        PrincipledInputs p = p2015();
         p.base_color = base;
         p.roughness = c.roughness;
         p.anisotropic = c.anisotropic;

@@ -60,7 +60,7 @@ std::vector<PrincipledBSDF> materials() {
     };
     for (const auto& c : BxDFCases<PrincipledBSDF>::cases()) add(c.bxdf);
     for (const auto& b : BxDFCases<PrincipledBSDF>::sweep()) add(b);
-    PrincipledParams p;
+    PrincipledInputs p;
     p.variant = PrincipledVariant::Burley2015;
     p.base_color = Spectrum(0.2f, 0.5f, 0.9f);
     p.roughness = 0.35f;

@@ -144,7 +144,7 @@ TEST(SubsurfaceChoice, EachAutoRuleFiresOnTheSceneBuiltForIt) {
     {
         auto s = scene_from(choice_scene(milk, kSphere, 300));
         EXPECT_EQ(chosen(*s), SubsurfaceModel::Coated) << s->subsurface_choices[0].reason;
-        EXPECT_TRUE(std::holds_alternative<PlasticMaterial>(s->materials[s->shapes[0].material]));
+        EXPECT_TRUE(std::holds_alternative<PlasticParams>(s->materials[s->shapes[0].material]));
         EXPECT_TRUE(s->subsurface.empty());
     }
     // An explicit model is kept.
@@ -190,6 +190,34 @@ TEST(SubsurfaceChoice, BadInputIsReportedWithItsNumbers) {
         EXPECT_TRUE(log.has("does not scatter"));
         EXPECT_EQ(chosen(*s), SubsurfaceModel::RandomWalk);
         EXPECT_EQ(s->shapes[0].interior_medium, 0);
+    }
+}
+
+// A textured interior is read at each hit by the diffusion models only: auto takes the better
+// dipole (even where the constants would pick the random walk: sigma_s's constant is 0), and the
+// models built once from constants refuse it, naming the key.
+TEST(SubsurfaceChoice, ATexturedInteriorTakesADiffusionModel) {
+    const std::string tex_s = R"({"type": "checkerboard", "color0": 5, "color1": 20})";
+    {
+        LogCapture log;
+        auto s = scene_from(choice_scene(R"({"type": "subsurface", "sigma_a": 0.5, "sigma_s": )" + tex_s + "}", kSphere, 4));
+        EXPECT_EQ(chosen(*s), SubsurfaceModel::BetterDipole) << s->subsurface_choices[0].reason;
+        EXPECT_NE(s->subsurface_choices[0].reason.find("textured interior ('sigma_s')"), std::string::npos);
+        EXPECT_FALSE(log.has("does not scatter"));
+        EXPECT_EQ(s->subsurface.size(), 1u);
+    }
+    for (const char* model : {"random_walk", "coated"}) {
+        try {
+            scene_from(choice_scene(std::string(R"({"type": "subsurface", "model": ")") + model +
+                                        R"(", "albedo": 0.5, "g": {"type": "checkerboard", "color0": 0, "color1": 0.5}})",
+                                    kSphere, 4));
+            ADD_FAILURE() << model << ": expected an error";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("material 'm': 'g' is a texture, which model '" + std::string(model) +
+                                                 "' cannot vary over the surface"),
+                      std::string::npos)
+                << e.what();
+        }
     }
 }
 

@@ -3,6 +3,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
+#include <set>
 #include <string>
 
 #include "pellucid/bxdf/batch.h"
@@ -21,7 +22,7 @@ namespace {
 Material material_from(const std::string& json) {
     return build_material(parse_json(json, "m.json"), "scene.json", "materials.m");
 }
-BxDF bxdf_from(const std::string& json) { return get_bxdf(material_from(json), SurfaceInteraction{}); }
+BxDF bxdf_from(const std::string& json) { return make_bxdf(material_from(json)); }
 
 std::string material_error(const std::string& json) { return test::error_of_call([&] { material_from(json); }); }
 
@@ -53,7 +54,7 @@ TEST(Materials, EveryTypeBuildsFromJson) {
         auto it = examples.find(type);
         ASSERT_NE(it, examples.end()) << "no example for registered material type '" << type << "'";
         Material m = material_from(it->second);
-        BxDF b = get_bxdf(m, SurfaceInteraction{});
+        BxDF b = make_bxdf(m);
         EXPECT_NE(flags(b), BxDFFlags::None) << type;
         EXPECT_FALSE(to_string(m).empty());
         // The BxDF reflects something for a front-facing direction.
@@ -219,16 +220,15 @@ TEST(Materials, RoughCoatTableIsBuiltOncePerMaterial) {
     };
     auto scene = make(R"({"type": "rough_plastic", "coat_transmittance": "rough", "alpha": 0.25,
         "diffuse_reflectance": {"type": "checkerboard", "color0": 0.1, "color1": 0.9}})");
-    const auto& mat = std::get<RoughPlasticMaterial>(scene->materials.at(0));
-    const RoughCoatTable* table = mat.params().coat_table;
+    const auto& mat = std::get<RoughPlasticParams>(scene->materials.at(0));
+    const RoughCoatTable* table = mat.coat_table;
     ASSERT_NE(table, nullptr);
     EXPECT_EQ(table, &RoughCoatTable::get(GGX(0.25f), 1.49f / 1.000277f));
-    ASSERT_TRUE(scene->material_textures.at(0).has_bindings());
-    SurfaceInteraction si;
+    ASSERT_TRUE(scene->material_textures.at(0).has_textured_params());
     TextureEvalContext ctx;
     for (float u : {0.1f, 0.6f}) {
         ctx.uv = Vec2f(u, 0.3f);
-        BxDF b = get_textured_bxdf(scene->materials[0], scene->material_textures[0], scene->textures, ctx, si);
+        BxDF b = make_bxdf(scene->materials[0], TexEval(scene->textures, ctx));
         EXPECT_EQ(std::get<RoughPlastic<GGX>>(b).base().coat_table(), table);
     }
     for (const char* key : {"alpha", "roughness", "int_ior", "ext_ior"}) {
@@ -247,19 +247,65 @@ TEST(Materials, RoughCoatTableIsBuiltOncePerMaterial) {
     EXPECT_NO_THROW(make(R"({"type": "rough_plastic", "alpha": {"type": "checkerboard", "color0": 0.1, "color1": 0.3}})"));
 }
 
+// A Tex parameter bound to a texture reads it through a TexEval over the hit: clamped into the
+// parameter's range, then mapped (roughness r -> alpha = r^2). TexEval{} reads the constants (a bound
+// parameter keeps its default), and untextured fields give their constants either way.
+TEST(Materials, TexParametersReadTheirTexturesThroughTexEval) {
+    SceneDesc d;
+    d.source = "scene.json";
+    d.root = parse_json(R"({"materials": {
+        "r": {"type": "rough_conductor", "material": "Au",
+              "roughness": {"type": "checkerboard", "color0": 0.2, "color1": 0.6},
+              "specular_reflectance": {"type": "checkerboard", "color0": [0.5, 0.25, 1.0], "color1": 0.9}},
+        "a": {"type": "rough_conductor", "alpha": {"type": "checkerboard", "color0": 0.5, "color1": 3.0}}},
+        "shapes": [{"type": "sphere", "material": "r"}, {"type": "sphere", "material": "a"}]})",
+                        "scene.json");
+    auto scene = build_scene(d);
+    const auto& r = std::get<RoughConductorParams>(scene->materials.at(0));
+    ASSERT_TRUE(r.microfacet.alpha_u.textured());
+    EXPECT_EQ(r.microfacet.alpha_u.map, TexMap::Square);
+    EXPECT_EQ(r.microfacet.alpha_v.texture, r.microfacet.alpha_u.texture);
+    EXPECT_TRUE(r.specular_reflectance.textured());
+    EXPECT_FALSE(r.ior.eta.textured() || r.ior.k.textured());
+    EXPECT_EQ(scene->material_textures.at(0).count, 2);
+    auto alpha_of = [](const BxDF& b) { return std::get<RoughConductor>(b).distribution().alpha_x(); };
+    EXPECT_EQ(alpha_of(make_bxdf(scene->materials[0])), 0.1f);  // the constant of a bound α
+    EXPECT_EQ(alpha_of(scene->material_bxdfs[0]), 0.1f);
+    std::set<float> alphas, clamped;
+    TextureEvalContext ctx;
+    for (float u : {0.25f, 0.75f}) {
+        ctx.uv = Vec2f(u, 0.25f);
+        const TexEval tex(scene->textures, ctx);
+        const BxDF b = make_bxdf(scene->materials[0], tex);
+        alphas.insert(alpha_of(b));
+        EXPECT_EQ(std::get<RoughConductor>(b).distribution().alpha_y(), alpha_of(b));
+        const Spectrum ks = tex(r.specular_reflectance);
+        EXPECT_TRUE(ks == Spectrum(0.9f) || ks == Spectrum(0.5f, 0.25f, 1.f)) << ks.to_string();
+        EXPECT_EQ(tex(r.ior.eta), r.ior.eta.value);
+        clamped.insert(alpha_of(make_bxdf(scene->materials[1], tex)));
+    }
+    // A float parameter reads the channel average of its texture (3 equal channels: within 1 ulp).
+    ASSERT_EQ(alphas.size(), 2u);
+    EXPECT_NEAR(*alphas.begin(), 0.2f * 0.2f, 1e-7f);
+    EXPECT_NEAR(*alphas.rbegin(), 0.6f * 0.6f, 1e-7f);
+    ASSERT_EQ(clamped.size(), 2u);
+    EXPECT_NEAR(*clamped.begin(), 0.5f, 1e-7f);
+    EXPECT_EQ(*clamped.rbegin(), 1.f);  // 3 is clamped to α's upper bound 1
+}
+
 TEST(Materials, ClampsAndMappings) {
     // α > 1 is clamped to 1; roughness r maps to α = r².
-    auto rc = std::get<RoughConductorMaterial>(material_from(R"({"type": "rough_conductor", "alpha": 3})"));
-    EXPECT_EQ(rc.params().microfacet.alpha_u, 1.f);
-    rc = std::get<RoughConductorMaterial>(material_from(R"({"type": "rough_conductor", "roughness": 0.5})"));
-    EXPECT_FLOAT_EQ(rc.params().microfacet.alpha_u, 0.25f);
-    rc = std::get<RoughConductorMaterial>(material_from(R"({"type": "rough_conductor", "alpha_u": 0.2})"));
-    EXPECT_EQ(rc.params().microfacet.alpha_v, 0.2f);
-    auto on = std::get<OrenNayarMaterial>(material_from(R"({"type": "oren_nayar", "variant": "classic", "sigma": 120})"));
-    EXPECT_EQ(on.params().sigma_degrees, 90.f);
+    auto rc = std::get<RoughConductorParams>(material_from(R"({"type": "rough_conductor", "alpha": 3})"));
+    EXPECT_EQ(rc.microfacet.alpha_u.value, 1.f);
+    rc = std::get<RoughConductorParams>(material_from(R"({"type": "rough_conductor", "roughness": 0.5})"));
+    EXPECT_FLOAT_EQ(rc.microfacet.alpha_u.value, 0.25f);
+    rc = std::get<RoughConductorParams>(material_from(R"({"type": "rough_conductor", "alpha_u": 0.2})"));
+    EXPECT_EQ(rc.microfacet.alpha_v.value, 0.2f);
+    auto on = std::get<OrenNayarParams>(material_from(R"({"type": "oren_nayar", "variant": "classic", "sigma": 120})"));
+    EXPECT_EQ(on.sigma_degrees.value, 90.f);
     // Named IORs: η = int_ior/ext_ior.
-    auto d = std::get<DielectricMaterial>(material_from(R"({"type": "dielectric", "int_ior": "water", "ext_ior": "air"})"));
-    EXPECT_FLOAT_EQ(d.params().eta(), 1.333f / 1.000277f);
+    auto d = std::get<DielectricParams>(material_from(R"({"type": "dielectric", "int_ior": "water", "ext_ior": "air"})"));
+    EXPECT_FLOAT_EQ(relative_eta(d, TexEval{}), 1.333f / 1.000277f);
     // Default conductor is Mitsuba 3's "none": a perfect mirror.
     BxDF mirror = bxdf_from(R"({"type": "conductor"})");
     auto s = sample(mirror, BxDFContext{}, dir(0.3f, 0.1f), 0.5f, Vec2f(0.5f));
@@ -281,7 +327,7 @@ TEST(Materials, SchlickUsesTheExactNormalIncidenceReflectance) {
 
 TEST(Materials, ProbeBatchesAgreeWithSingleCalls) {
     BSDFProbe p = BSDFProbe::from_desc(parse_json(R"({"type": "rough_plastic", "alpha": 0.3})", "p.json"));
-    EXPECT_NE(p.to_string().find("RoughPlasticMaterial"), std::string::npos);
+    EXPECT_NE(p.to_string().find("bsdf(rough_plastic[distribution=ggx, alpha=0.3"), std::string::npos);
     const float wo[6] = {0.f, 0.6f, 0.8f, 0.3f, 0.f, 0.5f};  // second row not normalised
     const float u[6] = {0.9f, 0.2f, 0.7f, 0.1f, 0.5f, 0.5f};
     float wi[6], w[6], pd[2], f[6], pe[2];
