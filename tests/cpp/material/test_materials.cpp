@@ -50,13 +50,15 @@ TEST(Materials, EveryTypeBuildsFromJson) {
         {"subsurface", R"({"type": "subsurface", "model": "dipole", "albedo": [0.9, 0.6, 0.4], "mfp": 0.01,
                          "int_ior": 1.4, "g": 0.3})"},
     };
+    std::set<size_t> alternatives;
     for (const auto& [type, fn] : material_registry()) {
         auto it = examples.find(type);
         ASSERT_NE(it, examples.end()) << "no example for registered material type '" << type << "'";
         Material m = material_from(it->second);
+        alternatives.insert(m.index());
         BxDF b = make_bxdf(m);
         EXPECT_NE(flags(b), BxDFFlags::None) << type;
-        EXPECT_FALSE(to_string(m).empty());
+        EXPECT_EQ(to_string(m).rfind(type + "[", 0), 0u) << to_string(m);
         // The BxDF reflects something for a front-facing direction.
         float a[3];
         Vec3f wo = dir(0.7f, 0.3f);
@@ -65,6 +67,9 @@ TEST(Materials, EveryTypeBuildsFromJson) {
         EXPECT_LE(a[1], 1.05f) << type;
     }
     EXPECT_EQ(examples.size(), material_registry().size());
+    // Each type builds its own alternative of the Material variant, and every alternative has a type.
+    EXPECT_EQ(alternatives.size(), material_registry().size());
+    EXPECT_EQ(alternatives.size(), std::variant_size_v<Material>);
 }
 
 TEST(Materials, ErrorsNameKeyPathParameterAndValue) {
