@@ -20,3 +20,10 @@ if(PELLUCID_SANITIZE)
   add_compile_options(-fsanitize=${PELLUCID_SANITIZE} -fno-sanitize-recover=all -fno-omit-frame-pointer)
   add_link_options(-fsanitize=${PELLUCID_SANITIZE})
 endif()
+# A diagnostic build of the path tracer (bench/dispatch_stats.py): each masked call of a packet
+# form records its active lanes and its time stamp-counter cycles, printed when the process exits.
+# Off in every other build, where the counting compiles to nothing.
+option(PELLUCID_DISPATCH_STATS "Count the path tracer's packet-form calls, their active lanes and cycles" OFF)
+if(PELLUCID_DISPATCH_STATS)
+  add_compile_definitions(PELLUCID_DISPATCH_STATS=1)
+endif()

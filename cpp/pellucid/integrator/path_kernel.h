@@ -52,11 +52,41 @@
 
 namespace pellucid {
 
+// PELLUCID_FORM_CALL(kind, where, statement): the statement that runs packet form `kind` masked to
+// the lanes `where`. The diagnostic build (CMake PELLUCID_DISPATCH_STATS, bench/dispatch_stats.py)
+// times it and counts its lanes (dispatch_record), and likewise the tile (kind −1) and the packet
+// pass with its lanes that go on (kind −2); every other build is the statement alone.
+#if PELLUCID_DISPATCH_STATS
+template <class M>
+int dispatch_lane_count(const M& m, int width) {
+    bool b[16];
+    lane::store(b, m);
+    int n = 0;
+    for (int i = 0; i < width; ++i) n += b[i];
+    return n;
+}
+#define PELLUCID_FORM_CALL(kind, where, ...)                                                      \
+    do {                                                                                          \
+        const uint64_t form_t0 = dispatch_clock();                                               \
+        __VA_ARGS__;                                                                              \
+        dispatch_record(kind, dispatch_lane_count(where, W), W, dispatch_clock() - form_t0);     \
+    } while (0)
+#else
+#define PELLUCID_FORM_CALL(kind, where, ...) __VA_ARGS__
+#endif
+
 template <class F>
 uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& film) {
     constexpr int W = kLaneWidth<F>;
     using M = MaskT<F>;
     static_assert(W <= 16, "one Embree packet per vertex");
+#if PELLUCID_DISPATCH_STATS
+    const uint64_t tile_t0 = dispatch_clock();
+    struct TileClock {
+        uint64_t t0;
+        ~TileClock() { dispatch_record(-1, 0, W, dispatch_clock() - t0); }
+    } tile_clock{tile_t0};
+#endif
     const PathSetup& ps = ps_in;
     const bool splat = film.splats();
     const Scene& scene = *ps.scene;
@@ -103,6 +133,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     // bounce carries the hit's footprint on to the next hit as ray differentials,
     // Scene::specular_differentials).
     const bool vertex_lanes = !(ps.media || ps.subsurface);
+    // The fewest escaped lanes a vertex restarts before its packet pass: 6 of 16 (measured on the
+    // suite, bench/README.md), every escape for one lane.
+    constexpr int kRestartMinLanes = std::max(1, 3 * W / 8);
     HitVertexInputs<W> hv{};
     struct alignas(64) Arrays {
         float Lr[W], Lg[W], Lb[W], br[W], bg[W], bb[W];
@@ -238,6 +271,43 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 }
             }
         };
+        // The paths of the lanes esc_b whose rays escaped end: they add the radiance of the lights at
+        // infinity, MIS-weighted as the packet pass weighs emission (escaped_radiance, or
+        // path_services::escaped for lights without a table row), hand their estimates over, and
+        // their lanes start the next paths.
+        auto end_escaped = [&](const bool* esc_b) {
+            const M esc = LM(esc_b);
+            alignas(64) float e[3][W];
+            for (int i = 0; i < W; ++i) {
+                const Vec3f d = esc_b[i] ? ray[i].d : Vec3f(0.f, 0.f, 1.f);
+                e[0][i] = d.x, e[1][i] = d.y, e[2][i] = d.z;
+            }
+            RGB<F> Le(F(0.f));
+            if (!ps.lights.infinite.empty()) {
+                Le = escaped_radiance<F>(ps.lights, V3<F>(LD(e[0]), LD(e[1]), LD(e[2])), ps.use_mis, ps.use_nee,
+                                         LM(a.specular), LD(a.prev_pdf));
+            } else {
+                for (int i = 0; i < W; ++i) {
+                    Spectrum l(0.f);
+                    if (esc_b[i]) {
+                        const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]),
+                                                      Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
+                        l = path_services::escaped(ps, prev, ray[i].d, a.specular[i], a.prev_pdf[i]);
+                    }
+                    e[0][i] = l.r, e[1][i] = l.g, e[2][i] = l.b;
+                }
+                Le = RGB<F>(LD(e[0]), LD(e[1]), LD(e[2]));
+            }
+            const RGB<F> beta(LD(a.br), LD(a.bg), LD(a.bb));
+            const RGB<F> L0(LD(a.Lr), LD(a.Lg), LD(a.Lb));
+            const RGB<F> L = lane::select(esc, L0 + beta * Le * F(1.f), L0);
+            ST(a.Lr, L.r), ST(a.Lg, L.g), ST(a.Lb, L.b);
+            for (int i = 0; i < W; ++i) {
+                if (!esc_b[i]) continue;
+                done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
+                start(i);
+            }
+        };
         for (int i = 0; i < W; ++i) start(i);
         camera_rays();
         for (;;) {
@@ -250,10 +320,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             path_services::trace_hits(scene, W, ray_ptr, rh, hit);
             // Hit records: full ones one lane at a time (Scene::fill_hit), then the vertices of the
             // lanes that need no more, as packets (the same templates fill_hit uses, so the same bits).
-            hv.clear();
-            for (int i = 0; i < W; ++i) {
+            auto record_hit = [&](int i) {
                 full[i] = true;
-                if (!hit[i]) continue;
+                if (!hit[i]) return;
                 const RayHit& h = rh[i];
                 const ShapeRecord& s = scene.shapes[h.geom_id];
                 mat_of[i] = s.face_materials.empty() ? s.material : s.face_materials[h.prim_id];
@@ -261,11 +330,44 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane ||
                     (scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[mat_of[i]])))) {
                     scene.fill_hit(ray[i], h, si[i], scene.has_textures);
-                    continue;
+                    return;
                 }
                 full[i] = false;
                 a.wox[i] = -ray[i].d.x, a.woy[i] = -ray[i].d.y, a.woz[i] = -ray[i].d.z;
                 fetch_hit_vertex(scene, ray[i], h, i, hv);
+            };
+            hv.clear();
+            for (int i = 0; i < W; ++i) record_hit(i);
+            // Lanes whose rays escaped end their paths here and, when they are at least
+            // kRestartMinLanes, start the next ones at once, whose camera rays are traced before the
+            // packet pass: the pass then shades more hits per packet (bench/dispatch_stats.py;
+            // fewer would cost a packet trace for too little). Each path draws its numbers from its
+            // own seeding and its estimate goes to its own slot of `done`, so the image is the same
+            // bits. Scenes with media or subsurface scattering, whose escapes take more steps, do not.
+            if (vertex_lanes && next < n_paths) {
+                alignas(64) bool esc_b[W];
+                int n_esc = 0;
+                for (int i = 0; i < W; ++i) {
+                    esc_b[i] = active[i] && !hit[i];
+                    n_esc += esc_b[i];
+                }
+                if (n_esc >= kRestartMinLanes) {
+                    end_escaped(esc_b);
+                    const Ray* again[W];
+                    for (int i = 0; i < W; ++i) {
+                        esc_b[i] = esc_b[i] && active[i];  // the lanes that started a path
+                        again[i] = esc_b[i] ? &ray[i] : nullptr;
+                    }
+                    camera_rays();
+                    RayHit rh2[W];
+                    bool hit2[W];
+                    path_services::trace_hits(scene, W, again, rh2, hit2);
+                    for (int i = 0; i < W; ++i) {
+                        if (!esc_b[i]) continue;
+                        rh[i] = rh2[i], hit[i] = hit2[i];
+                        record_hit(i);
+                    }
+                }
             }
             if (hv.any()) {
                 // Lanes with full records overwrite theirs (load_vertex) where their paths go on.
@@ -566,6 +668,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
 
             // The packet pass over every lane.
             {
+#if PELLUCID_DISPATCH_STATS
+                const uint64_t pass_t0 = dispatch_clock();
+#endif
                 const M on = LM(active), is_hit = LM(hit);
                 const RGB<F> beta0(LD(a.br), LD(a.bg), LD(a.bb));
                 RGB<F> L(LD(a.Lr), LD(a.Lg), LD(a.Lb));
@@ -661,15 +766,18 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     // plastics, the rough dielectrics and the principled models have lobes NEE can reach.)
                     const M off = leak || !(is_lambert || is_on || is_rough || is_beckmann || is_plastic || is_plastic_b ||
                                             is_any_rdiel || is_princ || is_princ12);
-                    RGB<F> f_fast = lambert.eval(ctx, wo, wi);
-                    F pdf_fast = lambert.pdf(ctx, wo, wi);
-                    // Each glossy packet form present evaluates on all lanes; its own lanes keep the result.
-                    auto eval_form = [&](const M& where, const auto& form) {
-                        if (!lane::any(where && nee)) return;
-                        f_fast = lane::select(where, form.eval(ctx, wo, wi), f_fast);
-                        pdf_fast = lane::select(where, form.pdf(ctx, wo, wi), pdf_fast);
-                    };
-                    eval_form(is_on, oren);
+                    // Each packet form present evaluates on all lanes; its own lanes keep the result.
+                    RGB<F> f_fast(F(0.f));
+                    F pdf_fast(0.f);
+                    if (lane::any(is_lambert && nee)) {
+                        PELLUCID_FORM_CALL(kPacketLambertian, is_lambert && nee, f_fast = lambert.eval(ctx, wo, wi);
+                                           pdf_fast = lambert.pdf(ctx, wo, wi));
+                    }
+                    if (lane::any(is_on && nee)) {
+                        PELLUCID_FORM_CALL(kPacketOrenNayar, is_on && nee,
+                                           f_fast = lane::select(is_on, oren.eval(ctx, wo, wi), f_fast);
+                                           pdf_fast = lane::select(is_on, oren.pdf(ctx, wo, wi), pdf_fast));
+                    }
                     // The forms that evaluate f and pdf together: the microfacet conductors and the
                     // plastics (one half vector, D and Λ(wo) once: ReflectionPairT::
                     // torrance_sparrow_cos_pdf), the dielectrics and the principled BSDFs (one half
@@ -679,14 +787,18 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         pdf_fast = lane::select(where, ep.pdf, pdf_fast);
                     };
                     auto due = [&](const M& where) { return lane::any(where && nee); };
-                    if (due(is_rough)) merge(is_rough, rough.eval_pdf(ctx, wo, wi));
-                    if (due(is_beckmann)) merge(is_beckmann, beckmann.eval_pdf(ctx, wo, wi));
-                    if (due(is_plastic)) merge(is_plastic, plastic.eval_pdf(ctx, wo, wi));
-                    if (due(is_plastic_b)) merge(is_plastic_b, plastic_b.eval_pdf(ctx, wo, wi));
-                    if (due(is_rdiel)) merge(is_rdiel, rdiel.eval_pdf(ctx, wo, wi, is_rdiel && nee));
-                    if (due(is_rdiel_b)) merge(is_rdiel_b, rdiel_b.eval_pdf(ctx, wo, wi, is_rdiel_b && nee));
-                    if (due(is_princ)) merge(is_princ, princ.eval_pdf(ctx, wo, wi, is_princ && nee));
-                    if (due(is_princ12)) merge(is_princ12, princ12.eval_pdf(ctx, wo, wi, is_princ12 && nee));
+#define PELLUCID_NEE_FORM(kind, where, ...) \
+    if (due(where)) PELLUCID_FORM_CALL(kind, where && nee, merge(where, __VA_ARGS__))
+                    PELLUCID_NEE_FORM(kPacketRoughConductor, is_rough, rough.eval_pdf(ctx, wo, wi));
+                    PELLUCID_NEE_FORM(kPacketRoughConductorBeckmann, is_beckmann, beckmann.eval_pdf(ctx, wo, wi));
+                    PELLUCID_NEE_FORM(kPacketPlastic, is_plastic, plastic.eval_pdf(ctx, wo, wi));
+                    PELLUCID_NEE_FORM(kPacketPlasticBeckmann, is_plastic_b, plastic_b.eval_pdf(ctx, wo, wi));
+                    PELLUCID_NEE_FORM(kPacketRoughDielectric, is_rdiel, rdiel.eval_pdf(ctx, wo, wi, is_rdiel && nee));
+                    PELLUCID_NEE_FORM(kPacketRoughDielectricBeckmann, is_rdiel_b,
+                                      rdiel_b.eval_pdf(ctx, wo, wi, is_rdiel_b && nee));
+                    PELLUCID_NEE_FORM(kPacketPrincipled, is_princ, princ.eval_pdf(ctx, wo, wi, is_princ && nee));
+                    PELLUCID_NEE_FORM(kPacketPrincipled2012, is_princ12, princ12.eval_pdf(ctx, wo, wi, is_princ12 && nee));
+#undef PELLUCID_NEE_FORM
                     f_fast = lane::select(off, RGB<F>(F(0.f)), soften(f_fast, wi, wi_w));
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
                     const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
@@ -706,7 +818,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 {
                     const F u_lobe = LD(a.u[3]);
                     const V2<F> u2{LD(a.u[4]), LD(a.u[5])};
-                    BxDFSampleT<F> s = lambert.sample(ctx, wo, u_lobe, u2);
+                    // Each packet form present samples on all lanes; its own lanes keep the result.
+                    BxDFSampleT<F> s{M(false), V3<F>(F(0.f), F(0.f), F(1.f)), RGB<F>(F(0.f)), F(0.f), F(1.f), IntT<F>(0)};
+                    if (lane::any(is_lambert))
+                        PELLUCID_FORM_CALL(kPacketLambertian, is_lambert, s = lambert.sample(ctx, wo, u_lobe, u2));
                     auto merge = [&](const M& where, const BxDFSampleT<F>& d) {
                         const auto di = lane::int_mask(where);
                         s.valid = lane::select(where, d.valid, s.valid);
@@ -716,26 +831,28 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         s.eta = lane::select(where, d.eta, s.eta);
                         s.lobe = lane::select(di, d.lobe, s.lobe);
                     };
-                    if (any_on) merge(is_on, oren.sample(ctx, wo, u_lobe, u2));
-                    if (lane::any(is_mirror)) merge(is_mirror, metal.sample(ctx, wo, u_lobe, u2));
-                    if (lane::any(is_rough)) merge(is_rough, rough.sample(ctx, wo, u_lobe, u2));
-                    if (lane::any(is_beckmann)) merge(is_beckmann, beckmann.sample(ctx, wo, u_lobe, u2));
-                    if (lane::any(is_plastic)) merge(is_plastic, plastic.sample(ctx, wo, u_lobe, u2));
-                    if (lane::any(is_plastic_b)) merge(is_plastic_b, plastic_b.sample(ctx, wo, u_lobe, u2));
-                    if (lane::any(is_rdiel)) merge(is_rdiel, rdiel.sample(ctx, wo, u_lobe, u2, is_rdiel));
-                    if (lane::any(is_rdiel_b)) merge(is_rdiel_b, rdiel_b.sample(ctx, wo, u_lobe, u2, is_rdiel_b));
-                    if (any_princ) merge(is_princ, princ.sample(ctx, wo, u_lobe, u2, is_princ));
-                    if (any_princ12) merge(is_princ12, princ12.sample(ctx, wo, u_lobe, u2, is_princ12));
-                    if (lane::any(is_dielectric)) {
-                        const SmoothDielectricT<F> diel{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
-                                                        RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};
-                        merge(is_dielectric, diel.sample(ctx, wo, u_lobe, u2));
-                    }
-                    if (lane::any(is_thin)) {
-                        const ThinDielectricT<F> thin{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
-                                                      RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))};
-                        merge(is_thin, thin.sample(ctx, wo, u_lobe, u2));
-                    }
+#define PELLUCID_SAMPLE_FORM(kind, where, ...) \
+    if (lane::any(where)) PELLUCID_FORM_CALL(kind, where, merge(where, __VA_ARGS__))
+                    PELLUCID_SAMPLE_FORM(kPacketOrenNayar, is_on, oren.sample(ctx, wo, u_lobe, u2));
+                    PELLUCID_SAMPLE_FORM(kPacketSmoothConductor, is_mirror, metal.sample(ctx, wo, u_lobe, u2));
+                    PELLUCID_SAMPLE_FORM(kPacketRoughConductor, is_rough, rough.sample(ctx, wo, u_lobe, u2));
+                    PELLUCID_SAMPLE_FORM(kPacketRoughConductorBeckmann, is_beckmann, beckmann.sample(ctx, wo, u_lobe, u2));
+                    PELLUCID_SAMPLE_FORM(kPacketPlastic, is_plastic, plastic.sample(ctx, wo, u_lobe, u2));
+                    PELLUCID_SAMPLE_FORM(kPacketPlasticBeckmann, is_plastic_b, plastic_b.sample(ctx, wo, u_lobe, u2));
+                    PELLUCID_SAMPLE_FORM(kPacketRoughDielectric, is_rdiel, rdiel.sample(ctx, wo, u_lobe, u2, is_rdiel));
+                    PELLUCID_SAMPLE_FORM(kPacketRoughDielectricBeckmann, is_rdiel_b,
+                                         rdiel_b.sample(ctx, wo, u_lobe, u2, is_rdiel_b));
+                    PELLUCID_SAMPLE_FORM(kPacketPrincipled, is_princ, princ.sample(ctx, wo, u_lobe, u2, is_princ));
+                    PELLUCID_SAMPLE_FORM(kPacketPrincipled2012, is_princ12, princ12.sample(ctx, wo, u_lobe, u2, is_princ12));
+                    PELLUCID_SAMPLE_FORM(kPacketSmoothDielectric, is_dielectric,
+                                         SmoothDielectricT<F>{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
+                                                              RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))}
+                                             .sample(ctx, wo, u_lobe, u2));
+                    PELLUCID_SAMPLE_FORM(kPacketThinDielectric, is_thin,
+                                         ThinDielectricT<F>{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
+                                                            RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))}
+                                             .sample(ctx, wo, u_lobe, u2));
+#undef PELLUCID_SAMPLE_FORM
                     const V3<F> wi_w = frame.to_world(s.wi);
                     const M ok_fast = s.valid && s.pdf > F(0.f) && !is_black(s.weight) && s.wi.z != F(0.f) &&
                                       !shading_leaks<F>(ng, wo_w, wi_w, wo, s.wi) && wo.z != F(0.f);
@@ -798,6 +915,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     else
                         ray[i].set(Vec3f(ob[0][i], ob[1][i], ob[2][i]), wi, kInfinity);
                 }
+#if PELLUCID_DISPATCH_STATS
+                dispatch_record(-2, dispatch_lane_count(goes_on, W), W, dispatch_clock() - pass_t0);
+#endif
             }
 
             // The shadow rays NEE left, as one packet.

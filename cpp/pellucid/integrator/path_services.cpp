@@ -3,11 +3,59 @@
 #include "pellucid/integrator/path_services.h"
 
 #include <new>
+#if PELLUCID_DISPATCH_STATS
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#if defined(__x86_64__)
+#include <x86intrin.h>
+#endif
+#endif
 
 #include "pellucid/sampling/mis.h"
 #include "pellucid/scene/scene.h"
 
 namespace pellucid {
+
+#if PELLUCID_DISPATCH_STATS
+namespace {
+// Index 2 + kind: 0 the packet passes (kind −2), 1 the kernel's tiles (−1), then the packet forms.
+// Every counter is a sum, so the totals do not depend on the thread count.
+struct DispatchCounts {
+    std::atomic<uint64_t> calls{0}, lanes{0}, cycles{0};
+    std::atomic<int> width{0};
+};
+DispatchCounts g_dispatch[2 + 32];
+void print_dispatch() {
+    for (int i = 0; i < 2 + 32; ++i) {
+        const DispatchCounts& d = g_dispatch[i];
+        if (!d.calls) continue;
+        std::fprintf(stderr, "dispatch form %d calls %llu lanes %llu width %d cycles %llu\n", i - 2,
+                     static_cast<unsigned long long>(d.calls.load()), static_cast<unsigned long long>(d.lanes.load()),
+                     d.width.load(), static_cast<unsigned long long>(d.cycles.load()));
+    }
+}
+}  // namespace
+
+uint64_t dispatch_clock() {
+#if defined(__x86_64__)
+    return __rdtsc();
+#else
+    return uint64_t(std::chrono::steady_clock::now().time_since_epoch().count());
+#endif
+}
+
+void dispatch_record(int kind, int lanes, int width, uint64_t cycles) {
+    static const bool registered = (std::atexit(print_dispatch), true);
+    (void)registered;
+    DispatchCounts& d = g_dispatch[2 + kind];
+    d.calls.fetch_add(1, std::memory_order_relaxed);
+    d.lanes.fetch_add(uint64_t(lanes), std::memory_order_relaxed);
+    d.cycles.fetch_add(cycles, std::memory_order_relaxed);
+    d.width.store(width, std::memory_order_relaxed);
+}
+#endif
 
 namespace {
 /// A conductor's packet form and parameters (PathSetup::packet_params), if it has one.

@@ -41,6 +41,17 @@ enum PacketKind : int32_t {
     kPacketPrincipled2012 = 13,  ///< principled BRDF, Burley 2012 (Principled2012T, principled2012_lanes)
 };
 constexpr int kPacketParams = 19;
+
+#if PELLUCID_DISPATCH_STATS
+/// The diagnostic build's counters (CMake PELLUCID_DISPATCH_STATS; bench/dispatch_stats.py): one
+/// masked call of packet form `kind` (kind −1: one tile of the kernel; −2: one packet pass, its lanes
+/// those that go on from a hit) ran on a packet of
+/// `width` lanes, `lanes` of them its own, in `cycles` time stamp-counter cycles. The totals are
+/// printed to standard error when the process exits, one line per form:
+/// "dispatch form K calls C lanes N width W cycles T".
+void dispatch_record(int kind, int lanes, int width, uint64_t cycles);
+uint64_t dispatch_clock();
+#endif
 /// How many parameters the packet form of `kind` reads (0 for kBSDFLane).
 int packet_param_count(int32_t kind);
 
