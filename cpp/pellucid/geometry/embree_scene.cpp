@@ -382,6 +382,13 @@ void EmbreeScene::occluded_lanes(int n, const float* const soa[7], const bool* v
     }
     for (int i = 0; i < 16; ++i) {
         mask[i] = i < n && valid[i] ? -1 : 0;
+        if (!mask[i]) {
+            // A masked-off lane is a ray Embree would accept as it is: its caller may leave anything
+            // there (NaN included), and Embree's 16-wide call on an AVX2 build, done as two 8-wide
+            // halves, asserts that every ray it carries is valid.
+            for (int k = 0; k < 6; ++k) dst[k][i] = 0.f;
+            dst[6][i] = -std::numeric_limits<float>::infinity();
+        }
         r.tnear[i] = 0.f;
         r.mask[i] = ~0u;
         r.flags[i] = 0;
