@@ -177,11 +177,13 @@ static_assert(sizeof(float) == sizeof(unsigned), "RTCHitN mixes float and unsign
         default: return sphere_occluded_n(args, args->N);                                              \
         }                                                                                             \
     }
-// The callbacks, compiled for the baseline and, on x86-64 with GCC, for AVX-512 (16 lanes at once),
-// chosen once from the CPU; the same bits either way (sphere_first_root).
+// The callbacks, compiled for the baseline and, on x86-64 with GCC, for AVX2 (four doubles a vector,
+// no FMA) and AVX-512 (eight), the widest the CPU runs chosen once (sphere_variant); the same bits
+// every way (sphere_first_root: IEEE operations in double, never contracted).
 PELLUCID_SPHERE_CALLBACKS(baseline, )
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define PELLUCID_SPHERE_AVX512 1
+#define PELLUCID_SPHERE_X86_VARIANTS 1
+PELLUCID_SPHERE_CALLBACKS(avx2, __attribute__((target("avx2"))))
 PELLUCID_SPHERE_CALLBACKS(avx512, __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw"))))
 #endif
 #undef PELLUCID_SPHERE_CALLBACKS
@@ -196,14 +198,20 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
     b->upper_x = s.upper[0], b->upper_y = s.upper[1], b->upper_z = s.upper[2];
 }
 
-bool sphere_avx512() {
-#ifdef PELLUCID_SPHERE_AVX512
+/// The callbacks of the widest variant this CPU runs.
+struct SphereCallbacks {
+    RTCIntersectFunctionN intersect;
+    RTCOccludedFunctionN occluded;
+};
+SphereCallbacks sphere_variant() {
+#ifdef PELLUCID_SPHERE_X86_VARIANTS
     __builtin_cpu_init();
-    return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-           __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw");
-#else
-    return false;
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"))
+        return {sphere_intersect_avx512, sphere_occluded_avx512};
+    if (__builtin_cpu_supports("avx2")) return {sphere_intersect_avx2, sphere_occluded_avx2};
 #endif
+    return {sphere_intersect_baseline, sphere_occluded_baseline};
 }
 }  // namespace
 
@@ -224,14 +232,9 @@ uint32_t EmbreeScene::add_sphere(const Point3f& c, float r) {
     rtcSetGeometryUserPrimitiveCount(g, 1);
     rtcSetGeometryUserData(g, &s);
     rtcSetGeometryBoundsFunction(g, sphere_bounds, nullptr);
-#ifdef PELLUCID_SPHERE_AVX512
-    static const bool wide = sphere_avx512();
-    rtcSetGeometryIntersectFunction(g, wide ? sphere_intersect_avx512 : sphere_intersect_baseline);
-    rtcSetGeometryOccludedFunction(g, wide ? sphere_occluded_avx512 : sphere_occluded_baseline);
-#else
-    rtcSetGeometryIntersectFunction(g, sphere_intersect_baseline);
-    rtcSetGeometryOccludedFunction(g, sphere_occluded_baseline);
-#endif
+    static const SphereCallbacks callbacks = sphere_variant();
+    rtcSetGeometryIntersectFunction(g, callbacks.intersect);
+    rtcSetGeometryOccludedFunction(g, callbacks.occluded);
     rtcCommitGeometry(g);
     uint32_t id = m_impl->next_id++;
     rtcAttachGeometryByID(m_impl->scene, g, id);
@@ -298,9 +301,9 @@ bool EmbreeScene::occluded(const Ray& ray) const {
 namespace {
 /// Fill an Embree ray packet: lane(i, o, d, &tmax) gives lane i's ray and whether to trace it. An
 /// invalid lane (valid[i] = 0) is not read by Embree, but holds a harmless ray anyway.
-template <class RayK, class LaneFn>
+template <int K, class RayK, class LaneFn>
 void fill_packet(RayK& r, int* valid, LaneFn&& lane) {
-    for (int i = 0; i < EmbreeScene::kPacketSize; ++i) {
+    for (int i = 0; i < K; ++i) {
         float o[3], d[3], tmax;
         valid[i] = lane(i, o, d, &tmax) ? -1 : 0;
         r.org_x[i] = o[0];
@@ -316,7 +319,7 @@ void fill_packet(RayK& r, int* valid, LaneFn&& lane) {
         r.time[i] = 0.f;
     }
 }
-/// Lanes [0, n) from rays[i]; lanes past n repeat rays[0], invalid.
+/// Lanes [0, n) from rays[i]; lanes past n are zero rays, invalid.
 auto lanes_of(int n, const Ray* const* rays) {
     // A null entry is an inactive lane: Embree's mask leaves it out, and its (unused) ray is a
     // well-formed zero ray rather than whatever the caller's storage held.
@@ -336,26 +339,22 @@ auto lanes_of(int n, const Ray* const* rays) {
         return true;
     };
 }
-/// rtcIntersect16 on the lanes `lane` gives (fill_packet); valid receives the mask.
-template <class LaneFn>
-void intersect16(RTCScene scene, LaneFn&& lane, RTCRayHit16& rh, int* valid) {
+/// Embree's packet call on the lanes `lane` gives (fill_packet); valid receives the mask.
+template <int K, class RayHitK, class LaneFn>
+void intersect_k(RTCScene scene, LaneFn&& lane, RayHitK& rh, int* valid) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    fill_packet(rh.ray, valid, lane);
-    for (int i = 0; i < 16; ++i) {
+    fill_packet<K>(rh.ray, valid, lane);
+    for (int i = 0; i < K; ++i) {
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
-    rtcIntersect16(valid, scene, &ctx, &rh);
+    if constexpr (K == 16) rtcIntersect16(valid, scene, &ctx, &rh);
+    else rtcIntersect8(valid, scene, &ctx, &rh);
 }
-}  // namespace
-
-void EmbreeScene::intersect_packet(int n, const Ray* const* rays, RayHit* hits) const {
-    static_assert(kPacketSize == 16, "the packet calls below are the 16-wide ones");
-    if (n <= 0) return;
-    alignas(64) RTCRayHit16 rh;
-    alignas(64) int valid[16];
-    intersect16(m_impl->scene, lanes_of(n, rays), rh, valid);
+/// The first n hits of a packet into hits.
+template <class RayHitK>
+void read_hits(const RayHitK& rh, int n, RayHit* hits) {
     for (int i = 0; i < n; ++i) {
         RayHit& hit = hits[i];
         if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
@@ -370,22 +369,19 @@ void EmbreeScene::intersect_packet(int n, const Ray* const* rays, RayHit* hits) 
         hit.ng = Vec3f(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
     }
 }
-
-void EmbreeScene::occluded_lanes(int n, const float* const soa[7], const bool* valid, bool* occluded) const {
-    if (n <= 0) return;
-    alignas(64) RTCRay16 r;
-    alignas(64) int mask[16];
+/// occluded_lanes on a K-wide packet (n ≤ K).
+template <int K, class RayK>
+void occluded_k(RTCScene scene, int n, const float* const soa[7], const bool* valid, bool* occluded) {
+    alignas(64) RayK r;
+    alignas(64) int mask[K];
     float* dst[7] = {r.org_x, r.org_y, r.org_z, r.dir_x, r.dir_y, r.dir_z, r.tfar};
-    for (int k = 0; k < 7; ++k) {
-        std::memcpy(dst[k], soa[k], sizeof(float) * size_t(n));
-        std::fill(dst[k] + n, dst[k] + 16, 0.f);
-    }
-    for (int i = 0; i < 16; ++i) {
+    for (int k = 0; k < 7; ++k) std::memcpy(dst[k], soa[k], sizeof(float) * size_t(n));
+    for (int i = 0; i < K; ++i) {
         mask[i] = i < n && valid[i] ? -1 : 0;
         if (!mask[i]) {
-            // A masked-off lane is a ray Embree would accept as it is: its caller may leave anything
-            // there (NaN included), and Embree's 16-wide call on an AVX2 build, done as two 8-wide
-            // halves, asserts that every ray it carries is valid.
+            // A masked-off lane holds a well-formed empty ray whatever the caller left there (NaN
+            // included): Embree's 16-wide call on an AVX2 build, done as two 8-wide halves, asserts
+            // that every ray it carries is valid.
             for (int k = 0; k < 6; ++k) dst[k][i] = 0.f;
             dst[6][i] = -std::numeric_limits<float>::infinity();
         }
@@ -396,8 +392,33 @@ void EmbreeScene::occluded_lanes(int n, const float* const soa[7], const bool* v
     }
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    rtcOccluded16(mask, m_impl->scene, &ctx, &r);
+    if constexpr (K == 16) rtcOccluded16(mask, scene, &ctx, &r);
+    else rtcOccluded8(mask, scene, &ctx, &r);
     for (int i = 0; i < n; ++i) occluded[i] = mask[i] != 0 && r.tfar[i] < 0.f;
+}
+}  // namespace
+
+void EmbreeScene::intersect_packet(int n, const Ray* const* rays, RayHit* hits) const {
+    static_assert(kPacketSize == 16, "the packet calls below are at most 16 wide");
+    if (n <= 0) return;
+    // Up to 8 rays go as Embree's 8-wide packet (the 8-lane kernels' packets; an AVX2 build of
+    // Embree would split a 16-wide call into two 8-wide ones), more as a 16-wide one.
+    alignas(64) int valid[16];
+    if (n <= 8) {
+        alignas(64) RTCRayHit8 rh;
+        intersect_k<8>(m_impl->scene, lanes_of(n, rays), rh, valid);
+        read_hits(rh, n, hits);
+    } else {
+        alignas(64) RTCRayHit16 rh;
+        intersect_k<16>(m_impl->scene, lanes_of(n, rays), rh, valid);
+        read_hits(rh, n, hits);
+    }
+}
+
+void EmbreeScene::occluded_lanes(int n, const float* const soa[7], const bool* valid, bool* occluded) const {
+    if (n <= 0) return;
+    if (n <= 8) occluded_k<8, RTCRay8>(m_impl->scene, n, soa, valid, occluded);
+    else occluded_k<16, RTCRay16>(m_impl->scene, n, soa, valid, occluded);
 }
 
 }  // namespace pellucid

@@ -40,7 +40,10 @@ public:
     /// Any hit in (0, ray.tmax].
     bool occluded(const Ray& ray) const;
 
-    /// Rays per packet of intersect_packet/occluded_lanes (Embree's widest, rtcIntersect16).
+    /// The most rays per packet of intersect_packet/occluded_lanes (Embree's widest, rtcIntersect16).
+    /// Up to 8 rays are traced with Embree's 8-wide calls: the packets of the 8- and 4-lane kernels
+    /// (AVX2, SSE4.2), for which an AVX2 build of Embree would otherwise convert a 16-wide packet
+    /// into two 8-wide ones (bench/README.md measures it).
     static constexpr int kPacketSize = 16;
     /// intersect() for n ≤ kPacketSize rays at once, traced as one packet: Embree tests a BVH node
     /// against all of them in SIMD, which amortises the traversal of incoherent rays too. hits[i]
