@@ -146,8 +146,7 @@ TEST(EmbreeScene, SphereRootsAreExactAndAgreeAcrossPacketsAndSingleRays) {
 }
 
 // Lanes left out of a shadow packet may hold anything, NaN included: they are ignored, and the others
-// are answered. (Embree's 16-wide call on an AVX2 build asserted on such lanes before they were
-// overwritten, on a mesh with more than one BVH leaf.)
+// are answered, by the 16-wide and the 8-wide packet calls.
 TEST(EmbreeScene, OccludedLanesIgnoreGarbageInMaskedLanes) {
     EmbreeScene s;
     for (int k = 0; k < 64; ++k) {  // enough triangles for a BVH with inner nodes
@@ -167,6 +166,8 @@ TEST(EmbreeScene, OccludedLanesIgnoreGarbageInMaskedLanes) {
         for (int k = 0; k < 7; ++k) soa[k][i] = valid[i] ? v[k] : (k == 6 ? 0.9f : nan);
     }
     const float* const p[7] = {soa[0], soa[1], soa[2], soa[3], soa[4], soa[5], soa[6]};
-    s.occluded_lanes(n, p, valid, blocked);
-    for (int i = 0; i < n; ++i) EXPECT_EQ(blocked[i], valid[i] && i % 2 == 1) << "lane " << i;
+    for (int m : {n, 8, 5}) {  // Embree's 16-wide call, and its 8-wide one (up to 8 rays)
+        s.occluded_lanes(m, p, valid, blocked);
+        for (int i = 0; i < m; ++i) EXPECT_EQ(blocked[i], valid[i] && i % 2 == 1) << m << " rays, lane " << i;
+    }
 }
