@@ -28,6 +28,14 @@ struct alignas(64) HitVertexInputs {
     bool any() const { return any_sphere || any_tri || any_smooth; }
 };
 
+/// Component c of a 3-vector, always inlined: the kernels are compiled once per instruction set, and
+/// an out-of-line copy of glm's operator[] would be emitted in each under one name
+/// (tests/cpp/integrator/check_kernel_symbols.py; GCC kept one such copy at -O1 in the sanitizer build).
+template <class V>
+[[gnu::always_inline]] inline float vec_component(const V& v, int c) {
+    return c == 0 ? v.x : c == 1 ? v.y : v.z;
+}
+
 /// Lane i's inputs for the hit h of ray r (h.hit()), as Scene::fill_hit reads them.
 template <int W>
 [[gnu::always_inline]] inline void fetch_hit_vertex(const Scene& scene, const Ray& r, const RayHit& h, int i,
@@ -38,7 +46,7 @@ template <int W>
         hv.dx[i] = r.d.x, hv.dy[i] = r.d.y, hv.dz[i] = r.d.z;
         hv.t[i] = h.t;
         hv.cx[i] = s.center.x, hv.cy[i] = s.center.y, hv.cz[i] = s.center.z, hv.r[i] = s.radius;
-        for (int c = 0; c < 9; ++c) hv.rot[c][i] = s.rotation[c / 3][c % 3];
+        for (int c = 0; c < 9; ++c) hv.rot[c][i] = vec_component(s.rotation[c / 3], c % 3);
         hv.flip[i] = s.flip_normals;
         hv.sphere[i] = hv.any_sphere = true;
         return;
@@ -46,15 +54,16 @@ template <int W>
     const TriangleMesh& mesh = scene.meshes[s.mesh_index];
     const uint32_t* idx = &mesh.indices[3 * size_t(h.prim_id)];
     for (int c = 0; c < 3; ++c) {
-        hv.p0[c][i] = mesh.positions[idx[0]][c];
-        hv.p1[c][i] = mesh.positions[idx[1]][c];
-        hv.p2[c][i] = mesh.positions[idx[2]][c];
+        hv.p0[c][i] = vec_component(mesh.positions[idx[0]], c);
+        hv.p1[c][i] = vec_component(mesh.positions[idx[1]], c);
+        hv.p2[c][i] = vec_component(mesh.positions[idx[2]], c);
     }
     hv.b1[i] = h.u, hv.b2[i] = h.v;
     if (!mesh.flat.empty()) {
         const FlatTriangle& f = mesh.flat[h.prim_id];
         for (int c = 0; c < 3; ++c)
-            hv.ng[c][i] = f.ng[c], hv.fs[c][i] = f.shading.s[c], hv.ft[c][i] = f.shading.t[c], hv.fn[c][i] = f.shading.n[c];
+            hv.ng[c][i] = vec_component(f.ng, c), hv.fs[c][i] = vec_component(f.shading.s, c),
+            hv.ft[c][i] = vec_component(f.shading.t, c), hv.fn[c][i] = vec_component(f.shading.n, c);
         hv.tri[i] = hv.any_tri = true;
         return;
     }
@@ -64,9 +73,9 @@ template <int W>
         for (int c = 0; c < 2; ++c) hv.uv[2 * k + c][i] = mesh.uvs.empty() ? kUV[2 * k + c] : mesh.uvs[idx[k]][c];
     const bool has_n = !mesh.normals.empty();
     for (int c = 0; c < 3; ++c) {
-        hv.n0[c][i] = has_n ? mesh.normals[idx[0]][c] : 0.f;
-        hv.n1[c][i] = has_n ? mesh.normals[idx[1]][c] : 0.f;
-        hv.n2[c][i] = has_n ? mesh.normals[idx[2]][c] : 0.f;
+        hv.n0[c][i] = has_n ? vec_component(mesh.normals[idx[0]], c) : 0.f;
+        hv.n1[c][i] = has_n ? vec_component(mesh.normals[idx[1]], c) : 0.f;
+        hv.n2[c][i] = has_n ? vec_component(mesh.normals[idx[2]], c) : 0.f;
     }
     hv.smooth[i] = hv.any_smooth = true;
 }
