@@ -9,7 +9,7 @@
 #   keep      1: leave the root in place at exit, 0: remove it
 # and may define ldr_cleanup_extra, which the exit handler calls after unmounting (to remove the
 # script's own temporary files). Only the host's network settings go into the root:
-# /etc/resolv.conf, the CA bundle and pip's configuration files.
+# /etc/resolv.conf, the CA bundle and pip's configuration files (and the files they name).
 
 t_start=$(date +%s)
 step_start=$t_start
@@ -111,6 +111,21 @@ ldr_copy_network_settings() {
         esac
         mkdir -p "$(dirname "$dest")"
         cp -L "$f" "$dest"
+        ldr_copy_files_named_in "$f"
+    done
+}
+
+# ldr_copy_files_named_in CONF: the files a pip configuration names by absolute path (a constraint
+# or requirement file, a certificate), copied to the same path in the root, so that the copied
+# configuration does not point at a file the root lacks (pip then refuses every install).
+ldr_copy_files_named_in() {
+    local path
+    sed -nE 's/^[[:space:]]*(constraint|constraints|requirement|requirements|cert|client-cert)[[:space:]]*[=:][[:space:]]*(\/[^[:space:]]+)[[:space:]]*$/\2/p' "$1" |
+    while read -r path; do
+        if [ -f "$path" ] && [ ! -e "$root$path" ]; then
+            mkdir -p "$root$(dirname "$path")"
+            cp -L "$path" "$root$path"
+        fi
     done
 }
 
