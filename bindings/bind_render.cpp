@@ -160,8 +160,9 @@ void bind_render(py::module_& m) {
     m.def("render_full", [](const Scene& scene, int spp, int64_t seed, int threads, double time_budget,
                             double target_rel_error, bool progress, RenderProgress* monitor,
                             const std::string& sampler, const py::object& resume, bool keep_state,
-                            const std::string& aov, const std::vector<std::string>& aovs) {
+                            const std::string& aov, const std::vector<std::string>& aovs, bool variance) {
         RenderOptions o;
+        o.variance = variance;
         o.spp = spp, o.seed = seed, o.threads = threads, o.time_budget = time_budget;
         o.target_rel_error = target_rel_error, o.progress = progress, o.progress_out = monitor, o.sampler = sampler;
         o.resume = as_state(resume);
@@ -195,14 +196,18 @@ void bind_render(py::module_& m) {
             if (std::count(aov_list.begin(), aov_list.end(), Aov::MaterialId))
                 stats["material_names"] = py::cast(scene.material_names);
         }
-        py::tuple out = py::make_tuple(image_to_array(std::move(r.image)), image_to_array(std::move(r.variance)), stats);
+        // No variance (the film kept none): None.
+        py::object var = r.variance.data.empty() ? py::object(py::none()) : py::object(image_to_array(std::move(r.variance)));
+        py::tuple out = py::make_tuple(image_to_array(std::move(r.image)), var, stats);
         if (pending) raise_with_partial(pending, out);
         return out;
     }, py::arg("scene"), py::arg("spp") = -1, py::arg("seed") = -1, py::arg("threads") = 0,
        py::arg("time_budget") = 0.0, py::arg("target_rel_error") = 0.0, py::arg("progress") = false,
        py::arg("monitor") = py::none(), py::arg("sampler") = "", py::arg("resume") = py::none(),
        py::arg("keep_state") = false, py::arg("aov") = "", py::arg("aovs") = std::vector<std::string>{},
-       "Render; returns (image, variance, stats), stats['state'] the FilmState if keep_state, stats['aovs'] "
+       py::arg("variance") = true,
+       "Render; returns (image, variance, stats) (variance None when variance is off and the film kept none), "
+       "stats['state'] the FilmState if keep_state, stats['aovs'] "
        "{name: array} of the requested AOVs (integrator/aov.h) with stats['aov_seconds']. A Python signal "
        "handler that raises (Ctrl-C) stops it: the exception is raised with .partial = that tuple. Use "
        "pellucid.render for the documented API.");

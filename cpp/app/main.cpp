@@ -325,6 +325,9 @@ int main(int argc, char** argv) {
                                                                : pellucid::parse_aov_list(a.aovs, "--aovs");
         if (!aovs.empty() && std::none_of(a.outputs.begin(), a.outputs.end(), is_exr))
             throw pellucid::Error("--aovs: AOVs are written as layers of a multi-layer EXR: give an .exr OUTPUT");
+        // The film estimates each pixel's variance only for the variance AOV: no other output reads
+        // it, and a splatting film without it updates a third of the sums per splat.
+        opts.variance = std::count(aovs.begin(), aovs.end(), pellucid::Aov::Variance) > 0;
         if (!a.resume.empty()) opts.resume = pellucid::load_film_state(a.resume);
         auto scene = pellucid::load_file(a.scene, a.lenient, params);
         pellucid::RenderResult r = a.aov.empty() ? pellucid::render(*scene, opts)

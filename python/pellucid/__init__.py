@@ -154,11 +154,11 @@ def load_film_state(path: Union[str, "_os.PathLike[str]"]) -> FilmState:
 
 
 class RenderOutput(NamedTuple):
-    """What a render produced: the image, the variance of each pixel's mean, the stats dict and
-    the :class:`FilmState` to continue from (None unless kept)."""
+    """What a render produced: the image, the variance of each pixel's mean (None when the render
+    kept none), the stats dict and the :class:`FilmState` to continue from (None unless kept)."""
 
     image: Image
-    variance: Image
+    variance: Optional[Image]
     stats: Dict[str, Any]
     state: Optional[FilmState]
 
@@ -262,13 +262,15 @@ def _render_full(kwargs: Dict[str, Any], progress: bool) -> Tuple[Any, Any, Dict
         partial = getattr(e, "partial", None)
         if isinstance(partial, tuple) and len(partial) == 3:
             image, variance, stats = partial
-            _last_interrupted = RenderOutput(image.view(Image), variance.view(Image), stats, stats.get("state"))
+            _last_interrupted = RenderOutput(image.view(Image), None if variance is None else variance.view(Image),
+                                             stats, stats.get("state"))
             e.partial = _last_interrupted
         raise
 
 
 def _render_kwargs(scene: Scene, spp: Optional[int], seed: Optional[int], threads: int, time_budget: Optional[float],
-                   target_rel_error: Optional[float], sampler: Optional[str], resume: Any) -> Dict[str, Any]:
+                   target_rel_error: Optional[float], sampler: Optional[str], resume: Any,
+                   variance: bool = True) -> Dict[str, Any]:
     _check_int("spp", spp, 1, _INT32_MAX)
     _check_int("seed", seed, 0, _INT64_MAX)
     _check_int("threads", threads, 0, _INT32_MAX)
@@ -278,7 +280,10 @@ def _render_kwargs(scene: Scene, spp: Optional[int], seed: Optional[int], thread
         raise Error(f"sampler: unknown sampler {sampler!r} (known: {', '.join(SAMPLERS)})")
     if resume is not None and not isinstance(resume, (FilmState, str, _os.PathLike)):
         raise Error(f"resume: expected a FilmState or the path of a film state file, got {type(resume).__name__}")
+    if not isinstance(variance, bool):
+        raise Error(f"variance: expected True or False, got {variance!r}")
     return dict(
+        variance=variance,
         scene=scene,
         spp=-1 if spp is None else spp,
         seed=-1 if seed is None else seed,
@@ -301,11 +306,14 @@ def render_with_stats(
     sampler: Optional[str] = None,
     resume: Union[FilmState, str, "_os.PathLike[str]", None] = None,
     keep_state: bool = False,
+    variance: bool = True,
 ):
     """Render and return ``(image, variance, stats)``.
 
     ``image`` is the per-pixel mean radiance, ``variance`` the variance of that mean (both
-    :class:`Image`, float32 (H, W, 3), viewing C++ memory), ``stats`` a dict with the spp reached
+    :class:`Image`, float32 (H, W, 3), viewing C++ memory; ``variance=False`` returns None instead
+    and, with a splatting film, renders faster: the film then keeps only the sums of the mean, and
+    the image is the same), ``stats`` a dict with the spp reached
     (every pixel has that many samples), wall seconds, camera samples, ``invalid_samples`` (the
     NaN/Inf/negative samples kept out of the film; a non-zero count is also logged as a warning on
     the ``"pellucid"`` logger), ``cancelled``, and the ``seed`` and ``sampler`` used. With
@@ -319,19 +327,21 @@ def render_with_stats(
     independent) overestimates the error of the mean.
 
     ``resume`` (a :class:`FilmState` or the path of a state file) continues that render up to
-    ``spp``, with its seed; the result is bit-identical to an uninterrupted render.
+    ``spp``, with its seed; the result is bit-identical to an uninterrupted render. A state rendered
+    without variance (``variance=False``, or ``pellucid-render`` without the variance AOV) resumes
+    only with ``variance=False``.
 
     Ctrl-C stops the render within about a second and raises ``KeyboardInterrupt`` whose
     ``partial`` attribute (also :func:`last_interrupted`) is a :class:`RenderOutput` of the
     complete passes, with their state.
     """
-    kwargs = _render_kwargs(scene, spp, seed, threads, time_budget, target_rel_error, sampler, resume)
+    kwargs = _render_kwargs(scene, spp, seed, threads, time_budget, target_rel_error, sampler, resume, variance)
     kwargs["keep_state"] = bool(keep_state)
-    image, variance, stats = _render_full(kwargs, progress)
+    image, var, stats = _render_full(kwargs, progress)
     if stats["invalid_samples"]:
         # The warning both command lines print.
         _log.warning("%d NaN/Inf/negative samples were discarded", stats["invalid_samples"])
-    return image.view(Image), variance.view(Image), stats
+    return image.view(Image), None if var is None else var.view(Image), stats
 
 
 def render(
@@ -357,6 +367,9 @@ def render(
     NaN, infinite or negative are logged as a warning with their count (``render_with_stats``
     returns it).
 
+    Without ``aovs`` the film keeps no per-pixel variance (``render_with_stats`` returns it), unless
+    ``target_rel_error`` needs it: a splatting film then keeps only the sums of the mean.
+
     ``aovs`` (names from :data:`AOVS`, as a list or a comma-separated string) also renders those
     AOVs and returns a :class:`RenderLayers` instead of the image: ``.image`` is the beauty,
     ``.aovs["albedo"]`` (or ``["albedo"]``) each AOV as an :class:`Image`, ``.save(path)`` writes
@@ -369,10 +382,11 @@ def render(
     """
     if aovs is not None:
         from .aov import layers_from_render, parse_aovs
+        names = parse_aovs(aovs)
         kwargs = _render_kwargs(scene, spp, seed, threads, time_budget, target_rel_error, sampler, resume)
-        kwargs["aovs"] = parse_aovs(aovs)
+        kwargs["aovs"] = names
         image, variance, stats = _render_full(kwargs, progress)
         return layers_from_render(image, variance, stats)
     image, _, _ = render_with_stats(scene, spp, seed, threads, time_budget, target_rel_error, progress, sampler,
-                                    resume)
+                                    resume, variance=False)
     return image

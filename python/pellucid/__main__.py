@@ -144,8 +144,9 @@ def _render(args: argparse.Namespace) -> int:
         raise pellucid.Error("--aovs: AOVs are written as layers of a multi-layer EXR: give an .exr OUTPUT")
     resume = pellucid.load_film_state(args.resume) if args.resume else None
     scene = pellucid.load_file(args.scene, lenient=args.lenient, **params)
+    # As pellucid-render: the film keeps each pixel's variance only for the variance AOV.
     kwargs = pellucid._render_kwargs(scene, args.spp, args.seed, args.threads, args.time_budget, None, args.sampler,
-                                     resume)
+                                     resume, "variance" in (args.aovs or []))
     kwargs.update(keep_state=True, aov=args.aov or "", aovs=args.aovs or [])
     # As pellucid-render: SIGINT and SIGTERM stop the render even where the shell started us with
     # SIGINT ignored (a background job).

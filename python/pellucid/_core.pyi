@@ -257,9 +257,9 @@ def render_aov(scene: Scene, aov: str, spp: typing.SupportsInt | typing.Supports
     """
     Render one AOV; returns (image, variance). Use pellucid.aov.render_aov for the documented API.
     """
-def render_full(scene: Scene, spp: typing.SupportsInt | typing.SupportsIndex = -1, seed: typing.SupportsInt | typing.SupportsIndex = -1, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_budget: typing.SupportsFloat | typing.SupportsIndex = 0.0, target_rel_error: typing.SupportsFloat | typing.SupportsIndex = 0.0, progress: bool = False, monitor: RenderProgress = None, sampler: str = '', resume: typing.Any = None, keep_state: bool = False, aov: str = '', aovs: collections.abc.Sequence[str] = []) -> tuple:
+def render_full(scene: Scene, spp: typing.SupportsInt | typing.SupportsIndex = -1, seed: typing.SupportsInt | typing.SupportsIndex = -1, threads: typing.SupportsInt | typing.SupportsIndex = 0, time_budget: typing.SupportsFloat | typing.SupportsIndex = 0.0, target_rel_error: typing.SupportsFloat | typing.SupportsIndex = 0.0, progress: bool = False, monitor: RenderProgress = None, sampler: str = '', resume: typing.Any = None, keep_state: bool = False, aov: str = '', aovs: collections.abc.Sequence[str] = [], variance: bool = True) -> tuple:
     """
-    Render; returns (image, variance, stats), stats['state'] the FilmState if keep_state, stats['aovs'] {name: array} of the requested AOVs (integrator/aov.h) with stats['aov_seconds']. A Python signal handler that raises (Ctrl-C) stops it: the exception is raised with .partial = that tuple. Use pellucid.render for the documented API.
+    Render; returns (image, variance, stats) (variance None when variance is off and the film kept none), stats['state'] the FilmState if keep_state, stats['aovs'] {name: array} of the requested AOVs (integrator/aov.h) with stats['aov_seconds']. A Python signal handler that raises (Ctrl-C) stops it: the exception is raised with .partial = that tuple. Use pellucid.render for the documented API.
     """
 def scene_parameters(scene: Scene) -> dict:
     """

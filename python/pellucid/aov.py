@@ -184,7 +184,8 @@ def read_layers(path: PathLike) -> RenderLayers:
 def layers_from_render(image: Any, variance: Any, stats: Dict[str, Any]) -> RenderLayers:
     """The RenderLayers of a render_full result with stats['aovs'] (popped from stats)."""
     aovs = {name: np.asarray(a).view(Image) for name, a in stats.pop("aovs", {}).items()}
-    return RenderLayers(np.asarray(image).view(Image), aovs, np.asarray(variance).view(Image), stats,
+    var = None if variance is None else np.asarray(variance).view(Image)
+    return RenderLayers(np.asarray(image).view(Image), aovs, var, stats,
                         stats.get("state"))
 
 

@@ -201,9 +201,10 @@ def split_method(method: str) -> Tuple[str, Optional[str]]:
 
 def run_ours(scene: dict, base_dir: pathlib.Path, strategy: str, seed: int, threads: int,
              spp: Optional[int] = None, budget: Optional[float] = None, warm: bool = True,
-             sampler: Optional[str] = None) -> Render:
+             sampler: Optional[str] = None, variance: bool = False) -> Render:
     """Render with pellucid in this process, the strategy set in integrator.strategy and the sampler
-    type `sampler` (None: the scene's)."""
+    type `sampler` (None: the scene's); the film keeps each pixel's variance only with `variance`
+    (Mitsuba's timed renders estimate none either)."""
     import pellucid
 
     d = json.loads(json.dumps(scene))
@@ -212,8 +213,9 @@ def run_ours(scene: dict, base_dir: pathlib.Path, strategy: str, seed: int, thre
     if warm:  # untimed, as the peers get (page in the BVH and the code)
         pellucid.render_with_stats(sc, spp=1, seed=seed + 1_000_003, threads=threads, sampler=sampler)
     img, var, st = pellucid.render_with_stats(sc, spp=spp, seed=seed, threads=threads, time_budget=budget,
-                                              sampler=sampler)
-    return Render(np.array(img), np.array(var), int(st["spp"]), float(st["seconds"]), float(st["samples"]))
+                                              sampler=sampler, variance=variance)
+    return Render(np.array(img), None if var is None else np.array(var), int(st["spp"]), float(st["seconds"]),
+                  float(st["samples"]))
 
 
 # --------------------------------------------------------------------------------------- reference
@@ -265,7 +267,7 @@ def cached_reference(scene: dict, base_dir: pathlib.Path, renderer: str, spp: in
     log(f"reference: rendering {spp} spp with {renderer} (cached as {img_p.name}) ...")
     t0 = time.perf_counter()
     if renderer == "ours":
-        r = run_ours(scene, base_dir, "mis", seed, threads, spp=spp, warm=False)
+        r = run_ours(scene, base_dir, "mis", seed, threads, spp=spp, warm=False, variance=True)
     elif renderer == "mitsuba":
         if mi_py is None:
             raise RuntimeError("--reference-renderer mitsuba: Mitsuba is not set up (bench/peers/setup_mitsuba.sh)")
@@ -596,7 +598,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         if mi_py is None:
             lines += ["Agreement: Mitsuba not set up; skipped.", ""]
         else:
-            ours = run_ours(scene, base_dir, "mis", 20_000 + args.seed, args.threads, spp=args.agreement_spp)
+            ours = run_ours(scene, base_dir, "mis", 20_000 + args.seed, args.threads, spp=args.agreement_spp,
+                            variance=True)
             theirs = run_mitsuba(mi_py, scene, base_dir, "llvm_ad_rgb", -(-args.agreement_spp // 16) * 16,
                                  30_000 + args.seed, args.threads, passes=16)
             frac, zc = z_test(ours.image, ours.variance, theirs.image, theirs.variance)

@@ -137,8 +137,10 @@ def run_child(cmd: Sequence[str], what: str) -> None:
         raise RuntimeError(f"{what} failed ({' '.join(shlex.quote(c) for c in cmd)}):\n" + (r.stderr or r.stdout)[-3000:])
 
 
-def run_ours(scene: dict, base_dir: pathlib.Path, seed: int, threads: int, workdir: pathlib.Path) -> Run:
-    """pellucid in its own process (``python -m pellucid.bench_suite --worker``)."""
+def run_ours(scene: dict, base_dir: pathlib.Path, seed: int, threads: int, workdir: pathlib.Path,
+             variance: bool = False) -> Run:
+    """pellucid in its own process (``python -m pellucid.bench_suite --worker``); the film keeps each
+    pixel's variance only with `variance` (for the z-test; Mitsuba's timed renders estimate none)."""
     import pellucid
 
     with tempfile.TemporaryDirectory(dir=workdir) as td:
@@ -146,11 +148,11 @@ def run_ours(scene: dict, base_dir: pathlib.Path, seed: int, threads: int, workd
         (tmp / "scene.json").write_text(json.dumps(scene))
         cmd = [sys.executable, "-m", "pellucid.bench_suite", "--worker", str(tmp / "scene.json"),
                "--base-dir", str(base_dir), "--seed", str(seed), "--threads", str(threads),
-               "--out", str(tmp / "out.exr"), "--report", str(tmp / "report.json")]
+               "--out", str(tmp / "out.exr"), "--report", str(tmp / "report.json")] + (["--variance"] if variance else [])
         run_child(cmd, "pellucid")
         st = json.loads((tmp / "report.json").read_text())
         img = pellucid.read_image(tmp / "out.exr").copy()
-        var = pellucid.read_image(tmp / "out.var.exr").copy()
+        var = pellucid.read_image(tmp / "out.var.exr").copy() if variance else None
     return Run(img, var, int(st["spp"]), float(st["seconds"]), float(st["samples"]), float(st["load_seconds"]),
                st.get("peak_rss_mb"))
 
@@ -189,7 +191,7 @@ def run_peer(py: pathlib.Path, scene: dict, base_dir: pathlib.Path, seed: int, t
 
 def worker(argv: Sequence[str]) -> int:
     """The pellucid process: load, render 1 spp untimed (warm), render the scene's spp timed, write
-    the image, its variance and a JSON report."""
+    the image, its variance (with --variance) and a JSON report."""
     import pellucid
 
     ap = argparse.ArgumentParser(prog="pellucid.bench_suite --worker")
@@ -199,16 +201,18 @@ def worker(argv: Sequence[str]) -> int:
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--out", required=True)
     ap.add_argument("--report", required=True)
+    ap.add_argument("--variance", action="store_true", help="keep and write each pixel's variance")
     a = ap.parse_args(argv)
     d = json.loads(pathlib.Path(a.scene).read_text())
     t0 = time.perf_counter()
     sc = pellucid.load_dict(d, pathlib.Path(a.base_dir))
     load_s = time.perf_counter() - t0
-    pellucid.render_with_stats(sc, spp=1, seed=a.seed + 1_000_003, threads=a.threads)
-    img, var, st = pellucid.render_with_stats(sc, seed=a.seed, threads=a.threads)
+    pellucid.render_with_stats(sc, spp=1, seed=a.seed + 1_000_003, threads=a.threads, variance=a.variance)
+    img, var, st = pellucid.render_with_stats(sc, seed=a.seed, threads=a.threads, variance=a.variance)
     out = pathlib.Path(a.out)
     pellucid.write_image(out, img)
-    pellucid.write_image(out.with_name(out.stem + ".var.exr"), var)
+    if var is not None:
+        pellucid.write_image(out.with_name(out.stem + ".var.exr"), var)
     pathlib.Path(a.report).write_text(json.dumps({"spp": int(st["spp"]), "seconds": float(st["seconds"]),
                                                   "samples": float(st["samples"]), "load_seconds": load_s,
                                                   "peak_rss_mb": peak_rss_mb()}))
@@ -282,9 +286,8 @@ def measure_scene(entry: Dict[str, Any], folder: pathlib.Path, args, mi_py: Opti
         agree["sampler"]["sample_count"] = -(-spp // AGREEMENT_PASSES) * AGREEMENT_PASSES
         theirs = run_peer(mi_py, agree, folder, 30_000 + args.seed, args.threads, AGREEMENT_PASSES, False, workdir,
                           twin)
-        mine = ours
-        if theirs.spp != spp:  # pellucid at the same spp as the 16-pass render
-            mine = run_ours(agree, folder, 20_000 + args.seed, args.threads, workdir)
+        # pellucid at the spp of the 16-pass render, with the variance the timed renders do not keep
+        mine = run_ours(agree, folder, 20_000 + args.seed, args.threads, workdir, variance=True)
         res.ztest = _bench.z_test(mine.image, mine.variance, theirs.image, theirs.variance)
     return res, {"ref": ref}
 

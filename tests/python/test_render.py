@@ -115,6 +115,26 @@ def test_stats_and_variance(tiny_scene_path) -> None:
     assert s2["spp"] >= 1
 
 
+def test_variance_off_gives_the_same_image(tiny_scene_dict) -> None:
+    # A splatting film without variance keeps only the sums of the mean: the same image, bit for bit,
+    # no variance; render() keeps none; a state without variance resumes only without it.
+    d = copy.deepcopy(tiny_scene_dict)
+    d["film"].update(filter={"type": "gaussian", "stddev": 0.5}, reconstruction="splatting")
+    scene = pellucid.load_dict(d)
+    img, var, _ = pellucid.render_with_stats(scene, spp=4, seed=5)
+    img_off, var_off, stats = pellucid.render_with_stats(scene, spp=4, seed=5, variance=False, keep_state=True)
+    assert var is not None and var.max() > 0 and var_off is None
+    assert np.array_equal(img, img_off)
+    assert np.array_equal(pellucid.render(scene, spp=4, seed=5), img)
+    with pytest.raises(pellucid.Error, match="rendered without variance, and this render asks for variance"):
+        pellucid.render_with_stats(scene, spp=8, resume=stats["state"])
+    more, none, _ = pellucid.render_with_stats(scene, spp=8, resume=stats["state"], variance=False)
+    assert none is None
+    assert np.array_equal(more, pellucid.render(scene, spp=8, seed=5))
+    with pytest.raises(pellucid.Error, match="variance: expected True or False"):
+        pellucid.render_with_stats(scene, spp=1, variance="yes")
+
+
 def test_scene_repr(tiny_scene_path) -> None:
     s = pellucid.load_file(tiny_scene_path)
     assert "film=32x24" in repr(s) and s.width == 32 and s.height == 24

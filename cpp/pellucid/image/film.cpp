@@ -180,15 +180,16 @@ void eval_filter_taps16(const Filter& f, const float x0[16], int n, float (*w)[1
     }, f);
 }
 
-Film::Film(int width, int height, std::optional<Filter> splat)
-    : m_width(width), m_height(height), m_splat(std::move(splat)), m_variant(accumulation_variants().back()) {
+Film::Film(int width, int height, std::optional<Filter> splat, bool variance)
+    : m_width(width), m_height(height), m_splat(std::move(splat)), m_variance(variance),
+      m_variant(accumulation_variants().back()) {
     if (m_splat && is_one_pixel_box(*m_splat)) m_splat.reset();
     if (m_splat) {
         // Pixel centres px + ½ within the radius r of a sample in [x, x + 1) satisfy
         // |px − x| <= ⌈r − ½⌉.
         m_margin = std::max(0, int(std::ceil(filter_radius(*m_splat) - 0.5f)));
         m_sums.resize(size_t(width) * height);
-        m_pair_sums.resize(size_t(width) * height);
+        if (m_variance) m_pair_sums.resize(size_t(width) * height);
         m_sources.resize(size_t(width) * height);
     } else {
         m_pixels.resize(size_t(width) * height);
@@ -288,6 +289,8 @@ struct AccumulateBatch {
 // film, margins 1 and 2 take accumulate_block, which updates the whole (2m + 1)² block: a target
 // with weight 0 for both samples adds 0, which leaves a sum's bits as they are, as no sum is ever
 // −0: the sums start at +0 and x + (−x) is +0.)
+// kVar false: the film keeps no pair sums (A.pairs is null); Σw and Σw·L get the same operations.
+template <bool kVar>
 __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs& A) {
     const int m = A.m, x = A.x, y = A.y;
     // The weights as doubles (exact), so that each target's weight is one product.
@@ -331,7 +334,6 @@ __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs&
             const double wyj = wd[j + m][3], pyj = wd[j + m][1];
             const size_t row = size_t(y + j) * A.width + x;
             double* sums = A.sums + 4 * row;
-            double* pairs = A.pairs + 8 * row;
             for (int i = i0; i <= i1; ++i) {
                 // Σ(w, wL) += a (if add_a), += b; the pair sums += (d·d, d·Δw), d = b − a.
                 const double wb = wd[i + m][2] * wyj, wa = wd[i + m][0] * pyj;
@@ -339,10 +341,12 @@ __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs&
                 D4 t = load4(sums + 4 * i);
                 if constexpr (add_a) t += a;
                 store4(sums + 4 * i, t + b);
-                const D4 d = b - a;
-                double* q = pairs + 8 * i;
-                store4(q, load4(q) + d * d);
-                store4(q + 4, load4(q + 4) + d * d[0]);
+                if constexpr (kVar) {
+                    const D4 d = b - a;
+                    double* q = A.pairs + 8 * (row + i);
+                    store4(q, load4(q) + d * d);
+                    store4(q + 4, load4(q + 4) + d * d[0]);
+                }
             }
         }
     };
@@ -355,7 +359,7 @@ __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs&
 // (a, then b, then the pair sums), and are stored once. Each sum receives the same IEEE operations
 // in the same order as from n accumulate_impl calls, so the bits are the same; only the loads and
 // stores between the jobs are gone (a job without a partner leaves the pair sums as they are).
-template <int kM>
+template <int kM, bool kVar>
 __attribute__((always_inline)) inline void accumulate_block(const AccumulateBatch& B) {
     constexpr int kT = 2 * kM + 1;
     const int n = B.n, x = B.x, y = B.y;
@@ -372,9 +376,10 @@ __attribute__((always_inline)) inline void accumulate_block(const AccumulateBatc
     for (int j = -kM; j <= kM; ++j) {
         const size_t row = size_t(y + j) * B.width + x;
         double* sums = B.sums + 4 * row;
-        double* pairs = B.pairs + 8 * row;
+        double* pairs = kVar ? B.pairs + 8 * row : nullptr;
         for (int i = -kM; i <= kM; ++i) {
-            D4 t = load4(sums + 4 * i), q0 = load4(pairs + 8 * i), q1 = load4(pairs + 8 * i + 4);
+            D4 t = load4(sums + 4 * i), q0{}, q1{};
+            if constexpr (kVar) q0 = load4(pairs + 8 * i), q1 = load4(pairs + 8 * i + 4);
             for (int k = 0; k < n; ++k) {
                 const double wb = wd[k][i + kM][2] * wd[k][j + kM][3];
                 const D4 b = l4[k] * wb;
@@ -386,27 +391,34 @@ __attribute__((always_inline)) inline void accumulate_block(const AccumulateBatc
                 const D4 a = lp4[k] * wa;
                 if (add_a[k]) t += a;
                 t = t + b;
-                const D4 d = b - a;
-                q0 = q0 + d * d;
-                q1 = q1 + d * d[0];
+                if constexpr (kVar) {
+                    const D4 d = b - a;
+                    q0 = q0 + d * d;
+                    q1 = q1 + d * d[0];
+                }
             }
             store4(sums + 4 * i, t);
-            store4(pairs + 8 * i, q0);
-            store4(pairs + 8 * i + 4, q1);
+            if constexpr (kVar) store4(pairs + 8 * i, q0), store4(pairs + 8 * i + 4, q1);
         }
     }
 }
 
 // A batch: the fixed-bound block for margins 1 and 2 inside the film, else one trimmed
 // accumulation after the other.
-__attribute__((always_inline)) inline void accumulate_batch(const AccumulateBatch& B) {
+template <bool kVar>
+__attribute__((always_inline)) inline void accumulate_batch_var(const AccumulateBatch& B) {
     const bool inside = B.x >= B.m && B.y >= B.m && B.x + B.m < B.width && B.y + B.m < B.height;
-    if (inside && B.m == 2) return accumulate_block<2>(B);
-    if (inside && B.m == 1) return accumulate_block<1>(B);
+    if (inside && B.m == 2) return accumulate_block<2, kVar>(B);
+    if (inside && B.m == 1) return accumulate_block<1, kVar>(B);
     for (int k = 0; k < B.n; ++k) {
         const AccumulateArgs a{B.sums, B.pairs, B.width, B.height, B.x, B.y, B.m, B.w + 4 * k, B.la[k], B.add_a[k], B.L[k]};
-        accumulate_impl(a);
+        accumulate_impl<kVar>(a);
     }
+}
+// With the pair sums (B.pairs set) or without them.
+__attribute__((always_inline)) inline void accumulate_batch(const AccumulateBatch& B) {
+    if (B.pairs) accumulate_batch_var<true>(B);
+    else accumulate_batch_var<false>(B);
 }
 }  // namespace
 
@@ -432,7 +444,8 @@ __attribute__((target("avx2"))) void accumulate_avx2(const AccumulateBatch& b) {
 // the same order (no contraction: -ffp-contract=off), so all give the same bits.
 void Film::accumulate(int x, int y, int m, const float* w, int n, const SplatJob* jobs) {
     static_assert(sizeof(SplatSums) == 4 * sizeof(double) && sizeof(SplatPairSums) == 8 * sizeof(double));
-    AccumulateBatch b{reinterpret_cast<double*>(m_sums.data()), reinterpret_cast<double*>(m_pair_sums.data()),
+    AccumulateBatch b{reinterpret_cast<double*>(m_sums.data()),
+                      m_variance ? reinterpret_cast<double*>(m_pair_sums.data()) : nullptr,
                       m_width, m_height, x, y, m, n, w, {}, {}, {}};
     for (int k = 0; k < n; ++k) {
         b.la[k] = jobs[k].has_a ? jobs[k].la : nullptr, b.add_a[k] = jobs[k].add_a;
@@ -470,13 +483,17 @@ void Film::pixel_stats(size_t i, double mean[3], double var[3]) const {
         return;
     }
     const double* sum = m_sums[i].v;
-    const SplatPairSums& q = m_pair_sums[i];
     const uint64_t n = m_sources[i].n;
     const double w = sum[0];
     if (!(w > 0.0)) {
         for (int k = 0; k < 3; ++k) mean[k] = var[k] = 0.0;
         return;
     }
+    if (!m_variance) {
+        for (int k = 0; k < 3; ++k) mean[k] = sum[k + 1] / w, var[k] = 0.0;
+        return;
+    }
+    const SplatPairSums& q = m_pair_sums[i];
     // ⌊n/2⌋ pairs of each stratum estimate 2⌊n/2⌋ Var_q; its share of Var(Σ z) is n Var_q (film.h).
     const double scale = n > 1 ? double(n) / (2.0 * double(n / 2)) / (w * w) : 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -498,6 +515,7 @@ Image Film::mean() const {
 }
 
 Image Film::variance() const {
+    if (!has_variance()) throw Error("Film: this film keeps no variance (it was made with variance off)");
     Image img(m_width, m_height, 3);
     double m[3], v[3];
     for (size_t i = 0; i < size_t(m_width) * m_height; ++i) {
@@ -508,6 +526,7 @@ Image Film::variance() const {
 }
 
 double Film::mean_relative_variance() const {
+    if (!has_variance()) throw Error("Film: this film keeps no variance (it was made with variance off)");
     double sum = 0.0, m[3], v[3];
     const size_t n = size_t(m_width) * m_height;
     for (size_t i = 0; i < n; ++i) {
@@ -524,7 +543,7 @@ double Film::mean_relative_variance() const {
 namespace {
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "film state files are little-endian");
 constexpr char kStateMagic[8] = {'P', 'L', 'C', 'D', 'F', 'I', 'L', 'M'};
-constexpr uint32_t kStateVersion = 1;
+constexpr uint32_t kStateVersion = 2;  // version 1: no variance byte, pair sums always
 constexpr uint32_t kMaxStateSide = 1u << 16;
 constexpr uint32_t kMaxStateString = 1u << 16;
 
@@ -621,6 +640,7 @@ void save_film_state(const std::string& path, const FilmState& st) {
     w.put(kStateVersion);
     w.put(uint32_t(f.m_width)), w.put(uint32_t(f.m_height));
     w.put(uint8_t(f.splats() ? 1 : 0));
+    w.put(uint8_t(f.has_variance() ? 1 : 0));
     put_filter(w, st.filter);
     w.put(uint32_t(st.spp));
     w.put(st.seed);
@@ -631,11 +651,15 @@ void save_film_state(const std::string& path, const FilmState& st) {
     if (f.splats()) {
         for (size_t i = 0; i < f.m_sums.size(); ++i) {
             const double* v = f.m_sums[i].v;
-            const Film::SplatPairSums& q = f.m_pair_sums[i];
             const Film::SplatSource& p = f.m_sources[i];
-            const double wl[3] = {v[1], v[2], v[3]}, dl2[3] = {q.sq[1], q.sq[2], q.sq[3]},
-                         dldw[3] = {q.cr[1], q.cr[2], q.cr[3]};
-            w.put(wl), w.put(v[0]), w.put(dl2), w.put(dldw), w.put(q.sq[0]), w.put(p.n);
+            const double wl[3] = {v[1], v[2], v[3]};
+            w.put(wl), w.put(v[0]);
+            if (f.m_variance) {
+                const Film::SplatPairSums& q = f.m_pair_sums[i];
+                const double dl2[3] = {q.sq[1], q.sq[2], q.sq[3]}, dldw[3] = {q.cr[1], q.cr[2], q.cr[3]};
+                w.put(dl2), w.put(dldw), w.put(q.sq[0]);
+            }
+            w.put(p.n);
             w.put(p.last_fx), w.put(p.last_fy), w.put(p.last_l);
         }
     } else {
@@ -671,38 +695,48 @@ std::shared_ptr<FilmState> load_film_state(const std::string& path) {
         r.fail("not a pellucid film state file (it does not start with \"PLCDFILM\")");
     for (size_t i = 0; i < sizeof(kStateMagic); ++i) r.get<char>("the header");
     const uint32_t version = r.get<uint32_t>("the header");
-    if (version != kStateVersion)
-        r.fail("film state version " + std::to_string(version) + " is not supported (this build reads version " +
+    if (version != kStateVersion && version != 1)
+        r.fail("film state version " + std::to_string(version) + " is not supported (this build reads versions 1 and " +
                std::to_string(kStateVersion) + ")");
     const uint32_t width = r.get<uint32_t>("the header"), height = r.get<uint32_t>("the header");
     if (width < 1 || height < 1 || width > kMaxStateSide || height > kMaxStateSide)
         r.fail("film size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range");
     const uint8_t splat = r.get<uint8_t>("the header");
     if (splat > 1) r.fail("unknown reconstruction " + std::to_string(splat));
+    const uint8_t variance = version == 1 ? 1 : r.get<uint8_t>("the header");
+    if (variance > 1) r.fail("variance flag " + std::to_string(variance) + " is not 0 or 1");
+    if (!variance && !splat) r.fail("a filter-sampling film without variance");
     Filter filter = get_filter(r);
     const uint32_t spp = r.get<uint32_t>("the header");
     if (spp > (1u << 24)) r.fail("spp " + std::to_string(spp) + " is out of range [0, 16777216]");
     auto st = std::make_shared<FilmState>(FilmState{
-        Film(int(width), int(height), splat ? std::optional<Filter>(filter) : std::nullopt), filter, int(spp), 0, "", "", 0, 0.0});
+        Film(int(width), int(height), splat ? std::optional<Filter>(filter) : std::nullopt, variance == 1), filter, int(spp),
+        0, "", "", 0, 0.0});
     if (st->film.splats() != (splat == 1)) r.fail("a splatting film with a one-pixel box filter");
     st->seed = r.get<uint64_t>("the header");
     st->invalid_samples = r.get<uint64_t>("the header");
     st->seconds = r.get<double>("the header");
     st->sampler = r.get_string("the sampler name");
     st->integrator = r.get_string("the integrator");
-    const size_t record = splat ? 11 * 8 + 8 + 5 * 4 : 6 * 8 + 8;
+    const size_t record = splat ? (variance ? 11 : 4) * 8 + 8 + 5 * 4 : 6 * 8 + 8;
     r.need(size_t(width) * height * record + 8, "the pixels");
     Film& f = st->film;
     if (splat) {
         for (size_t i = 0; i < f.m_sums.size(); ++i) {
             double* v = f.m_sums[i].v;
-            Film::SplatPairSums& q = f.m_pair_sums[i];
             Film::SplatSource& p = f.m_sources[i];
-            double wl[3], dl2[3], dldw[3];
-            r.get(wl, "pixels"), v[0] = r.get<double>("pixels"), r.get(dl2, "pixels"), r.get(dldw, "pixels");
-            q.sq[0] = q.cr[0] = r.get<double>("pixels"), p.n = r.get<uint64_t>("pixels");
+            double wl[3];
+            r.get(wl, "pixels"), v[0] = r.get<double>("pixels");
+            for (int k = 0; k < 3; ++k) v[k + 1] = wl[k];
+            if (variance) {
+                Film::SplatPairSums& q = f.m_pair_sums[i];
+                double dl2[3], dldw[3];
+                r.get(dl2, "pixels"), r.get(dldw, "pixels");
+                q.sq[0] = q.cr[0] = r.get<double>("pixels");
+                for (int k = 0; k < 3; ++k) q.sq[k + 1] = dl2[k], q.cr[k + 1] = dldw[k];
+            }
+            p.n = r.get<uint64_t>("pixels");
             p.last_fx = r.get<float>("pixels"), p.last_fy = r.get<float>("pixels"), r.get(p.last_l, "pixels");
-            for (int k = 0; k < 3; ++k) v[k + 1] = wl[k], q.sq[k + 1] = dl2[k], q.cr[k + 1] = dldw[k];
         }
     } else {
         for (Film::Pixel& p : f.m_pixels) r.get(p.mean, "pixels"), r.get(p.m2, "pixels"), p.n = r.get<uint64_t>("pixels");

@@ -70,10 +70,15 @@ class Film {
 public:
     /// splat: the filter to splat with, or nullopt for filter sampling (add_sample). A box of radius
     /// ½ is filter sampling (splats() is then false).
-    Film(int width, int height, std::optional<Filter> splat = std::nullopt);
+    /// variance = false: a splatting film keeps no pair sums, so it gives the mean only (variance()
+    /// and mean_relative_variance() throw); its splats update 4 doubles a target instead of 12, and
+    /// its mean is the same, bit for bit. A filter-sampling film always keeps Welford's sums (they cost little).
+    Film(int width, int height, std::optional<Filter> splat = std::nullopt, bool variance = true);
     int width() const { return m_width; }
     int height() const { return m_height; }
     bool splats() const { return m_splat.has_value(); }
+    /// Whether the film estimates each pixel's variance (always, without splatting).
+    bool has_variance() const { return !splats() || m_variance; }
     /// How many pixels beyond its own a splat reaches (0 without splatting). Tiles closer than
     /// this must not be rendered at the same time (render_loop colours them).
     int splat_margin() const { return m_margin; }
@@ -100,7 +105,7 @@ public:
 
     /// Per-pixel estimate, float RGB.
     Image mean() const;
-    /// Per-pixel variance of that estimate, float RGB.
+    /// Per-pixel variance of that estimate, float RGB. Throws pellucid::Error without has_variance().
     Image variance() const;
     /// Camera samples taken inside pixel (x, y).
     uint64_t samples(int x, int y) const {
@@ -110,7 +115,7 @@ public:
     /// Mean over pixels of the relative variance of each pixel's estimate, Var/(mean²+1e-4), on
     /// luminance; the quantity target_rel_error drives to e². The luminance variance is the weighted
     /// sum of channel variances, ignoring cross-channel covariance: a stopping estimate, not a
-    /// statistic tests rely on.
+    /// statistic tests rely on. Throws pellucid::Error without has_variance().
     double mean_relative_variance() const;
 
     /// The splat filter (nullopt for filter sampling).
@@ -168,7 +173,8 @@ private:
     int m_margin = 0;
     std::vector<Pixel> m_pixels;      // filter sampling
     std::vector<SplatSums> m_sums;          // splatting
-    std::vector<SplatPairSums> m_pair_sums;
+    std::vector<SplatPairSums> m_pair_sums;  // empty without variance
+    bool m_variance = true;
     std::vector<SplatSource> m_sources;
     AccumulationVariant m_variant;
 };

@@ -177,13 +177,15 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const std::vector<Aov>& 
     Image id_image(W, H, 2);
     if (!lay.sampled.empty() || ids) {
         const std::optional<Filter> splat = scene.film_splatting ? std::optional<Filter>(scene.filter) : std::nullopt;
-        std::vector<Film> extra(size_t(std::max(0, lay.films() - 1)), Film(W, H, splat));
+        // The layers are means only: their films keep no variance.
+        std::vector<Film> extra(size_t(std::max(0, lay.films() - 1)), Film(W, H, splat, false));
         RenderOptions o;
         o.spp = std::max(1, beauty.stats.spp);
         o.seed = int64_t(beauty.state->seed);
         o.sampler = beauty.state->sampler;
         o.threads = opts.threads;
         o.cancel = opts.cancel;
+        o.variance = false;
         const SamplerType type = parse_sampler_type(o.sampler, "sampler");
         const int n_films = lay.films();
         RenderResult r = render_loop(scene, o, [&](const TileJob& job, Film& film) -> uint64_t {
@@ -239,6 +241,9 @@ std::vector<ImageLayer> render_aovs(const Scene& scene, const std::vector<Aov>& 
             const int k = a == Aov::ShapeId ? 0 : 1;
             for (size_t p = 0; p < n; ++p) img.data[p] = id_image.data[2 * p + size_t(k)];
         } else if (a == Aov::Variance) {
+            if (beauty.variance.data.empty())
+                throw Error("aovs: 'variance' needs the beauty render's variance, which it did not keep (render with "
+                            "variance on)");
             img = beauty.variance;
         } else {  // SampleCount
             for (int y = 0; y < H; ++y)

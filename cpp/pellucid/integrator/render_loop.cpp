@@ -85,6 +85,10 @@ void check_resume(const FilmState& st, const Scene& scene, const RenderOptions& 
     if (st.sampler != sampler)
         fail("the film state used the " + st.sampler + " sampler, this render the " + sampler +
              " sampler (set the sampler to '" + st.sampler + "')");
+    if (!st.film.has_variance() && (opts.variance || opts.target_rel_error > 0.0))
+        fail(std::string("the film state was rendered without variance, and this render ") +
+             (opts.target_rel_error > 0.0 ? "stops at a target_rel_error, which needs it" : "asks for variance") +
+             " (render with variance off)");
     if (opts.seed >= 0 && uint64_t(opts.seed) != st.seed)
         fail("the film state used seed " + std::to_string(st.seed) + ", this render asks for seed " +
              std::to_string(opts.seed) + " (leave the seed unset to continue with the state's)");
@@ -118,8 +122,10 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
 
     const std::optional<Filter> splat_filter =
         scene.film_splatting ? std::optional<Filter>(scene.filter) : std::nullopt;
+    const bool variance = opts.resume ? opts.resume->film.has_variance() : opts.variance || opts.target_rel_error > 0.0;
     auto state = std::make_shared<FilmState>(FilmState{
-        opts.resume ? opts.resume->film : Film(W, H, splat_filter), scene.filter, start_spp, seed, sampler, "", 0, 0.0});
+        opts.resume ? opts.resume->film : Film(W, H, splat_filter, variance), scene.filter, start_spp, seed, sampler, "", 0,
+        0.0});
     Film& film = state->film;
     // Tiles of one colour (tx mod P, ty mod P) are (P − 1)·kTile pixels apart, at least twice the
     // splat margin, so their splats never overlap.
@@ -191,7 +197,7 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
         if (skipped) {
             // Cancelled midway: back to the film of complete passes.
             if (done > 0) film = std::move(*backup);
-            else film = Film(W, H, splat_filter);
+            else film = Film(W, H, splat_filter, variance);
             stats.cancelled = true;
             break;
         }
@@ -214,7 +220,7 @@ RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const Ti
     state->spp = done;
     state->invalid_samples = invalid;
     state->seconds = stats.seconds;
-    RenderResult r{film.mean(), film.variance(), stats, nullptr};
+    RenderResult r{film.mean(), film.has_variance() ? film.variance() : Image(), stats, nullptr};
     r.state = std::move(state);
     return r;
 }

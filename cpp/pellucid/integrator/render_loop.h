@@ -34,6 +34,11 @@ struct RenderOptions {
     const std::atomic<bool>* cancel = nullptr;
     RenderProgress* progress_out = nullptr;     ///< if set, updated after every tile
     std::string sampler;          ///< "" = the scene's sampler type; else "independent" | "sobol"
+    /// Estimate each pixel's variance (RenderResult::variance). Off, a splatting film keeps only the
+    /// sums of the mean (no pair sums); the image is the same, bit for bit.
+    /// target_rel_error turns it on. A resumed film state keeps the setting it was rendered with
+    /// (asking for variance from a state without it is an error).
+    bool variance = true;
     /// Continue this film state (a render of the same scene, size, filter, seed and sampler)
     /// up to `spp` instead of starting from an empty film.
     std::shared_ptr<const FilmState> resume;
@@ -49,7 +54,7 @@ struct RenderStats {
 
 struct RenderResult {
     Image image;     ///< per-pixel mean radiance
-    Image variance;  ///< per-pixel variance of that mean
+    Image variance;  ///< per-pixel variance of that mean (empty, 0×0, when the film kept none)
     RenderStats stats;
     /// The film after stats.spp samples per pixel, to continue with RenderOptions::resume or to
     /// save with save_film_state (the front ends fill in FilmState::integrator).

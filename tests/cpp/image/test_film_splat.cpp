@@ -281,6 +281,62 @@ TEST(FilmSplat, PixelRunsEqualSingleSplats) {
         }
 }
 
+TEST(FilmSplat, MeanWithoutVarianceIsTheSameBits) {
+    // A film made with variance off keeps Σw and Σw·L only: they, and so the mean image, must be
+    // the bits of a film with variance, through every accumulation variant, for runs of 1 to 9
+    // samples (pairs inside a run and across runs), at the border and inside, with each filter of
+    // PixelRunsEqualSingleSplats. Its variance() throws, and its state file keeps the flag and the
+    // sums (written and read back).
+    const Filter filters[] = {GaussianFilter(0.5f, true), GaussianFilter(0.5f), GaussianFilter(0.7f, true),
+                              TentFilter{1.f}, BoxFilter{1.5f}};
+    const int W = 7, H = 6;
+    for (const Film::AccumulationVariant variant : Film::accumulation_variants())
+        for (const Filter& filter : filters) {
+            const std::string what = to_string(filter) + " variant " + std::to_string(int(variant));
+            Film with(W, H, filter), without(W, H, filter, false);
+            EXPECT_TRUE(with.has_variance());
+            EXPECT_FALSE(without.has_variance());
+            with.set_accumulation_variant(variant);
+            without.set_accumulation_variant(variant);
+            PCG32 rng(11, 5);
+            const int runs[] = {1, 2, 3, 5, 4, 8, 9, 7};
+            for (int pass = 0; pass < 3; ++pass)
+                for (int y = 0; y < H; ++y)
+                    for (int x = 0; x < W; ++x) {
+                        const int n = runs[(2 * x + y + pass) % 8];
+                        std::vector<FilmSample> s(static_cast<size_t>(n));
+                        for (FilmSample& e : s) {
+                            e.fx = float(x) + rng.next_float();
+                            e.fy = float(y) + rng.next_float();
+                            e.L = Spectrum(2.f * rng.next_float(), rng.next_float(), 0.5f);
+                        }
+                        with.splat_pixel(x, y, s.data(), n);
+                        without.splat_pixel(x, y, s.data(), n);
+                    }
+            EXPECT_EQ(count_differing(with.mean(), without.mean()), 0u) << what;
+            EXPECT_THROW(without.variance(), Error);
+            EXPECT_THROW(without.mean_relative_variance(), Error);
+            // The state file: Σ wL[3], Σ w, n, the waiting sample (no pair sums) per pixel.
+            const std::string path = (std::filesystem::temp_directory_path() / "pellucid_test_film_no_variance").string();
+            save_film_state(path, FilmState{without, filter, 0, 0, "independent", "", 0, 0.0});
+            const std::vector<double> sw = film_sums(with, filter, "with");
+            std::ifstream in(path, std::ios::binary);
+            const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+            const size_t record = 4 * 8 + 8 + 5 * 4, pixels = size_t(W) * H;
+            ASSERT_GE(data.size(), pixels * record + 8);
+            const char* p = data.data() + data.size() - 8 - pixels * record;
+            size_t differ = 0;
+            for (size_t i = 0; i < pixels; ++i) differ += std::memcmp(&sw[11 * i], p + i * record, 4 * 8) != 0;
+            EXPECT_EQ(differ, 0u) << what;
+            const std::shared_ptr<FilmState> back = load_film_state(path);
+            std::filesystem::remove(path);
+            EXPECT_FALSE(back->film.has_variance());
+            EXPECT_EQ(count_differing(back->film.mean(), without.mean()), 0u) << what;
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x) EXPECT_EQ(back->film.samples(x, y), with.samples(x, y));
+        }
+}
+
 TEST(FilmSplat, AccumulationVariantsAreChecked) {
     // A variant this CPU lacks is refused (the enum's values past the last are never available).
     Film f(3, 3, Filter(TentFilter{1.f}));

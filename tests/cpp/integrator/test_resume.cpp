@@ -311,6 +311,59 @@ TEST(Resume, MismatchesAreErrors) {
               std::string::npos);
 }
 
+// A splatting render with variance off: the same image bit for bit, no variance image; its state
+// resumes (through a file too) to the uninterrupted render's image, without variance; asking for
+// variance, or a target_rel_error, from that state is an error naming what is missing; a version 1
+// state file (no variance byte) is still read.
+TEST(Resume, WithoutVariance) {
+    auto scene = scene_from(scene_json(kSplat));
+    RenderOptions o;
+    o.spp = 8;
+    o.threads = 2;
+    const RenderResult with = render(*scene, o);
+    o.variance = false;
+    const RenderResult full = render(*scene, o);
+    EXPECT_TRUE(same_bits(with.image, full.image));
+    EXPECT_TRUE(full.variance.data.empty());
+    EXPECT_FALSE(full.state->film.has_variance());
+    o.spp = 4;
+    const RenderResult part = render(*scene, o);
+    const std::string path = temp_path("no_variance");
+    save_film_state(path, *part.state);
+    o.spp = 8;
+    o.resume = load_film_state(path);
+    EXPECT_FALSE(o.resume->film.has_variance());
+    const RenderResult resumed = render(*scene, o);
+    EXPECT_TRUE(same_bits(full.image, resumed.image));
+    EXPECT_TRUE(resumed.variance.data.empty());
+    o.variance = true;
+    EXPECT_NE(error_of([&] { render(*scene, o); }).find("resume: the film state was rendered without variance"),
+              std::string::npos);
+    o.variance = false;
+    o.target_rel_error = 0.1;
+    EXPECT_NE(error_of([&] { render(*scene, o); }).find("stops at a target_rel_error, which needs it"), std::string::npos);
+    // target_rel_error keeps variance even when variance is off.
+    RenderOptions t;
+    t.spp = 4, t.variance = false, t.target_rel_error = 1e-9;
+    EXPECT_FALSE(render(*scene, t).variance.data.empty());
+    // A version 1 file: the version-2 file of a film with variance, less its variance byte.
+    save_film_state(path, *with.state);
+    std::string v1 = read_bytes(path);
+    ASSERT_EQ(v1[8], 2);
+    v1[8] = 1;
+    v1.erase(8 + 4 + 8 + 1, 1);  // magic, version, width and height, reconstruction: the variance byte
+    // The checksum (FNV-1a of every byte before it), recomputed.
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i + 8 < v1.size(); ++i) h = (h ^ uint64_t(uint8_t(v1[i]))) * 1099511628211ull;
+    std::memcpy(&v1[v1.size() - 8], &h, 8);
+    write_bytes(path, v1);
+    const auto old = load_film_state(path);
+    std::filesystem::remove(path);
+    EXPECT_TRUE(old->film.has_variance());
+    EXPECT_TRUE(same_bits(old->film.mean(), with.image));
+    EXPECT_TRUE(same_bits(old->film.variance(), with.variance));
+}
+
 // Dropped samples are counted across a resume and the state keeps their count.
 TEST(Resume, InvalidSampleCountCarriesOver) {
     auto scene = scene_from(scene_json(kTent, "independent", 32, 32));
