@@ -87,8 +87,9 @@ void check_resume(const FilmState& st, const Scene& scene, const RenderOptions& 
              " sampler (set the sampler to '" + st.sampler + "')");
     if (!st.film.has_variance() && (opts.variance || opts.target_rel_error > 0.0))
         fail(std::string("the film state was rendered without variance, and this render ") +
-             (opts.target_rel_error > 0.0 ? "stops at a target_rel_error, which needs it" : "asks for variance") +
-             " (render with variance off)");
+             (opts.target_rel_error > 0.0 ? "stops at a target_rel_error, which needs it"
+                                          : "asks for variance (the variance AOV, or render_with_stats' variance=True)") +
+             ": resume it without");
     if (opts.seed >= 0 && uint64_t(opts.seed) != st.seed)
         fail("the film state used seed " + std::to_string(st.seed) + ", this render asks for seed " +
              std::to_string(opts.seed) + " (leave the seed unset to continue with the state's)");
