@@ -43,15 +43,21 @@ inline F terminator_factor(const MaskT<F>& estevez, const V3<F>& other, const V3
     const F chiang = lane::select(soft, g * (F(1.f) + g * (F(1.f) - g)), F(1.f));
     if (!lane::any(estevez)) return chiang;
     // Conty Estevez et al. 2019: the GGX G1 with α² = min(tan²θ_d/8, 1), θ_d the angle between the
-    // shading and the unperturbed normal, of the light direction about n0.
+    // shading and the unperturbed normal, of the light direction about n0. α² is clamped to [0, 1]:
+    // where ns = n0, dot(n0, ns)² rounds above 1 and 1 − c_n² is a negative rounding error. G1 is
+    // written 2|c_l| / (|c_l| + √(c_l² + α²(1 − c_l²))) (the form 2/(1 + √(1 + α² tan²θ_l)) times
+    // |c_l|/|c_l|), which divides by no c_l²: finite and in [0, 1] down to grazing light.
     const F c_n = dot(n0, ns), c_l = dot(n0, light_w);
     const F c_n2 = c_n * c_n, c_l2 = c_l * c_l;
     const auto lit = c_l2 > F(0.f), tilted = c_n2 > F(0.f);
     const F a = F(0.125f) * (F(1.f) - c_n2) / lane::select(tilted, c_n2, F(1.f));
-    const F alpha2 = lane::select(tilted, lane::select(F(1.f) < a, F(1.f), a), F(1.f));
+    const F a01 = lane::select(F(0.f) < a, lane::select(F(1.f) < a, F(1.f), a), F(0.f));
+    const F alpha2 = lane::select(tilted, a01, F(1.f));
     const F t = F(1.f) - c_l2;
-    const F tan2_l = lane::select(F(0.f) < t, t, F(0.f)) / lane::select(lit, c_l2, F(1.f));
-    const F est = lane::select(lit, F(2.f) / (F(1.f) + lane::sqrt(F(1.f) + alpha2 * tan2_l)), F(0.f));
+    const F abs_c = lane::abs(c_l);
+    // (At most 1: √(c_l²) can round below |c_l| where c_l² is subnormal.)
+    const F g1 = F(2.f) * abs_c / (abs_c + lane::sqrt(c_l2 + alpha2 * lane::select(F(0.f) < t, t, F(0.f))));
+    const F est = lane::select(lit, lane::select(g1 < F(1.f), g1, F(1.f)), F(0.f));
     return lane::select(estevez, est, chiang);
 }
 

@@ -254,5 +254,28 @@ TEST(EstevezTerminator, MatchesClosedFormOnTheLightDirection) {
             }
     }
 }
+// Where the perturbed normal equals n0, dot(n0, n0)² can round above 1, so that 1 − cos²θ_d is a
+// tiny negative number; with light grazing n0, α²·tan²θ_l then fell below −1 and the square root
+// gave NaN (a textured_bump render dropped about one sample in a million as NaN). The factor must be
+// finite and in [0, 1] for such normals, and at every light angle down to the tangent plane (the
+// float instantiation of the template that the packet kernel instantiates on its packets).
+TEST(EstevezTerminator, FiniteWhereTheNormalIsUnperturbedAndTheLightGrazes) {
+    PCG32 rng(3, 7);
+    int rounding_above_one = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const Vec3f n0 = normalize(Vec3f(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f));
+        const float c_n = dot(n0, n0);
+        rounding_above_one += c_n * c_n > 1.f;
+        // A light direction at angle 90° − ε to n0, ε from 0.1 down to 1e-30 and exactly 0.
+        const Frame f = Frame::from_z(n0);
+        for (float eps : {1e-1f, 1e-3f, 1e-5f, 1e-7f, 1e-12f, 1e-20f, 1e-30f, 0.f}) {
+            const Vec3f light_w = normalize(f.s + n0 * eps);
+            const Vec3f light = f.to_local(light_w), other(0.f, 0.f, 1.f);
+            const float g = terminator_factor<float>(true, other, light, light_w, n0, n0);
+            ASSERT_TRUE(std::isfinite(g) && g >= 0.f && g <= 1.f) << "trial " << trial << " eps " << eps << ": " << g;
+        }
+    }
+    EXPECT_GT(rounding_above_one, 100);  // the case the test is about does occur
+}
 }  // namespace
 }  // namespace pellucid::test
