@@ -1,7 +1,7 @@
 // What tests/cpp/simd/test_lanes_equal_scalars.cpp compares across lane types: the packet code of
 // the path tracer (Lambertian, Fresnel terms, the conductors on GGX and Beckmann, warps, frames, ray
-// offsets, the power heuristic, emitter sampling, the packet lights: spheres and constant
-// environments)
+// offsets, the power heuristic, the bump terminator factors, emitter sampling, the packet lights:
+// spheres and constant environments)
 // evaluated over arrays of inputs, kLaneWidth<F> lanes at a time. It is instantiated on float in
 // the test and on each SIMD target's packet in probe_<target>.cpp (built with that target's flags,
 // exporting only its entry point, as the renderer's kernels do).
@@ -94,6 +94,11 @@ void run(const In& in, Out& out) {
         const V3<F> loc = fr.to_local(wi);
         put(loc.x), put(loc.y), put(loc.z);
         putm(shading_leaks<F>(normalize(nrm), wo, wi, fr.to_local(wo), loc));
+        // The bump terminator factors of the light wi: Estevez's with the unperturbed normal equal to
+        // the shading one, then Estevez's or Chiang's (by u0) about an unperturbed normal tilted
+        // toward wi.
+        put(terminator_factor<F>(M(true), fr.to_local(wo), loc, wi, fr.n, fr.n));
+        put(terminator_factor<F>(L(in.u[0]) < F(0.5f), fr.to_local(wo), loc, wi, normalize(fr.n + F(0.4f) * wi), fr.n));
         // Fresnel: a conductor (η, k from the albedo inputs, which include 0) and a dielectric
         // seen from both sides.
         put(fresnel_conductor<F>(lane::abs(wo.z), F(4.f) * L(in.albedo[0]), F(5.f) * L(in.albedo[1])));
