@@ -52,6 +52,7 @@ AGREEMENT_PASSES = 16
 QUICK_SIZE, QUICK_SPP, QUICK_REF_SPP = 32, 4, 64
 CSV_FIELDS = ("scene", "peer", "width", "height", "spp", "threads",
               "ours_seconds", "ours_samples_per_second", "ours_load_seconds", "ours_peak_rss_mb",
+              "ours_invalid_samples",
               "mitsuba_seconds", "mitsuba_samples_per_second", "mitsuba_load_seconds", "mitsuba_peak_rss_mb",
               "ratio", "ours_relmse", "mitsuba_relmse", "ref_relmse_floor", "ours_eqtime_relmse",
               "mitsuba_eqtime_relmse", "relmse_ratio", "ztest_pass_fraction", "ztest_critical_z", "agreement",
@@ -112,6 +113,7 @@ class Run:
     samples: float
     load_seconds: float
     peak_rss_mb: Optional[float]
+    invalid_samples: int = 0  # NaN/Inf/negative samples the render dropped (pellucid's renders)
 
     @property
     def samples_per_second(self) -> float:
@@ -154,7 +156,7 @@ def run_ours(scene: dict, base_dir: pathlib.Path, seed: int, threads: int, workd
         img = pellucid.read_image(tmp / "out.exr").copy()
         var = pellucid.read_image(tmp / "out.var.exr").copy() if variance else None
     return Run(img, var, int(st["spp"]), float(st["seconds"]), float(st["samples"]), float(st["load_seconds"]),
-               st.get("peak_rss_mb"))
+               st.get("peak_rss_mb"), int(st.get("invalid_samples", 0)))
 
 
 def run_peer(py: pathlib.Path, scene: dict, base_dir: pathlib.Path, seed: int, threads: int, passes: int,
@@ -215,6 +217,7 @@ def worker(argv: Sequence[str]) -> int:
         pellucid.write_image(out.with_name(out.stem + ".var.exr"), var)
     pathlib.Path(a.report).write_text(json.dumps({"spp": int(st["spp"]), "seconds": float(st["seconds"]),
                                                   "samples": float(st["samples"]), "load_seconds": load_s,
+                                                  "invalid_samples": int(st["invalid_samples"]),
                                                   "peak_rss_mb": peak_rss_mb()}))
     return 0
 
@@ -308,6 +311,7 @@ def row(res: Result, ref: np.ndarray) -> Dict[str, Any]:
         "scene": res.scene, "peer": res.peer, "width": res.width, "height": res.height, "spp": res.spp,
         "threads": res.threads, "ours_seconds": o.seconds, "ours_samples_per_second": o.samples_per_second,
         "ours_load_seconds": o.load_seconds, "ours_peak_rss_mb": o.peak_rss_mb, "ours_relmse": ours_rel,
+        "ours_invalid_samples": sum(r.invalid_samples for r in res.ours_all or [o]),
         "ref_relmse_floor": res.ref_floor, "ours_eqtime_relmse": max(ours_rel - res.ref_floor, 0.0),
         "reference": res.reference}
     if m is not None:
@@ -372,6 +376,16 @@ def busy_note(loads: Sequence[Optional[float]], cpus: int, threads: int) -> str:
     return f"- the machine was otherwise idle (1-minute load average at most {max(known):.1f} on {cpus} CPUs)"
 
 
+def invalid_note(rows: Sequence[Dict[str, Any]]) -> str:
+    """A line for the summary: the NaN/Inf/negative samples pellucid's timed renders dropped (an
+    estimator defect wherever it is not zero)."""
+    bad = [(r["scene"], r.get("ours_invalid_samples") or 0) for r in rows if r.get("ours_invalid_samples")]
+    if not bad:
+        return "- NaN/Inf/negative samples in pellucid's timed renders: none"
+    return ("- **NaN/Inf/negative samples in pellucid's timed renders**, dropped from the film: "
+            + ", ".join(f"{n} in {s}" for s, n in bad))
+
+
 def summary(rows: Sequence[Dict[str, Any]], argv: Sequence[str], machine: Tuple[str, str], wall: float,
             peer: Optional[str], loads: Sequence[Optional[float]] = ()) -> str:
     has_peer = any("ratio" in r for r in rows)
@@ -385,7 +399,7 @@ def summary(rows: Sequence[Dict[str, Any]], argv: Sequence[str], machine: Tuple[
              f"- peer: {peer or 'none (Mitsuba 3 not set up: bench/peers/setup_mitsuba.sh); pellucid only'}",
              f"- threads: {rows[0]['threads'] if rows else '?'} for both renderers; both warm; only the render is "
              "timed", f"- reference: {rows[0]['reference'].split(' (')[0] if rows else '?'}, per scene, cached",
-             f"- wall time of the whole run: {wall:.0f} s", ""]
+             f"- wall time of the whole run: {wall:.0f} s", invalid_note(rows), ""]
     if has_peer:
         lines += [f"**Geometric mean of samples/s pellucid / Mitsuba llvm_ad_rgb: {g:.2f}x** over "
                   f"{sum(1 for r in rows if 'ratio' in r)} scenes; scenes at >= 1.0x: "

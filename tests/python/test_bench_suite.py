@@ -237,6 +237,14 @@ def test_equal_time_relmse_and_geomean():
     assert bench_suite.geomean([None]) is None
     assert "busy" in bench_suite.busy_note([1.0, 10.0], cpus=2, threads=2)
     assert "idle" in bench_suite.busy_note([2.5, None], cpus=2, threads=2)
+    # NaN/Inf/negative samples of the timed renders: summed over the repeats, named in the summary
+    assert r["ours_invalid_samples"] == 0
+    res.ours_all[1].invalid_samples = 3
+    r = bench_suite.row(res, ref)
+    assert r["ours_invalid_samples"] == 3
+    assert "3 in x" in bench_suite.invalid_note([r])
+    assert bench_suite.invalid_note([bench_suite.row(bench_suite.Result(
+        "y", "same", 2, 2, 4, 2, ours=mk(1.0, 1.0), mitsuba=None, reference="r", ref_floor=0.0), ref)]).endswith("none")
 
 
 def test_runner_quick_without_peer(tmp_path):
@@ -250,7 +258,7 @@ def test_runner_quick_without_peer(tmp_path):
     for x in rows:
         assert float(x["ours_samples_per_second"]) > 0 and x["ratio"] == "" and x["spp"] == "4"
         assert int(x["width"]) <= 32 and float(x["ours_eqtime_relmse"]) >= 0
-        assert "pellucid mis" in x["reference"]
+        assert "pellucid mis" in x["reference"] and x["ours_invalid_samples"] == "0"
         if os.path.exists("/proc/self/status"):
             assert 10 < float(x["ours_peak_rss_mb"]) < 10_000
     text = (out / "summary.md").read_text()
