@@ -382,9 +382,8 @@ def render(
     """
     if aovs is not None:
         from .aov import layers_from_render, parse_aovs
-        names = parse_aovs(aovs)
         kwargs = _render_kwargs(scene, spp, seed, threads, time_budget, target_rel_error, sampler, resume)
-        kwargs["aovs"] = names
+        kwargs["aovs"] = parse_aovs(aovs)
         image, variance, stats = _render_full(kwargs, progress)
         return layers_from_render(image, variance, stats)
     image, _, _ = render_with_stats(scene, spp, seed, threads, time_budget, target_rel_error, progress, sampler,

@@ -211,7 +211,8 @@ def run_ours(scene: dict, base_dir: pathlib.Path, strategy: str, seed: int, thre
     d.setdefault("integrator", {"type": "path"})["strategy"] = strategy
     sc = pellucid.load_dict(d, base_dir)
     if warm:  # untimed, as the peers get (page in the BVH and the code)
-        pellucid.render_with_stats(sc, spp=1, seed=seed + 1_000_003, threads=threads, sampler=sampler)
+        pellucid.render_with_stats(sc, spp=1, seed=seed + 1_000_003, threads=threads, sampler=sampler,
+                                   variance=variance)
     img, var, st = pellucid.render_with_stats(sc, spp=spp, seed=seed, threads=threads, time_budget=budget,
                                               sampler=sampler, variance=variance)
     return Render(np.array(img), None if var is None else np.array(var), int(st["spp"]), float(st["seconds"]),

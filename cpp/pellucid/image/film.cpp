@@ -334,6 +334,7 @@ __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs&
             const double wyj = wd[j + m][3], pyj = wd[j + m][1];
             const size_t row = size_t(y + j) * A.width + x;
             double* sums = A.sums + 4 * row;
+            double* pairs = kVar ? A.pairs + 8 * row : nullptr;
             for (int i = i0; i <= i1; ++i) {
                 // Σ(w, wL) += a (if add_a), += b; the pair sums += (d·d, d·Δw), d = b − a.
                 const double wb = wd[i + m][2] * wyj, wa = wd[i + m][0] * pyj;
@@ -343,7 +344,7 @@ __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs&
                 store4(sums + 4 * i, t + b);
                 if constexpr (kVar) {
                     const D4 d = b - a;
-                    double* q = A.pairs + 8 * (row + i);
+                    double* q = pairs + 8 * i;
                     store4(q, load4(q) + d * d);
                     store4(q + 4, load4(q + 4) + d * d[0]);
                 }
