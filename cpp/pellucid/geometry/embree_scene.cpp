@@ -299,97 +299,54 @@ bool EmbreeScene::occluded(const Ray& ray) const {
 }
 
 namespace {
-/// Fill an Embree ray packet: lane(i, o, d, &tmax) gives lane i's ray and whether to trace it. An
-/// invalid lane (valid[i] = 0) is not read by Embree, but holds a harmless ray anyway.
-template <int K, class RayK, class LaneFn>
-void fill_packet(RayK& r, int* valid, LaneFn&& lane) {
+/// Lanes [0, n) of an Embree ray packet from arrays (soa: origin, direction, tmax) where valid[i];
+/// the others, and lanes past n, hold a well-formed empty ray whatever the caller left there (NaN
+/// included: Embree's 16-wide call on an AVX2 build, done as two 8-wide halves, asserts that every
+/// ray it carries is valid). mask[i] = −1 for a lane to trace, else 0.
+template <int K, class RayK>
+void fill_lanes(RayK& r, int* mask, int n, const float* const soa[7], const bool* valid) {
+    float* dst[7] = {r.org_x, r.org_y, r.org_z, r.dir_x, r.dir_y, r.dir_z, r.tfar};
+    for (int k = 0; k < 7; ++k) std::memcpy(dst[k], soa[k], sizeof(float) * size_t(n));
     for (int i = 0; i < K; ++i) {
-        float o[3], d[3], tmax;
-        valid[i] = lane(i, o, d, &tmax) ? -1 : 0;
-        r.org_x[i] = o[0];
-        r.org_y[i] = o[1];
-        r.org_z[i] = o[2];
-        r.dir_x[i] = d[0];
-        r.dir_y[i] = d[1];
-        r.dir_z[i] = d[2];
+        mask[i] = i < n && valid[i] ? -1 : 0;
         r.tnear[i] = 0.f;
-        r.tfar[i] = tmax;
         r.mask[i] = ~0u;
         r.flags[i] = 0;
         r.time[i] = 0.f;
     }
+    for (int i = 0; i < K; ++i) {
+        if (mask[i]) continue;
+        for (int k = 0; k < 6; ++k) dst[k][i] = 0.f;
+        dst[6][i] = -std::numeric_limits<float>::infinity();
+    }
 }
-/// Lanes [0, n) from rays[i]; lanes past n are zero rays, invalid.
-auto lanes_of(int n, const Ray* const* rays) {
-    // A null entry is an inactive lane: Embree's mask leaves it out, and its (unused) ray is a
-    // well-formed zero ray rather than whatever the caller's storage held.
-    return [n, rays](int i, float* o, float* d, float* tmax) {
-        const bool on = i < n && rays[i] != nullptr;
-        if (!on) {
-            for (int k = 0; k < 3; ++k) o[k] = d[k] = 0.f;
-            *tmax = 0.f;
-            return false;
-        }
-        const Ray& ray = *rays[i];
-        for (int k = 0; k < 3; ++k) {
-            o[k] = ray.o[k];
-            d[k] = ray.d[k];
-        }
-        *tmax = ray.tmax;
-        return true;
-    };
-}
-/// Embree's packet call on the lanes `lane` gives (fill_packet); valid receives the mask.
-template <int K, class RayHitK, class LaneFn>
-void intersect_k(RTCScene scene, LaneFn&& lane, RayHitK& rh, int* valid) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    fill_packet<K>(rh.ray, valid, lane);
+/// intersect_lanes on a K-wide packet (n ≤ K).
+template <int K, class RayHitK>
+void intersect_k(RTCScene scene, int n, const float* const soa[7], const bool* valid, HitLanes& out) {
+    alignas(64) RayHitK rh;
+    alignas(64) int mask[K];
+    fill_lanes<K>(rh.ray, mask, n, soa, valid);
     for (int i = 0; i < K; ++i) {
         rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
-    if constexpr (K == 16) rtcIntersect16(valid, scene, &ctx, &rh);
-    else rtcIntersect8(valid, scene, &ctx, &rh);
-}
-/// The first n hits of a packet into hits.
-template <class RayHitK>
-void read_hits(const RayHitK& rh, int n, RayHit* hits) {
-    for (int i = 0; i < n; ++i) {
-        RayHit& hit = hits[i];
-        if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
-            hit.geom_id = ~0u;
-            continue;
-        }
-        hit.t = rh.ray.tfar[i];
-        hit.geom_id = rh.hit.geomID[i];
-        hit.prim_id = rh.hit.primID[i];
-        hit.u = rh.hit.u[i];
-        hit.v = rh.hit.v[i];
-        hit.ng = Vec3f(rh.hit.Ng_x[i], rh.hit.Ng_y[i], rh.hit.Ng_z[i]);
-    }
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    if constexpr (K == 16) rtcIntersect16(mask, scene, &ctx, &rh);
+    else rtcIntersect8(mask, scene, &ctx, &rh);
+    static_assert(RTC_INVALID_GEOMETRY_ID == ~0u, "a miss is geom_id ~0u");
+    std::memcpy(out.t, rh.ray.tfar, sizeof(float) * size_t(n));
+    std::memcpy(out.geom_id, rh.hit.geomID, sizeof(uint32_t) * size_t(n));
+    std::memcpy(out.prim_id, rh.hit.primID, sizeof(uint32_t) * size_t(n));
+    std::memcpy(out.u, rh.hit.u, sizeof(float) * size_t(n));
+    std::memcpy(out.v, rh.hit.v, sizeof(float) * size_t(n));
 }
 /// occluded_lanes on a K-wide packet (n ≤ K).
 template <int K, class RayK>
 void occluded_k(RTCScene scene, int n, const float* const soa[7], const bool* valid, bool* occluded) {
     alignas(64) RayK r;
     alignas(64) int mask[K];
-    float* dst[7] = {r.org_x, r.org_y, r.org_z, r.dir_x, r.dir_y, r.dir_z, r.tfar};
-    for (int k = 0; k < 7; ++k) std::memcpy(dst[k], soa[k], sizeof(float) * size_t(n));
-    for (int i = 0; i < K; ++i) {
-        mask[i] = i < n && valid[i] ? -1 : 0;
-        if (!mask[i]) {
-            // A masked-off lane holds a well-formed empty ray whatever the caller left there (NaN
-            // included): Embree's 16-wide call on an AVX2 build, done as two 8-wide halves, asserts
-            // that every ray it carries is valid.
-            for (int k = 0; k < 6; ++k) dst[k][i] = 0.f;
-            dst[6][i] = -std::numeric_limits<float>::infinity();
-        }
-        r.tnear[i] = 0.f;
-        r.mask[i] = ~0u;
-        r.flags[i] = 0;
-        r.time[i] = 0.f;
-    }
+    fill_lanes<K>(r, mask, n, soa, valid);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     if constexpr (K == 16) rtcOccluded16(mask, scene, &ctx, &r);
@@ -398,21 +355,13 @@ void occluded_k(RTCScene scene, int n, const float* const soa[7], const bool* va
 }
 }  // namespace
 
-void EmbreeScene::intersect_packet(int n, const Ray* const* rays, RayHit* hits) const {
+void EmbreeScene::intersect_lanes(int n, const float* const soa[7], const bool* valid, HitLanes& hits) const {
     static_assert(kPacketSize == 16, "the packet calls below are at most 16 wide");
     if (n <= 0) return;
     // Up to 8 rays go as Embree's 8-wide packet (the 8-lane kernels' packets; an AVX2 build of
     // Embree would split a 16-wide call into two 8-wide ones), more as a 16-wide one.
-    alignas(64) int valid[16];
-    if (n <= 8) {
-        alignas(64) RTCRayHit8 rh;
-        intersect_k<8>(m_impl->scene, lanes_of(n, rays), rh, valid);
-        read_hits(rh, n, hits);
-    } else {
-        alignas(64) RTCRayHit16 rh;
-        intersect_k<16>(m_impl->scene, lanes_of(n, rays), rh, valid);
-        read_hits(rh, n, hits);
-    }
+    if (n <= 8) intersect_k<8, RTCRayHit8>(m_impl->scene, n, soa, valid, hits);
+    else intersect_k<16, RTCRayHit16>(m_impl->scene, n, soa, valid, hits);
 }
 
 void EmbreeScene::occluded_lanes(int n, const float* const soa[7], const bool* valid, bool* occluded) const {

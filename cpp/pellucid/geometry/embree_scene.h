@@ -20,6 +20,22 @@ struct RayHit {
     bool hit() const { return geom_id != ~0u; }
 };
 
+/// The hits of a packet of up to EmbreeScene::kPacketSize rays, as arrays (lane i of each): the
+/// path kernel reads them as packets. geom_id[i] = ~0u where ray i hit nothing or was not traced.
+struct alignas(64) HitLanes {
+    float t[16];
+    uint32_t geom_id[16];
+    uint32_t prim_id[16];
+    float u[16], v[16];  ///< triangle barycentrics of vertices 1 and 2
+    /// Lane i as a RayHit (without the geometric normal, which the scene computes itself).
+    RayHit lane(int i) const {
+        RayHit h;
+        h.t = t[i], h.geom_id = geom_id[i], h.prim_id = prim_id[i], h.u = u[i], h.v = v[i];
+        return h;
+    }
+    bool hit(int i) const { return geom_id[i] != ~0u; }
+};
+
 class EmbreeScene {
 public:
     EmbreeScene();
@@ -46,10 +62,11 @@ public:
     /// into two 8-wide ones (bench/README.md measures it).
     static constexpr int kPacketSize = 16;
     /// intersect() for n ≤ kPacketSize rays at once, traced as one packet: Embree tests a BVH node
-    /// against all of them in SIMD, which amortises the traversal of incoherent rays too. hits[i]
-    /// is filled as intersect() fills it; returns nothing, hits[i].hit() tells.
-    /// A null rays[i] is an inactive lane (no hit).
-    void intersect_packet(int n, const Ray* const* rays, RayHit* hits) const;
+    /// against all of them in SIMD, which amortises the traversal of incoherent rays too. The rays
+    /// are arrays of n floats, soa = origin x, y, z, direction x, y, z, tmax (occluded_lanes'
+    /// layout); rays where valid[i] is false are not traced. Lane i of hits gets what intersect()
+    /// gives ray i (t, ids, barycentrics; geom_id ~0u: no hit).
+    void intersect_lanes(int n, const float* const soa[7], const bool* valid, HitLanes& hits) const;
     /// occluded() for n ≤ kPacketSize rays at once, given as arrays of n floats, soa = origin x, y,
     /// z, direction x, y, z, tmax; rays where valid[i] is false are not traced (occluded[i] false).
     void occluded_lanes(int n, const float* const soa[7], const bool* valid, bool* occluded) const;

@@ -106,7 +106,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     SurfaceInteraction si[W];
     alignas(BSDF) unsigned char bsdf_mem[W][sizeof(BSDF)];
     auto bsdf = [&](int i) -> BSDF& { return *reinterpret_cast<BSDF*>(bsdf_mem[i]); };
-    const Ray* ray_ptr[W];
     Ray shadow[W];  // a shadow ray NEE sampled one lane at a time (then copied into Arrays::sh)
     int64_t path_of[W];
     // Media (PathSetup::media): the medium each lane's ray runs through, the stream of its medium
@@ -123,7 +122,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     bool hit[W], active[W], blocked[W];
     // Hit records: the kernel's hits, and which lanes have a full SurfaceInteraction in si (the
     // others only their vertex, as packets: scene/hit_packets.h), with each hit's material and light.
-    RayHit rh[W];
+    HitLanes hl;
     bool full[W];
     uint32_t mat_of[W]{};
     int32_t light_of[W]{};
@@ -161,6 +160,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         bool at_exit[W];     // this vertex is a BSSRDF's exit point (its exit lobe scatters)
         bool to_exit[W];     // this vertex's sample entered a BSSRDF: the next vertex is its exit
         float u[7][W];
+        // Each lane's ray (ray[i]'s origin, direction and tmax) as arrays, kept up to date where
+        // ray[i] changes: what the packet trace reads (EmbreeScene::intersect_lanes).
+        float ray_soa[7][W];
+        bool traced[W];  // the lane's ray is traced (active, without a pending BSSRDF exit)
         int32_t draw0[W], draw1[W];  // the independent sampler's numbers u[draw0, draw1) of this vertex
         // NEE.
         bool nee_ok[W], delta[W];
@@ -188,6 +191,12 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         a.sx[i] = h.shading.s.x, a.sy[i] = h.shading.s.y, a.sz[i] = h.shading.s.z;
         a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
         a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
+    };
+    // Lane i's ray into the arrays the trace reads (where it changed one lane at a time).
+    auto set_ray_soa = [&](int i) {
+        const Ray& r = ray[i];
+        a.ray_soa[0][i] = r.o.x, a.ray_soa[1][i] = r.o.y, a.ray_soa[2][i] = r.o.z;
+        a.ray_soa[3][i] = r.d.x, a.ray_soa[4][i] = r.d.y, a.ray_soa[5][i] = r.d.z, a.ray_soa[6][i] = r.tmax;
     };
     auto LD = [](const float* p) { return lane::load_as<F>(p); };
     auto LM = [](const bool* p) { return lane::load_mask_as<M>(p); };
@@ -258,6 +267,16 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const V3<F> dx = scene.camera.direction<F>(fx + F(1.f), fy), dy = scene.camera.direction<F>(fx, fy + F(1.f));
                 ST(b[3], dx.x), ST(b[4], dx.y), ST(b[5], dx.z), ST(b[6], dy.x), ST(b[7], dy.y), ST(b[8], dy.z);
             }
+            {  // the arrays the trace reads
+                const M cam = LM(a.cam);
+                ST(a.ray_soa[0], lane::select(cam, F(o.x), LD(a.ray_soa[0])));
+                ST(a.ray_soa[1], lane::select(cam, F(o.y), LD(a.ray_soa[1])));
+                ST(a.ray_soa[2], lane::select(cam, F(o.z), LD(a.ray_soa[2])));
+                ST(a.ray_soa[3], lane::select(cam, d.x, LD(a.ray_soa[3])));
+                ST(a.ray_soa[4], lane::select(cam, d.y, LD(a.ray_soa[4])));
+                ST(a.ray_soa[5], lane::select(cam, d.z, LD(a.ray_soa[5])));
+                ST(a.ray_soa[6], lane::select(cam, F(kInfinity), LD(a.ray_soa[6])));
+            }
             for (int i = 0; i < W; ++i) {
                 if (!a.cam[i]) continue;
                 a.cam[i] = false;
@@ -314,16 +333,19 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             bool any = false;
             for (int i = 0; i < W; ++i) {
                 any = any || active[i];
-                ray_ptr[i] = active[i] && !pending_exit[i] ? &ray[i] : nullptr;  // idle lanes hold no ray
+                a.traced[i] = active[i] && !pending_exit[i];  // idle lanes hold no ray
             }
             if (!any) break;
-            path_services::trace_hits(scene, W, ray_ptr, rh, hit);
-            // Hit records: full ones one lane at a time (Scene::fill_hit), then the vertices of the
-            // lanes that need no more, as packets (the same templates fill_hit uses, so the same bits).
+            const float* const ray_soa[7] = {a.ray_soa[0], a.ray_soa[1], a.ray_soa[2], a.ray_soa[3],
+                                             a.ray_soa[4], a.ray_soa[5], a.ray_soa[6]};
+            path_services::trace_lanes(scene, W, ray_soa, a.traced, hl, hit);
+            // Hit records (below, after the restarts): full ones one lane at a time (Scene::fill_hit),
+            // then the vertices of the lanes that need no more, as packets (the same templates
+            // fill_hit uses, so the same bits).
             auto record_hit = [&](int i) {
                 full[i] = true;
                 if (!hit[i]) return;
-                const RayHit& h = rh[i];
+                const RayHit h = hl.lane(i);
                 const ShapeRecord& s = scene.shapes[h.geom_id];
                 mat_of[i] = s.face_materials.empty() ? s.material : s.face_materials[h.prim_id];
                 light_of[i] = s.light;
@@ -336,8 +358,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 a.wox[i] = -ray[i].d.x, a.woy[i] = -ray[i].d.y, a.woz[i] = -ray[i].d.z;
                 fetch_hit_vertex(scene, ray[i], h, i, hv);
             };
-            hv.clear();
-            for (int i = 0; i < W; ++i) record_hit(i);
             // Lanes whose rays escaped end their paths here and, when they are at least
             // kRestartMinLanes, start the next ones at once, whose camera rays are traced before the
             // packet pass: the pass then shades more hits per packet (bench/dispatch_stats.py;
@@ -353,21 +373,47 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 }
                 if (n_esc >= kRestartMinLanes) {
                     end_escaped(esc_b);
-                    const Ray* again[W];
-                    for (int i = 0; i < W; ++i) {
-                        esc_b[i] = esc_b[i] && active[i];  // the lanes that started a path
-                        again[i] = esc_b[i] ? &ray[i] : nullptr;
-                    }
+                    for (int i = 0; i < W; ++i) esc_b[i] = esc_b[i] && active[i];  // the lanes that started a path
                     camera_rays();
-                    RayHit rh2[W];
+                    HitLanes hl2;
                     bool hit2[W];
-                    path_services::trace_hits(scene, W, again, rh2, hit2);
+                    path_services::trace_lanes(scene, W, ray_soa, esc_b, hl2, hit2);
                     for (int i = 0; i < W; ++i) {
                         if (!esc_b[i]) continue;
-                        rh[i] = rh2[i], hit[i] = hit2[i];
-                        record_hit(i);
+                        hl.t[i] = hl2.t[i], hl.geom_id[i] = hl2.geom_id[i], hl.prim_id[i] = hl2.prim_id[i];
+                        hl.u[i] = hl2.u[i], hl.v[i] = hl2.v[i];
+                        hit[i] = hit2[i];
                     }
                 }
+            }
+            // Lanes whose hit is a triangle of the triangle table with a vertex-lane material
+            // (PathSetup::tri_table) take their vertices as packets, gathered by triangle; the
+            // others record theirs one lane at a time.
+            alignas(64) bool vl[W];
+            M vl_m(false);
+            IntT<F> vl_mat(0);
+            if (!ps.tri_base.empty()) {
+                using I = IntT<F>;
+                const auto hit_i = lane::int_mask(LM(hit));
+                const I geom = lane::select(hit_i, lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
+                const I base = lane::gather(ps.tri_base.data(), geom);
+                const auto in_table = hit_i && base >= I(0);
+                const I prim = lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.prim_id));
+                const I row = lane::select(in_table, base + prim, I(0)) * I(PathSetup::kTriStride);
+                const float* tab = ps.tri_table.data();
+                vl_mat = lane::as_int(lane::gather(tab, row + I(21)));
+                const auto vl_i = in_table && vl_mat >= I(0);
+                vl_m = lane::float_mask(vl_i);
+                vl_mat = lane::select(vl_i, vl_mat, I(0));
+            }
+            SM(vl, vl_m);
+            hv.clear();
+            for (int i = 0; i < W; ++i) {
+                if (vl[i]) {
+                    full[i] = false, light_of[i] = -1;
+                    continue;
+                }
+                record_hit(i);
             }
             if (hv.any()) {
                 // Lanes with full records overwrite theirs (load_vertex) where their paths go on.
@@ -378,6 +424,28 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 ST(a.sx, v.shading.s.x), ST(a.sy, v.shading.s.y), ST(a.sz, v.shading.s.z);
                 ST(a.tx, v.shading.t.x), ST(a.ty, v.shading.t.y), ST(a.tz, v.shading.t.z);
                 ST(a.nx, v.shading.n.x), ST(a.ny, v.shading.n.y), ST(a.nz, v.shading.n.z);
+            }
+            if (lane::any(vl_m)) {
+                // The table lanes' vertices (flat_triangle_vertex, as fetch_hit_vertex's lanes).
+                using I = IntT<F>;
+                const float* tab = ps.tri_table.data();
+                const I geom = lane::select(lane::int_mask(vl_m), lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
+                const I prim = lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.prim_id));
+                const I row = (lane::gather(ps.tri_base.data(), geom) + prim) * I(PathSetup::kTriStride);
+                const I rows = lane::select(lane::int_mask(vl_m), row, I(0));
+                auto G = [&](int k) { return lane::gather(tab, rows + I(k)); };
+                auto GV = [&](int k) { return V3<F>(G(k), G(k + 1), G(k + 2)); };
+                const HitVertexT<F> v = flat_triangle_vertex<F>(GV(0), GV(3), GV(6), LD(hl.u), LD(hl.v), GV(9),
+                                                                FrameT<F>(GV(12), GV(15), GV(18)));
+                auto put = [&](float* dst, const F& x) { ST(dst, lane::select(vl_m, x, LD(dst))); };
+                put(a.px, v.p.x), put(a.py, v.p.y), put(a.pz, v.p.z);
+                put(a.pex, v.p_error.x), put(a.pey, v.p_error.y), put(a.pez, v.p_error.z);
+                put(a.ngx, v.ng.x), put(a.ngy, v.ng.y), put(a.ngz, v.ng.z);
+                put(a.sx, v.shading.s.x), put(a.sy, v.shading.s.y), put(a.sz, v.shading.s.z);
+                put(a.tx, v.shading.t.x), put(a.ty, v.shading.t.y), put(a.tz, v.shading.t.z);
+                put(a.nx, v.shading.n.x), put(a.ny, v.shading.n.y), put(a.nz, v.shading.n.z);
+                put(a.wox, lane::neg(LD(a.ray_soa[3]))), put(a.woy, lane::neg(LD(a.ray_soa[4])));
+                put(a.woz, lane::neg(LD(a.ray_soa[5])));
             }
             if (ps.subsurface)
                 for (int i = 0; i < W; ++i)
@@ -420,7 +488,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             for (float* f : {a.Ler, a.Leg, a.Leb, a.le_pdf, a.kind}) ST(f, F(0.f));
             lane::store(a.draw0, IntT<F>(0)), lane::store(a.draw1, IntT<F>(0));
             for (int i = 0; i < W; ++i) {
-                if (!active[i]) continue;
+                if (!active[i] || vl[i]) continue;  // (the table lanes below, as packets)
                 const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]), Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
                 if (pending_exit[i]) {
                     // A BSSRDF's exit point: its exit lobe scatters, with NEE (no emission is
@@ -466,6 +534,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         if (++crossings[i] > 1024) continue;
                         medium[i] = path_services::medium_after(ps, si[i], ray[i].d, medium[i]);
                         ray[i] = path_services::cross_boundary(si[i], ray[i].d);
+                        set_ray_soa(i);
                         a.crossing[i] = true;
                         continue;
                     }
@@ -529,6 +598,37 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 a.goes_on[i] = true;
                 a.nee[i] = ps.use_nee && is_non_specular(flags);
                 draw_randoms(i, depth);
+            }
+            if (lane::any(vl_m)) {
+                // The table lanes: a hit with a packet form, no emission and a full vertex, as the
+                // loop above takes such a lane, for all of them at once.
+                using I = IntT<F>;
+                const F depth = LD(a.depth);
+                const M fast = vl_m && depth < F(float(ps.max_depth));
+                const I kind = lane::gather(ps.packet_kind.data(), vl_mat);
+                const I flags = lane::gather(reinterpret_cast<const int32_t*>(ps.packet_flags.data()), vl_mat);
+                SM(a.fast, fast || LM(a.fast));
+                ST(a.kind, lane::select(fast, lane::to_float(kind), LD(a.kind)));
+                const I qrow = vl_mat * I(kPacketParams);
+                for (int k = 0; k < ps.max_packet_count; ++k)
+                    ST(a.q[k], lane::select(fast, lane::gather(ps.packet_params.data(), qrow + I(k)), LD(a.q[k])));
+                const M goes = fast && lane::float_mask(flags != I(0));
+                const M nee = goes && M(ps.use_nee) &&
+                              lane::float_mask((flags & I(int32_t(BxDFFlags::Diffuse | BxDFFlags::Glossy))) != I(0));
+                SM(a.goes_on, goes || LM(a.goes_on));
+                SM(a.nee, nee || LM(a.nee));
+                if (ps.sampler == SamplerType::Independent) {
+                    const auto goes_i = lane::int_mask(goes);
+                    lane::store(a.draw0, lane::select(goes_i, lane::select(lane::int_mask(nee), I(0), I(3)),
+                                                      lane::load_int_as<I>(a.draw0)));
+                    lane::store(a.draw1, lane::select(goes_i, lane::select(lane::int_mask(depth >= F(float(ps.rr_depth))), I(7), I(6)),
+                                                      lane::load_int_as<I>(a.draw1)));
+                } else {
+                    alignas(64) bool g[W];
+                    SM(g, goes);
+                    for (int i = 0; i < W; ++i)
+                        if (g[i]) draw_randoms(i, int(a.depth[i]));
+                }
             }
             if (ps.sampler == SamplerType::Independent) draw_independent();
 
@@ -902,6 +1002,17 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 alignas(64) float eta_b[W], ob[3][W];
                 SM(spec_b, specular), SM(trans_b, transmission), ST(eta_b, eta);
                 ST(ob[0], o.x), ST(ob[1], o.y), ST(ob[2], o.z);
+                {  // the arrays the trace reads, for the lanes whose next ray is (o, nw) (the loop
+                   // below updates those whose next ray differs)
+                    const M next = LM(a.alive) && !LM(a.crossing) && !LM(a.to_exit);
+                    ST(a.ray_soa[0], lane::select(next, o.x, LD(a.ray_soa[0])));
+                    ST(a.ray_soa[1], lane::select(next, o.y, LD(a.ray_soa[1])));
+                    ST(a.ray_soa[2], lane::select(next, o.z, LD(a.ray_soa[2])));
+                    ST(a.ray_soa[3], lane::select(next, nw.x, LD(a.ray_soa[3])));
+                    ST(a.ray_soa[4], lane::select(next, nw.y, LD(a.ray_soa[4])));
+                    ST(a.ray_soa[5], lane::select(next, nw.z, LD(a.ray_soa[5])));
+                    ST(a.ray_soa[6], lane::select(next, F(kInfinity), LD(a.ray_soa[6])));
+                }
                 for (int i = 0; i < W; ++i) {
                     if (!a.alive[i] || a.crossing[i]) continue;
                     if (a.to_exit[i]) {  // no ray: the next vertex is the exit point
@@ -910,9 +1021,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     }
                     const Vec3f wi(a.nwx[i], a.nwy[i], a.nwz[i]);
                     if (ps.media && !a.in_medium[i]) medium[i] = path_services::medium_after(ps, si[i], wi, medium[i]);
-                    if (scene.needs_footprints && spec_b[i] && !a.in_medium[i] && ray[i].has_differentials)
+                    if (scene.needs_footprints && spec_b[i] && !a.in_medium[i] && ray[i].has_differentials) {
                         ray[i] = path_services::next_ray(ps, si[i], ray[i], wi, true, trans_b[i], eta_b[i]);
-                    else
+                        set_ray_soa(i);
+                    } else
                         ray[i].set(Vec3f(ob[0][i], ob[1][i], ob[2][i]), wi, kInfinity);
                 }
 #if PELLUCID_DISPATCH_STATS

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/integrator/path_services.h"
 
+#include <cstring>
 #include <new>
 #if PELLUCID_DISPATCH_STATS
 #include <atomic>
@@ -205,6 +206,53 @@ namespace path_services {
 int32_t packet_form(const BSDF& b, float* q) { return packet_form_of(b.bxdf(), q, nullptr); }
 }  // namespace path_services
 
+namespace {
+// PathSetup::tri_base and tri_table.
+void make_triangle_table(const Scene& scene, PathSetup* ps) {
+    if (ps->media || ps->subsurface) return;
+    ps->tri_base.assign(scene.shapes.size(), -1);
+    size_t total = 0;
+    auto eligible = [&](const ShapeRecord& s) {
+        if (s.kind != ShapeRecord::Kind::Mesh || s.light >= 0 || s.null_surface) return false;
+        const TriangleMesh& m = scene.meshes[s.mesh_index];
+        return !m.flat.empty() && m.triangle_count() > 0;
+    };
+    for (const ShapeRecord& s : scene.shapes)
+        if (eligible(s)) total += scene.meshes[s.mesh_index].triangle_count();
+    if (total == 0 || total > PathSetup::kMaxTriangleTable) {
+        ps->tri_base.clear();
+        return;
+    }
+    // A material a vertex lane shades (the kernel's record_hit: a packet form, and no delta lobe
+    // where the scene carries ray differentials).
+    auto lane_material = [&](uint32_t m) {
+        return ps->packet_kind[m] != kBSDFLane &&
+               !(scene.needs_footprints && is_specular(BxDFFlags(ps->packet_flags[m])));
+    };
+    ps->tri_table.assign(total * PathSetup::kTriStride, 0.f);
+    size_t next = 0;
+    for (size_t g = 0; g < scene.shapes.size(); ++g) {
+        const ShapeRecord& s = scene.shapes[g];
+        if (!eligible(s)) continue;
+        const TriangleMesh& mesh = scene.meshes[s.mesh_index];
+        ps->tri_base[g] = int32_t(next);
+        for (size_t t = 0; t < mesh.triangle_count(); ++t, ++next) {
+            float* r = &ps->tri_table[next * PathSetup::kTriStride];
+            for (int k = 0; k < 3; ++k) {
+                const Point3f& p = mesh.positions[mesh.indices[3 * t + size_t(k)]];
+                r[3 * k] = p.x, r[3 * k + 1] = p.y, r[3 * k + 2] = p.z;
+            }
+            const FlatTriangle& f = mesh.flat[t];
+            const Vec3f v[4] = {f.ng, f.shading.s, f.shading.t, f.shading.n};
+            for (int k = 0; k < 4; ++k) r[9 + 3 * k] = v[k].x, r[10 + 3 * k] = v[k].y, r[11 + 3 * k] = v[k].z;
+            const uint32_t m = s.face_materials.empty() ? s.material : s.face_materials[t];
+            const int32_t id = lane_material(m) ? int32_t(m) : -1;
+            std::memcpy(&r[21], &id, sizeof id);
+        }
+    }
+}
+}  // namespace
+
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type) {
     PathSetup ps;
     ps.scene = &scene;
@@ -237,7 +285,10 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
         if (ps.packet_kind[m] != kBSDFLane) ps.packet_flags[m] = uint32_t(flags(b));
     }
     ps.packet_count.resize(n);
-    for (size_t m = 0; m < n; ++m) ps.packet_count[m] = packet_param_count(ps.packet_kind[m]);
+    for (size_t m = 0; m < n; ++m) {
+        ps.packet_count[m] = packet_param_count(ps.packet_kind[m]);
+        ps.max_packet_count = std::max(ps.max_packet_count, ps.packet_count[m]);
+    }
     std::vector<float> pmf(scene.lights.size());
     for (size_t i = 0; i < pmf.size(); ++i) pmf[i] = scene.light_pmf(i);
     ps.emitters = make_emitter_table(scene.lights, pmf);
@@ -247,6 +298,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.medium_nee = scene.integrator.medium_nee;
     ps.uniform_channels = scene.integrator.channel_sampling == "uniform";
     ps.subsurface = !scene.subsurface.empty();
+    make_triangle_table(scene, &ps);
     return ps;
 }
 
@@ -262,17 +314,18 @@ Sampler::PixelSeed pixel_seed(const PathSetup& ps, int x, int y, uint64_t seed) 
     return Sampler::PixelSeed::of(ps.sampler, uint64_t(y) * uint64_t(ps.scene->width) + uint64_t(x), seed);
 }
 
-void trace_hits(const Scene& scene, int n, const Ray* const* rays, RayHit* h, bool* hit) {
+void trace_lanes(const Scene& scene, int n, const float* const soa[7], const bool* valid, HitLanes& h, bool* hit) {
     if (n == 1) {
-        h[0] = RayHit{};
-        if (rays[0]) {
-            h[0].t = rays[0]->tmax;
-            scene.accel.intersect(*rays[0], h[0]);
+        RayHit r;
+        if (valid[0]) {
+            r.t = soa[6][0];
+            scene.accel.intersect(Ray{Vec3f(soa[0][0], soa[1][0], soa[2][0]), Vec3f(soa[3][0], soa[4][0], soa[5][0]), soa[6][0]}, r);
         }
+        h.t[0] = r.t, h.geom_id[0] = r.geom_id, h.prim_id[0] = r.prim_id, h.u[0] = r.u, h.v[0] = r.v;
     } else {
-        scene.accel.intersect_packet(n, rays, h);
+        scene.accel.intersect_lanes(n, soa, valid, h);
     }
-    for (int i = 0; i < n; ++i) hit[i] = rays[i] && h[i].hit();
+    for (int i = 0; i < n; ++i) hit[i] = valid[i] && h.hit(i);
 }
 
 void occluded_lanes(const Scene& scene, int n, const float* const soa[7], const bool* valid, bool* blocked) {

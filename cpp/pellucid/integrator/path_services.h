@@ -79,10 +79,22 @@ struct PathSetup {
     /// lane copies only those (the forms of other kinds ignore the lane's values: they select their
     /// own lanes' parameters).
     std::vector<int32_t> packet_count;
+    int max_packet_count = 0;  ///< the largest packet_count (what the table lanes gather)
     std::vector<uint32_t> packet_flags;
     /// Per material: built at each hit (textured, or with a bump or normal map) and shaded by its
     /// model's packet form wherever the BSDF built there has one (path_services::packet_form).
     std::vector<uint8_t> textured_packet;
+    /// The flat triangles whose hits the kernel records as packets (gathered by triangle; the
+    /// others' lanes fetch one at a time, scene/hit_packets.h): tri_base[g] is mesh geometry g's
+    /// first triangle in tri_table, or −1 (a sphere, interpolated normals, an emitter, more than
+    /// kMaxTriangleTable triangles in all, a scene with media or subsurface scattering). Each
+    /// triangle is kTriStride floats: corners p0, p1, p2, geometric normal, shading frame s, t, n,
+    /// and its material as an int32's bits, −1 where that material needs the full hit record
+    /// (no packet form, or a delta lobe in a scene that carries ray differentials).
+    static constexpr int kTriStride = 24;
+    static constexpr size_t kMaxTriangleTable = size_t(1) << 20;
+    std::vector<int32_t> tri_base;
+    std::vector<float> tri_table;
     /// The rough coats' transmittance tables of the packet plastics, one after another
     /// (RoughCoatTable::values; a plastic's parameters hold its table's offset).
     std::vector<float> coat_tables;
@@ -119,9 +131,10 @@ void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, con
                   float* fx, float* fy);
 /// The part of a sample's Sampler that every sample of pixel (x, y) shares (Sampler::PixelSeed).
 Sampler::PixelSeed pixel_seed(const PathSetup& ps, int x, int y, uint64_t seed);
-/// Trace n ≤ 16 rays (one Embree packet when n > 1); a null rays[i] is an inactive lane (no hit).
-/// The kernel's hits: Scene::fill_hit or scene/hit_packets.h make them records.
-void trace_hits(const Scene& scene, int n, const Ray* const* rays, RayHit* h, bool* hit);
+/// Trace n ≤ 16 rays, given as arrays (soa = origin x, y, z, direction x, y, z, tmax), where
+/// valid[i] (one Embree packet when n > 1; EmbreeScene::intersect_lanes); hit[i]: ray i was traced
+/// and hit. The kernel's hits: Scene::fill_hit or scene/hit_packets.h make them records.
+void trace_lanes(const Scene& scene, int n, const float* const soa[7], const bool* valid, HitLanes& h, bool* hit);
 /// Whether each of n ≤ 16 rays, given as arrays, is blocked (EmbreeScene::occluded_lanes; one ray
 /// traced alone when n is 1), where valid[i].
 void occluded_lanes(const Scene& scene, int n, const float* const soa[7], const bool* valid, bool* blocked);

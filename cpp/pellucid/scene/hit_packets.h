@@ -1,6 +1,7 @@
 // The vertices of a packet of kernel hits (geometry/hit_lanes.h) on a scene's spheres and triangle
 // meshes: each lane's shape data is fetched one lane at a time (fetch_hit_vertex), then every
-// lane's vertex is computed at once (hit_vertices). The path kernel shades the hits whose material
+// lane's vertex is computed at once (hit_vertices). (Hits on the triangles of the path tracer's
+// triangle table, PathSetup::tri_table, gather the same inputs by triangle instead.) The path kernel shades the hits whose material
 // has a packet form with these; each lane carries the bits Scene::fill_hit gives the same hit
 // (tests/cpp/scene/test_hit_lanes.cpp compares them on every SIMD target).
 // SPDX-License-Identifier: Apache-2.0

@@ -113,10 +113,19 @@ TEST(EmbreeScene, SphereRootsAreExactAndAgreeAcrossPacketsAndSingleRays) {
     }
     int hits = 0;
     for (int base = 0; base < kRays; base += EmbreeScene::kPacketSize) {
-        const Ray* ptr[EmbreeScene::kPacketSize];
-        for (int i = 0; i < EmbreeScene::kPacketSize; ++i) ptr[i] = &rays[size_t(base + i)];
+        float soa[7][EmbreeScene::kPacketSize];
+        bool valid[EmbreeScene::kPacketSize];
+        for (int i = 0; i < EmbreeScene::kPacketSize; ++i) {
+            const Ray& r = rays[size_t(base + i)];
+            const float v[7] = {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.tmax};
+            for (int k = 0; k < 7; ++k) soa[k][i] = v[k];
+            valid[i] = true;
+        }
+        const float* const p[7] = {soa[0], soa[1], soa[2], soa[3], soa[4], soa[5], soa[6]};
+        HitLanes hl;
+        accel.intersect_lanes(EmbreeScene::kPacketSize, p, valid, hl);
         RayHit packet[EmbreeScene::kPacketSize];
-        accel.intersect_packet(EmbreeScene::kPacketSize, ptr, packet);
+        for (int i = 0; i < EmbreeScene::kPacketSize; ++i) packet[i] = hl.lane(i);
         for (int i = 0; i < EmbreeScene::kPacketSize; ++i) {
             const Ray& r = rays[size_t(base + i)];
             RayHit single;
@@ -169,5 +178,50 @@ TEST(EmbreeScene, OccludedLanesIgnoreGarbageInMaskedLanes) {
     for (int m : {n, 8, 5}) {  // Embree's 16-wide call, and its 8-wide one (up to 8 rays)
         s.occluded_lanes(m, p, valid, blocked);
         for (int i = 0; i < m; ++i) EXPECT_EQ(blocked[i], valid[i] && i % 2 == 1) << m << " rays, lane " << i;
+    }
+}
+
+// intersect_lanes likewise: lanes left out (NaN included) report no hit, the others the hit a single
+// ray finds (t, ids, barycentrics), by the 16-wide and the 8-wide packet calls.
+TEST(EmbreeScene, IntersectLanesAgreeWithSingleRaysAndIgnoreMaskedLanes) {
+    EmbreeScene s;
+    for (int k = 0; k < 64; ++k) {
+        TriangleMesh quad = TriangleMesh::rectangle();
+        quad.transform(Transform::translate(Vec3f(float(k % 8) * 2.5f, float(k / 8) * 2.5f, -2.f)));
+        s.add_mesh(quad);
+    }
+    s.commit();
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    float soa[7][16];
+    bool valid[16];
+    for (int i = 0; i < 16; ++i) {
+        valid[i] = i % 3 != 1;
+        const float x = float(i % 8) * 2.5f + 0.1f + 0.03f * float(i), y = float(i / 8) * 2.5f + 0.2f;
+        // Odd lanes point away from the quads (a miss), even lanes at them.
+        const float v[7] = {x, y, 5.f, 0.f, 0.f, i % 2 ? 1.f : -1.f, std::numeric_limits<float>::infinity()};
+        for (int k = 0; k < 7; ++k) soa[k][i] = valid[i] ? v[k] : nan;
+    }
+    const float* const p[7] = {soa[0], soa[1], soa[2], soa[3], soa[4], soa[5], soa[6]};
+    for (int m : {16, 8, 5}) {
+        HitLanes hl;
+        s.intersect_lanes(m, p, valid, hl);
+        for (int i = 0; i < m; ++i) {
+            if (!valid[i]) {
+                EXPECT_FALSE(hl.hit(i)) << m << " rays, lane " << i;
+                continue;
+            }
+            RayHit single;
+            const bool hit = s.intersect(Ray{Vec3f(soa[0][i], soa[1][i], soa[2][i]), Vec3f(soa[3][i], soa[4][i], soa[5][i]),
+                                             soa[6][i]},
+                                         single);
+            EXPECT_EQ(hit, i % 2 == 0) << m << " rays, lane " << i;
+            ASSERT_EQ(hl.hit(i), hit) << m << " rays, lane " << i;
+            if (!hit) continue;
+            EXPECT_EQ(hl.t[i], single.t);
+            EXPECT_EQ(hl.geom_id[i], single.geom_id);
+            EXPECT_EQ(hl.prim_id[i], single.prim_id);
+            EXPECT_EQ(hl.u[i], single.u);
+            EXPECT_EQ(hl.v[i], single.v);
+        }
     }
 }
