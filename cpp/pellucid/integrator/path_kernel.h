@@ -406,6 +406,20 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 vl_m = lane::float_mask(vl_i);
                 vl_mat = lane::select(vl_i, vl_mat, I(0));
             }
+            M svl_m(false);  // the sphere table's lanes
+            if (!ps.sphere_row.empty()) {
+                using I = IntT<F>;
+                const auto hit_i = lane::int_mask(LM(hit));
+                const I geom = lane::select(hit_i, lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
+                const I srow = lane::gather(ps.sphere_row.data(), geom);
+                const auto in_table = hit_i && srow >= I(0);
+                const I row = lane::select(in_table, srow, I(0)) * I(PathSetup::kSphereStride);
+                const I smat = lane::as_int(lane::gather(ps.sphere_table.data(), row + I(14)));
+                const auto svl_i = in_table && smat >= I(0);
+                svl_m = lane::float_mask(svl_i);
+                vl_mat = lane::select(svl_i, smat, vl_mat);
+                vl_m = vl_m || svl_m;
+            }
             SM(vl, vl_m);
             hv.clear();
             for (int i = 0; i < W; ++i) {
@@ -425,19 +439,43 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 ST(a.tx, v.shading.t.x), ST(a.ty, v.shading.t.y), ST(a.tz, v.shading.t.z);
                 ST(a.nx, v.shading.n.x), ST(a.ny, v.shading.n.y), ST(a.nz, v.shading.n.z);
             }
-            if (lane::any(vl_m)) {
-                // The table lanes' vertices (flat_triangle_vertex, as fetch_hit_vertex's lanes).
+            if (lane::any(svl_m)) {
+                // The sphere table's lanes' vertices (sphere_vertex, as fetch_hit_vertex's lanes).
+                using I = IntT<F>;
+                const I geom = lane::select(lane::int_mask(svl_m), lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
+                const I row = lane::select(lane::int_mask(svl_m), lane::gather(ps.sphere_row.data(), geom), I(0)) *
+                              I(PathSetup::kSphereStride);
+                const float* tab = ps.sphere_table.data();
+                auto G = [&](int k) { return lane::gather(tab, row + I(k)); };
+                auto GV = [&](int k) { return V3<F>(G(k), G(k + 1), G(k + 2)); };
+                const V3<F> o(LD(a.ray_soa[0]), LD(a.ray_soa[1]), LD(a.ray_soa[2]));
+                const V3<F> d(LD(a.ray_soa[3]), LD(a.ray_soa[4]), LD(a.ray_soa[5]));
+                SphereTangentsT<F> tangents;
+                const HitVertexT<F> v = sphere_vertex<F>(o, d, LD(hl.t), GV(0), G(3), Mat3T<F>{GV(4), GV(7), GV(10)},
+                                                         G(13) != F(0.f), &tangents);
+                auto put = [&](float* dst, const F& x) { ST(dst, lane::select(svl_m, x, LD(dst))); };
+                put(a.px, v.p.x), put(a.py, v.p.y), put(a.pz, v.p.z);
+                put(a.pex, v.p_error.x), put(a.pey, v.p_error.y), put(a.pez, v.p_error.z);
+                put(a.ngx, v.ng.x), put(a.ngy, v.ng.y), put(a.ngz, v.ng.z);
+                put(a.sx, v.shading.s.x), put(a.sy, v.shading.s.y), put(a.sz, v.shading.s.z);
+                put(a.tx, v.shading.t.x), put(a.ty, v.shading.t.y), put(a.tz, v.shading.t.z);
+                put(a.nx, v.shading.n.x), put(a.ny, v.shading.n.y), put(a.nz, v.shading.n.z);
+                put(a.wox, lane::neg(d.x)), put(a.woy, lane::neg(d.y)), put(a.woz, lane::neg(d.z));
+            }
+            if (lane::any(vl_m && !svl_m)) {
+                // The triangle table's lanes' vertices (flat_triangle_vertex, as fetch_hit_vertex's lanes).
+                const M tvl_m = vl_m && !svl_m;
                 using I = IntT<F>;
                 const float* tab = ps.tri_table.data();
-                const I geom = lane::select(lane::int_mask(vl_m), lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
+                const I geom = lane::select(lane::int_mask(tvl_m), lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
                 const I prim = lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.prim_id));
                 const I row = (lane::gather(ps.tri_base.data(), geom) + prim) * I(PathSetup::kTriStride);
-                const I rows = lane::select(lane::int_mask(vl_m), row, I(0));
+                const I rows = lane::select(lane::int_mask(tvl_m), row, I(0));
                 auto G = [&](int k) { return lane::gather(tab, rows + I(k)); };
                 auto GV = [&](int k) { return V3<F>(G(k), G(k + 1), G(k + 2)); };
                 const HitVertexT<F> v = flat_triangle_vertex<F>(GV(0), GV(3), GV(6), LD(hl.u), LD(hl.v), GV(9),
                                                                 FrameT<F>(GV(12), GV(15), GV(18)));
-                auto put = [&](float* dst, const F& x) { ST(dst, lane::select(vl_m, x, LD(dst))); };
+                auto put = [&](float* dst, const F& x) { ST(dst, lane::select(tvl_m, x, LD(dst))); };
                 put(a.px, v.p.x), put(a.py, v.p.y), put(a.pz, v.p.z);
                 put(a.pex, v.p_error.x), put(a.pey, v.p_error.y), put(a.pez, v.p_error.z);
                 put(a.ngx, v.ng.x), put(a.ngy, v.ng.y), put(a.ngz, v.ng.z);

@@ -207,6 +207,32 @@ int32_t packet_form(const BSDF& b, float* q) { return packet_form_of(b.bxdf(), q
 }  // namespace path_services
 
 namespace {
+// A material a vertex lane shades (the kernel's record_hit: a packet form, and no delta lobe
+// where the scene carries ray differentials), as the tables hold it: its index, else −1.
+int32_t lane_material(const Scene& scene, const PathSetup& ps, uint32_t m) {
+    const bool lane = ps.packet_kind[m] != kBSDFLane && !(scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[m])));
+    return lane ? int32_t(m) : -1;
+}
+
+// PathSetup::sphere_row and sphere_table.
+void make_sphere_table(const Scene& scene, PathSetup* ps) {
+    if (ps->media || ps->subsurface) return;
+    ps->sphere_row.assign(scene.shapes.size(), -1);
+    int32_t rows = 0;
+    for (size_t g = 0; g < scene.shapes.size(); ++g) {
+        const ShapeRecord& s = scene.shapes[g];
+        if (s.kind != ShapeRecord::Kind::Sphere || s.light >= 0 || s.null_surface) continue;
+        ps->sphere_row[g] = rows++;
+        float r[PathSetup::kSphereStride] = {s.center.x, s.center.y, s.center.z, s.radius};
+        for (int c = 0; c < 9; ++c) r[4 + c] = s.rotation[c / 3][c % 3];
+        r[13] = s.flip_normals ? 1.f : 0.f;
+        const int32_t id = lane_material(scene, *ps, s.material);
+        std::memcpy(&r[14], &id, sizeof id);
+        ps->sphere_table.insert(ps->sphere_table.end(), r, r + PathSetup::kSphereStride);
+    }
+    if (rows == 0) ps->sphere_row.clear();
+}
+
 // PathSetup::tri_base and tri_table.
 void make_triangle_table(const Scene& scene, PathSetup* ps) {
     if (ps->media || ps->subsurface) return;
@@ -223,12 +249,6 @@ void make_triangle_table(const Scene& scene, PathSetup* ps) {
         ps->tri_base.clear();
         return;
     }
-    // A material a vertex lane shades (the kernel's record_hit: a packet form, and no delta lobe
-    // where the scene carries ray differentials).
-    auto lane_material = [&](uint32_t m) {
-        return ps->packet_kind[m] != kBSDFLane &&
-               !(scene.needs_footprints && is_specular(BxDFFlags(ps->packet_flags[m])));
-    };
     ps->tri_table.assign(total * PathSetup::kTriStride, 0.f);
     size_t next = 0;
     for (size_t g = 0; g < scene.shapes.size(); ++g) {
@@ -246,7 +266,7 @@ void make_triangle_table(const Scene& scene, PathSetup* ps) {
             const Vec3f v[4] = {f.ng, f.shading.s, f.shading.t, f.shading.n};
             for (int k = 0; k < 4; ++k) r[9 + 3 * k] = v[k].x, r[10 + 3 * k] = v[k].y, r[11 + 3 * k] = v[k].z;
             const uint32_t m = s.face_materials.empty() ? s.material : s.face_materials[t];
-            const int32_t id = lane_material(m) ? int32_t(m) : -1;
+            const int32_t id = lane_material(scene, *ps, m);
             std::memcpy(&r[21], &id, sizeof id);
         }
     }
@@ -299,6 +319,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.uniform_channels = scene.integrator.channel_sampling == "uniform";
     ps.subsurface = !scene.subsurface.empty();
     make_triangle_table(scene, &ps);
+    make_sphere_table(scene, &ps);
     return ps;
 }
 

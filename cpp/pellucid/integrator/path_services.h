@@ -95,6 +95,13 @@ struct PathSetup {
     static constexpr size_t kMaxTriangleTable = size_t(1) << 20;
     std::vector<int32_t> tri_base;
     std::vector<float> tri_table;
+    /// The spheres likewise (gathered by geometry): sphere_row[g] is sphere geometry g's row in
+    /// sphere_table, or −1 (a mesh, an emitter, a scene with media or subsurface scattering). Each
+    /// row is kSphereStride floats: centre, radius, rotation columns (ShapeRecord::rotation), 1
+    /// where the normals are flipped, and the material as tri_table holds it.
+    static constexpr int kSphereStride = 16;
+    std::vector<int32_t> sphere_row;
+    std::vector<float> sphere_table;
     /// The rough coats' transmittance tables of the packet plastics, one after another
     /// (RoughCoatTable::values; a plastic's parameters hold its table's offset).
     std::vector<float> coat_tables;
