@@ -1,4 +1,4 @@
-// Environment map light (lat-long image, importance-sampled by a piecewise-constant distribution).
+// Environment map light (lat-long image, importance-sampled by a piecewise-bilinear distribution).
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/light/envmap.h"
 
@@ -23,15 +23,24 @@ EnvmapLight::EnvmapLight(const Image& image, float scale, const Mat3f& rotation,
             const float* p = image.pixel(x, y);
             texels[size_t(y) * size_t(m_w) + size_t(x)] = Spectrum(p[0], p[1], p[2]) * scale;
         }
-    // Cell (x, j) spans u' = u − ½/W ∈ [x/W, (x+1)/W) and θ ∈ [θ0, θ1] = π[j, j+1]/(H−1). The
-    // radiance is linear in u' (columns x, x+1) and in t = (θ − θ0)/Δθ (rows j, j+1), so with
-    // A, B the u'-averages of rows j and j+1:
+    // Cell (x, j) spans u' = u − ½/W ∈ [x/W, (x+1)/W) and θ ∈ [θ0, θ1] = π[j, j+1]/(H−1); its
+    // corners are texels (x, j), (x+1, j), (x, j+1), (x+1, j+1). Sampling follows the bilinear
+    // interpolation in (u', v) of g = L̄ sin θ at the texels (envmap.h): a cell is chosen by the
+    // mean of its corners' g (the integral of the bilinear g over it, relative to its area), then
+    // placed by the bilinear density through them (uniformly where all four are 0). The power uses the exact integral: the radiance
+    // is linear in u' (columns x, x+1) and in t = (θ − θ0)/Δθ (rows j, j+1), so with A, B the
+    // u'-averages of rows j and j+1,
     //   ∫ L̄ sin θ dθ over the cell = A (I0 − I1) + B I1,
-    //   I0 = ∫ sin θ dθ = cos θ0 − cos θ1,  I1 = ∫ t sin θ dθ = (sin θ1 − sin θ0)/Δθ − cos θ1.
-    // The cell's weight is its mean of L̄ sin θ over (u', v); its solid-angle integral is 2π²·(cell
-    // area)·weight.
+    //   I0 = ∫ sin θ dθ = cos θ0 − cos θ1,  I1 = ∫ t sin θ dθ = (sin θ1 − sin θ0)/Δθ − cos θ1,
+    // and Σ over cells of (that / Δθ)·(1/nu)·(1/nv)·2π² = ∫ L̄ dω.
     const int nu = m_w, nv = m_h - 1;
     const double dtheta = M_PI / double(nv);
+    std::vector<float> g(size_t(m_w) * size_t(m_h));  // L̄ sin θ at the texels (0 on the pole rows)
+    for (int y = 0; y < m_h; ++y) {
+        const double st = (y == 0 || y == m_h - 1) ? 0.0 : std::sin(y * dtheta);
+        for (int x = 0; x < m_w; ++x)
+            g[size_t(y) * m_w + x] = float(double(texels[size_t(y) * m_w + x].average()) * st);
+    }
     std::vector<float> weights(size_t(nu) * size_t(nv));
     double total = 0.0;
     for (int j = 0; j < nv; ++j) {
@@ -44,21 +53,27 @@ EnvmapLight::EnvmapLight(const Image& image, float scale, const Mat3f& rotation,
                               double(texels[size_t(j) * m_w + x1].average()));
             double b = 0.5 * (double(texels[size_t(j + 1) * m_w + x].average()) +
                               double(texels[size_t(j + 1) * m_w + x1].average()));
-            double w = std::max(0.0, (a * (i0 - i1) + b * i1) / dtheta);  // mean over the cell
-            weights[size_t(j) * nu + x] = float(w);
-            total += w;
+            const double exact = std::max(0.0, (a * (i0 - i1) + b * i1) / dtheta);  // mean of L̄ sin θ
+            total += exact;
+            const size_t r0 = size_t(j) * m_w, r1 = r0 + size_t(m_w);
+            const float corners = float(0.25 * ((double(g[r0 + x]) + double(g[r0 + x1])) +
+                                                (double(g[r1 + x]) + double(g[r1 + x1]))));
+            // A cell whose only light is on a pole row has g = 0 at all four corners: it keeps its
+            // exact mean, and inside it the point is uniform (bilinear_density is 1 there).
+            weights[size_t(j) * nu + x] = corners > 0.f ? corners : float(exact);
         }
     }
-    // Σ weight·(1/nu)·(1/nv)·2π² = ∫ L̄ dω.
     m_integral = total / (double(nu) * double(nv)) * 2.0 * M_PI * M_PI;
-    // One buffer: the CDFs and their guides, then the texels (RGB), addressed by 32-bit offsets.
-    const size_t n = 2 * (size_t(nv) + 1 + size_t(nv) * (size_t(nu) + 1)) + 3 * texels.size();
+    // One buffer: the CDFs and their guides, then the texels (RGB), then g, addressed by 32-bit
+    // offsets (g at texels + 3·W·H).
+    const size_t n = 2 * (size_t(nv) + 1 + size_t(nv) * (size_t(nu) + 1)) + 4 * texels.size();
     PELLUCID_CHECK(n < size_t(INT32_MAX), "envmap image too large: " + std::to_string(m_w) + "x" + std::to_string(m_h));
     auto data = std::make_shared<std::vector<float>>();
     data->reserve(n);
     m_dist = append_piecewise_2d(*data, weights, size_t(nu), size_t(nv));
     m_texels = int32_t(data->size());
     for (const Spectrum& t : texels) data->insert(data->end(), {t.r, t.g, t.b});
+    data->insert(data->end(), g.begin(), g.end());
     m_data = std::move(data);
 }
 

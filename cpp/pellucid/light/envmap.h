@@ -14,10 +14,16 @@
 // +y). Radiance is bilinear between texels, with column x centred at u = (x + ½)/W (wrapping in u)
 // and row y centred at v = y/(H − 1), so the first and last rows sit on the poles.
 //
-// Sampling: a piecewise-constant distribution (sampling/piecewise_2d.h, float CDFs) over the
-// W × (H − 1) interpolation cells, each weighted by the exact integral of the channel-averaged
-// bilinear radiance times sin θ over the cell; inside a cell (u, v) is uniform. The solid-angle
-// density is p(u, v) / (2π² sin θ) (pbrt-v4 §12.5.2, eq. 12.24: dω = sin θ dθ dφ = 2π² sin θ du dv).
+// Sampling: the density in (u, v) follows g = L̄ sin θ (L̄ the channel average) interpolated
+// bilinearly between the texels, as the radiance is, so that it is proportional to the radiance
+// times sin θ up to the interpolation of the product (Mitsuba 3's envmap samples the same
+// interpolant). A cell of the W × (H − 1) interpolation cells is chosen by the mean of g at its
+// four corners (sampling/piecewise_2d.h, float CDFs), and the point placed in it by the bilinear
+// density through them (sample_bilinear); the density in (u, v) is the cell's times
+// bilinear_density. The solid-angle density is p(u, v) / (2π² sin θ) (pbrt-v4 §12.5.2, eq. 12.24:
+// dω = sin θ dθ dφ = 2π² sin θ du dv); g vanishes on the pole rows, so it stays finite there.
+// Against a density constant inside each cell, the variance of a Lambertian floor's sky light
+// falls by a fifth on scenes/textures/sky.exr (bench/README.md, "Environment map sampling").
 //
 // Sampling, its density and the radiance are written once over a lane type F (simd/lane.h):
 // EnvmapLight's sample_li, pdf_li, Le and lookup are the float instantiation, and the packet path
@@ -46,7 +52,7 @@ namespace pellucid {
 template <class F>
 struct EnvmapLanes {
     Piecewise2DLanes<F> dist;  ///< over (u − half texel, v): w × (h − 1) cells
-    IntT<F> texels;            ///< offset of texel (0, 0)'s red; texel (x, y) at texels + 3(y·w + x)
+    IntT<F> texels;            ///< offset of texel (0, 0)'s red; texel (x, y) at texels + 3(y·w + x), then g (x, y) at texels + 3·w·h + y·w + x
     IntT<F> w, h;
     F rot[9];
 };
@@ -156,32 +162,66 @@ inline RGB<F> envmap_Le(const EnvmapLanes<F>& e, const V3<F>& wi) {
     return envmap_lookup<F>(e, envmap_direction_to_uv<F>(d, lane::sqrt(d.x * d.x + d.z * d.z)));
 }
 
+namespace envmap_detail {
+/// g at the corners of cell (i, j): texels (i, j), (i + 1, j) (wrapping), (i, j + 1), (i + 1, j + 1).
+template <class F>
+inline void cell_corners(const EnvmapLanes<F>& e, const IntT<F>& i, const IntT<F>& j, F* a, F* b, F* c, F* d) {
+    using I = IntT<F>;
+    const I g0 = e.texels + I(3) * (e.w * e.h) + j * e.w, g1 = g0 + e.w;
+    const I i1 = lane::select(i + I(1) < e.w, i + I(1), I(0));
+    const float* t = e.dist.base;
+    *a = lane::gather(t, g0 + i), *b = lane::gather(t, g0 + i1);
+    *c = lane::gather(t, g1 + i), *d = lane::gather(t, g1 + i1);
+}
+}  // namespace envmap_detail
+
 /// Solid-angle density with which envmap_sample produces world direction wi (unit); 0 at the poles.
 template <class F>
 inline F envmap_pdf(const EnvmapLanes<F>& e, const V3<F>& wi) {
+    using I = IntT<F>;
     const V3<F> d = envmap_to_local<F>(e, wi);
     const F st = lane::sqrt(d.x * d.x + d.z * d.z);
     const V2<F> uv = envmap_direction_to_uv<F>(d, st);
     F s = uv.x - F(0.5f) / lane::to_float(e.w);
     s = s - lane::floor(s);
-    const F p = piecewise_2d_pdf<F>(e.dist, V2<F>{s, uv.y});
+    // The cell as piecewise_2d_pdf finds it, and where in it the point lies.
+    auto cell = [](const F& t, const I& n, F* frac) {
+        const F c = lane::select(t > F(0.f), lane::select(t < F(1.f), t, F(1.f)), F(0.f));
+        const F x = c * lane::to_float(n);
+        const I k = lane::min(detail::whole_to_int<F>(lane::floor(x)), n - I(1));
+        *frac = lane::min(lane::max(x - lane::to_float(k), F(0.f)), F(1.f));
+        return k;
+    };
+    F fs, ft;
+    const I i = cell(s, e.dist.nu, &fs), j = cell(uv.y, e.dist.nv, &ft);
+    F a, b, c, dd;
+    envmap_detail::cell_corners<F>(e, i, j, &a, &b, &c, &dd);
+    const F p = piecewise_2d_cell_pdf<F>(e.dist, i, j) * bilinear_density<F>(fs, ft, a, b, c, dd);
     const auto ok = st > F(0.f);
     return lane::select(ok, p / (F(2.f * kPi * kPi) * lane::select(ok, st, F(1.f))), F(0.f));
 }
 
-/// A direction with u ∈ [0,1)²: a cell by its weight, uniform inside it, then to world.
+/// A direction with u ∈ [0,1)²: a cell by its weight, placed in it by the bilinear density through
+/// its corners, then to world.
 template <class F>
 inline EnvmapSampleT<F> envmap_sample(const EnvmapLanes<F>& e, const V2<F>& u) {
     const Piecewise2DSample<F> ps = sample_piecewise_2d<F>(e.dist, u);
-    F ux = ps.p.x + F(0.5f) / lane::to_float(e.w);
+    F a, b, c, dd;
+    envmap_detail::cell_corners<F>(e, ps.i, ps.j, &a, &b, &c, &dd);
+    const V2<F> st2 = sample_bilinear<F>(ps.du, ps.dv, a, b, c, dd);
+    const F pdf_uv = ps.pdf * bilinear_density<F>(st2.x, st2.y, a, b, c, dd);
+    const F nu = lane::to_float(e.dist.nu), nv = lane::to_float(e.dist.nv);
+    const F px = lane::min((lane::to_float(ps.i) + st2.x) / nu, F(0x1.fffffep-1f));
+    const F py = lane::min((lane::to_float(ps.j) + st2.y) / nv, F(0x1.fffffep-1f));
+    F ux = px + F(0.5f) / lane::to_float(e.w);
     ux = lane::select(ux < F(1.f), ux, ux - F(1.f));
-    const V2<F> uv{ux, ps.p.y};
+    const V2<F> uv{ux, py};
     F st;
     const V3<F> d = envmap_uv_to_direction<F>(uv, &st);
-    const auto ok = ps.pdf > F(0.f) && st > F(0.f);
+    const auto ok = pdf_uv > F(0.f) && st > F(0.f);
     EnvmapSampleT<F> s;
     s.wi = normalize(envmap_to_world<F>(e, d));
-    s.pdf = ps.pdf / (F(2.f * kPi * kPi) * lane::select(ok, st, F(1.f)));
+    s.pdf = pdf_uv / (F(2.f * kPi * kPi) * lane::select(ok, st, F(1.f)));
     s.L = envmap_lookup<F>(e, uv);
     s.valid = ok && !is_black(s.L) && s.pdf < F(kInfinity);
     return s;

@@ -148,6 +148,7 @@ struct Piecewise2DSample {
     V2<F> p;   ///< in [0,1)²
     F pdf;     ///< density at p (> 0 for every sample of a valid u)
     IntT<F> i, j;  ///< the cell: column i, row j
+    F du, dv;      ///< where p lies in its cell, each in [0, 1] (uniform, independent, given the cell)
 };
 
 /// Sample a point with u ∈ [0,1)² by inverting the marginal CDF (u.y), then row j's conditional
@@ -171,7 +172,39 @@ inline Piecewise2DSample<F> sample_piecewise_2d(const Piecewise2DLanes<F>& d, co
                 lane::min((lane::to_float(j) + dv) / nv, F(0x1.fffffep-1f))};
     s.pdf = (wv * nv) * (wu * nu);
     s.i = i, s.j = j;
+    s.du = du, s.dv = dv;
     return s;
+}
+
+// A bilinear density inside a cell. The environment map's sampling picks a cell by its weight
+// (sample_piecewise_2d), then places the point in it by the bilinear density through the cell's
+// corner values a (s, t) = (0, 0), b (1, 0), c (0, 1), d (1, 1) instead of uniformly, so that over
+// the whole map the density is piecewise bilinear (where the weights are the corners' means).
+
+/// t ∈ [0, 1) with the linear density through (0, e0) and (1, e1) (both ≥ 0, not both 0), from
+/// ξ ∈ [0, 1): the root of (e1 − e0) t²/2 + e0 t = ξ (e0 + e1)/2, in the form without cancellation,
+/// t = ξ (e0 + e1) / (e0 + √((1 − ξ) e0² + ξ e1²)) (the quadratic's numerator rationalised).
+template <class F>
+inline F sample_linear(const F& xi, const F& e0, const F& e1) {
+    const F den = e0 + lane::sqrt((F(1.f) - xi) * (e0 * e0) + xi * (e1 * e1));
+    const F t = xi * (e0 + e1) / lane::select(den > F(0.f), den, F(1.f));
+    return lane::select(den > F(0.f), lane::min(t, F(0x1.fffffep-1f)), xi);
+}
+/// The bilinear density through corners a, b, c, d (≥ 0) at (s, t) ∈ [0, 1]², relative to its mean
+/// (a + b + c + d)/4 (1 where all four are 0: the uniform density).
+template <class F>
+inline F bilinear_density(const F& s, const F& t, const F& a, const F& b, const F& c, const F& d) {
+    const F f = (F(1.f) - t) * ((F(1.f) - s) * a + s * b) + t * ((F(1.f) - s) * c + s * d);
+    const F m = F(0.25f) * ((a + b) + (c + d));
+    return lane::select(m > F(0.f), f / lane::select(m > F(0.f), m, F(1.f)), F(1.f));
+}
+/// A point (s, t) of the bilinear density from (ξs, ξt) ∈ [0, 1)²: t by its marginal, linear through
+/// a + b and c + d, then s by the linear density through (1 − t) a + t c and (1 − t) b + t d.
+template <class F>
+inline V2<F> sample_bilinear(const F& xs, const F& xt, const F& a, const F& b, const F& c, const F& d) {
+    const F t = sample_linear<F>(xt, a + b, c + d);
+    const F s = sample_linear<F>(xs, (F(1.f) - t) * a + t * c, (F(1.f) - t) * b + t * d);
+    return V2<F>{s, t};
 }
 
 /// The density of cell (i, j), as sample_piecewise_2d gives it.

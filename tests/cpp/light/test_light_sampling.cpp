@@ -19,7 +19,7 @@ using test::chi2_test;
 
 namespace {
 constexpr int kSamples = 1000000;
-constexpr int kChi2Tests = 6;
+constexpr int kChi2Tests = 11;  // 6 light tests and 5 bilinear cells
 const double kAlpha = test::sidak_alpha(0.01, kChi2Tests);
 
 using SampleFn = std::function<std::optional<Vec3f>(Vec2f)>;
@@ -262,7 +262,8 @@ TEST(LightChi2, EnvmapOnItsOwnCells) {
     double total = 0;
     for (int iv = 0; iv < nv; ++iv)
         for (int iu = 0; iu < nu; ++iu) {
-            // ∫ pdf dω over the bin = ∫∫ pdf(ω(u,v)) 2π² sin θ du dv; the integrand is constant.
+            // ∫ pdf dω over the bin = ∫∫ pdf(ω(u,v)) 2π² sin θ du dv; the integrand is bilinear in
+            // (u, v) inside a sampling cell (each bin lies in one), so its midpoint value is its mean.
             double u = (iu + 0.5) / nu + 0.5 / W, v = (iv + 0.5) / nv;
             float st;
             Vec3f w = R * EnvmapLight::uv_to_direction(Vec2f(float(u), float(v)), &st);
@@ -273,4 +274,39 @@ TEST(LightChi2, EnvmapOnItsOwnCells) {
     EXPECT_NEAR(total, 1.0, 1e-4);
     auto r = chi2_test(obs, expct);
     EXPECT_GT(r.p_value, kAlpha) << r.message;
+}
+
+// The environment map's placement inside a cell (sampling/piecewise_2d.h, sample_bilinear): the
+// points follow bilinear_density, which integrates to 1, for corners of mixed size, with zeros on an
+// edge and in three corners, equal (uniform) and all zero (uniform). 16 × 16 bins; the density is
+// bilinear, so its value at a bin's midpoint is its mean there and the expected counts are exact.
+TEST(LightChi2, BilinearCellSampling) {
+    const float corners[5][4] = {{1.f, 2.f, 3.f, 4.f}, {0.f, 0.f, 1.f, 5.f}, {0.f, 3.f, 0.f, 0.f}, {2.f, 2.f, 2.f, 2.f}, {0.f, 0.f, 0.f, 0.f}};
+    constexpr int n = 16;
+    for (int c = 0; c < 5; ++c) {
+        const float a = corners[c][0], b = corners[c][1], cc = corners[c][2], d = corners[c][3];
+        std::vector<double> obs(n * n, 0.0), expct(n * n, 0.0);
+        double total = 0.0;
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const double p = double(bilinear_density<float>((float(i) + 0.5f) / n, (float(j) + 0.5f) / n, a, b, cc, d));
+                expct[size_t(j * n + i)] = p * kSamples / (n * n);
+                total += p / (n * n);
+            }
+        EXPECT_NEAR(total, 1.0, 1e-6) << c;
+        PCG32 rng(31, uint64_t(c));
+        for (int k = 0; k < kSamples; ++k) {
+            const Vec2f u = rng.next_2d();
+            const V2<float> st = sample_bilinear<float>(u.x, u.y, a, b, cc, d);
+            ASSERT_TRUE(st.x >= 0.f && st.x < 1.f && st.y >= 0.f && st.y < 1.f) << c << ": " << st.x << ", " << st.y;
+            obs[size_t(std::min(n - 1, int(st.y * n)) * n + std::min(n - 1, int(st.x * n)))] += 1;
+        }
+        auto r = chi2_test(obs, expct);
+        EXPECT_GT(r.p_value, kAlpha) << "corners " << c << ": " << r.message;
+    }
+    // The linear warp: identity for equal ends, √ξ from a zero end, and its ends.
+    EXPECT_EQ(sample_linear<float>(0.3f, 2.f, 2.f), 0.3f);
+    EXPECT_FLOAT_EQ(sample_linear<float>(0.25f, 0.f, 7.f), 0.5f);
+    EXPECT_EQ(sample_linear<float>(0.f, 1.f, 3.f), 0.f);
+    EXPECT_LT(sample_linear<float>(0x1.fffffep-1f, 3.f, 0.f), 1.f);
 }
