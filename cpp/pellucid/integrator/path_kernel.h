@@ -160,8 +160,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         bool at_exit[W];     // this vertex is a BSSRDF's exit point (its exit lobe scatters)
         bool to_exit[W];     // this vertex's sample entered a BSSRDF: the next vertex is its exit
         float u[7][W];
-        // Each lane's ray (ray[i]'s origin, direction and tmax) as arrays, kept up to date where
-        // ray[i] changes: what the packet trace reads (EmbreeScene::intersect_lanes).
+        // Each lane's ray (origin, direction, tmax) as arrays: what the packet trace reads
+        // (EmbreeScene::intersect_lanes), and the ray itself: ray[i] holds a lane's ray
+        // differentials, and its origin, direction and tmax only once lane_ray(i) has copied them
+        // from here (the one-lane code that reads a ray calls it).
         float ray_soa[7][W];
         bool traced[W];  // the lane's ray is traced (active, without a pending BSSRDF exit)
         int32_t draw0[W], draw1[W];  // the independent sampler's numbers u[draw0, draw1) of this vertex
@@ -192,7 +194,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         a.tx[i] = h.shading.t.x, a.ty[i] = h.shading.t.y, a.tz[i] = h.shading.t.z;
         a.nx[i] = h.shading.n.x, a.ny[i] = h.shading.n.y, a.nz[i] = h.shading.n.z;
     };
-    // Lane i's ray into the arrays the trace reads (where it changed one lane at a time).
+    // Lane i's ray from the arrays into ray[i] (what one-lane code reads), and back (where it
+    // changed one lane at a time).
+    auto lane_ray = [&](int i) -> RayDifferential& {
+        RayDifferential& r = ray[i];
+        r.o = Vec3f(a.ray_soa[0][i], a.ray_soa[1][i], a.ray_soa[2][i]);
+        r.d = Vec3f(a.ray_soa[3][i], a.ray_soa[4][i], a.ray_soa[5][i]);
+        r.tmax = a.ray_soa[6][i];
+        return r;
+    };
     auto set_ray_soa = [&](int i) {
         const Ray& r = ray[i];
         a.ray_soa[0][i] = r.o.x, a.ray_soa[1][i] = r.o.y, a.ray_soa[2][i] = r.o.z;
@@ -277,18 +287,17 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 ST(a.ray_soa[5], lane::select(cam, d.z, LD(a.ray_soa[5])));
                 ST(a.ray_soa[6], lane::select(cam, F(kInfinity), LD(a.ray_soa[6])));
             }
-            for (int i = 0; i < W; ++i) {
-                if (!a.cam[i]) continue;
-                a.cam[i] = false;
-                RayDifferential& r = ray[i];
-                r.set(o, Vec3f(b[0][i], b[1][i], b[2][i]), kInfinity);
-                if (scene.needs_footprints) {
+            if (scene.needs_footprints) {
+                for (int i = 0; i < W; ++i) {
+                    if (!a.cam[i]) continue;
+                    RayDifferential& r = ray[i];
                     r.has_differentials = true;
                     r.rx_o = r.ry_o = o;
                     r.rx_d = Vec3f(b[3][i], b[4][i], b[5][i]);
                     r.ry_d = Vec3f(b[6][i], b[7][i], b[8][i]);
                 }
             }
+            SM(a.cam, M(false));
         };
         // The paths of the lanes esc_b whose rays escaped end: they add the radiance of the lights at
         // infinity, MIS-weighted as the packet pass weighs emission (escaped_radiance, or
@@ -298,8 +307,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             const M esc = LM(esc_b);
             alignas(64) float e[3][W];
             for (int i = 0; i < W; ++i) {
-                const Vec3f d = esc_b[i] ? ray[i].d : Vec3f(0.f, 0.f, 1.f);
-                e[0][i] = d.x, e[1][i] = d.y, e[2][i] = d.z;
+                e[0][i] = esc_b[i] ? a.ray_soa[3][i] : 0.f, e[1][i] = esc_b[i] ? a.ray_soa[4][i] : 0.f;
+                e[2][i] = esc_b[i] ? a.ray_soa[5][i] : 1.f;
             }
             RGB<F> Le(F(0.f));
             if (!ps.lights.infinite.empty()) {
@@ -311,7 +320,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     if (esc_b[i]) {
                         const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]),
                                                       Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
-                        l = path_services::escaped(ps, prev, ray[i].d, a.specular[i], a.prev_pdf[i]);
+                        l = path_services::escaped(ps, prev, lane_ray(i).d, a.specular[i], a.prev_pdf[i]);
                     }
                     e[0][i] = l.r, e[1][i] = l.g, e[2][i] = l.b;
                 }
@@ -345,6 +354,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             auto record_hit = [&](int i) {
                 full[i] = true;
                 if (!hit[i]) return;
+                lane_ray(i);
                 const RayHit h = hl.lane(i);
                 const ShapeRecord& s = scene.shapes[h.geom_id];
                 mat_of[i] = s.face_materials.empty() ? s.material : s.face_materials[h.prim_id];
@@ -527,6 +537,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             lane::store(a.draw0, IntT<F>(0)), lane::store(a.draw1, IntT<F>(0));
             for (int i = 0; i < W; ++i) {
                 if (!active[i] || vl[i]) continue;  // (the table lanes below, as packets)
+                lane_ray(i);
                 const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]), Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
                 if (pending_exit[i]) {
                     // A BSSRDF's exit point: its exit lobe scatters, with NEE (no emission is
@@ -1051,7 +1062,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     ST(a.ray_soa[5], lane::select(next, nw.z, LD(a.ray_soa[5])));
                     ST(a.ray_soa[6], lane::select(next, F(kInfinity), LD(a.ray_soa[6])));
                 }
-                for (int i = 0; i < W; ++i) {
+                for (int i = 0; i < W && (ps.media || ps.subsurface || scene.needs_footprints); ++i) {
                     if (!a.alive[i] || a.crossing[i]) continue;
                     if (a.to_exit[i]) {  // no ray: the next vertex is the exit point
                         pending_exit[i] = true;
@@ -1060,10 +1071,13 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const Vec3f wi(a.nwx[i], a.nwy[i], a.nwz[i]);
                     if (ps.media && !a.in_medium[i]) medium[i] = path_services::medium_after(ps, si[i], wi, medium[i]);
                     if (scene.needs_footprints && spec_b[i] && !a.in_medium[i] && ray[i].has_differentials) {
+                        // (ray[i] is this vertex's incoming ray: loop 1 copied it, as these lanes
+                        // are not table lanes.)
                         ray[i] = path_services::next_ray(ps, si[i], ray[i], wi, true, trans_b[i], eta_b[i]);
                         set_ray_soa(i);
-                    } else
-                        ray[i].set(Vec3f(ob[0][i], ob[1][i], ob[2][i]), wi, kInfinity);
+                    } else {
+                        ray[i].has_differentials = false;  // (the arrays hold the ray: (o, wi) above)
+                    }
                 }
 #if PELLUCID_DISPATCH_STATS
                 dispatch_record(-2, dispatch_lane_count(goes_on, W), W, dispatch_clock() - pass_t0);
