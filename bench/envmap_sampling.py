@@ -4,11 +4,13 @@
     python bench/envmap_sampling.py [--map scenes/textures/sky.exr]
         [--scene bench/suite/aniso_metal.json --seeds 6 --spp 64]
 
-1. Analytic: the relative variance of one-sample estimates of a map's integral, and of the
-   irradiance of a floor facing +y (the map's up), Var[f/p]/E[f/p]², for two densities over the map's
-   interpolation cells: constant inside each cell (weighted by the cell's integral of L̄ sin θ), and
-   the bilinear interpolation of L̄ sin θ between the texels, which pellucid samples. Integrals are
-   midpoint sums on 8 × 8 points per cell (exact for the bilinear density).
+1. Analytic: the relative variance of one-sample estimates of a map's integral (of the channel
+   average L̄), and of the irradiance of a floor facing +y (the map's up, per channel, then averaged),
+   Var[f/p]/E[f/p]², for three densities over the map's interpolation cells: constant inside each
+   cell (weighted by the cell's integral of L̄ sin θ), and the bilinear interpolation of L̄ sin θ or
+   of Y sin θ (Y the luminance, which pellucid samples) between the texels. Integrals are midpoint
+   sums on 8 × 8 points per cell (exact for the bilinear densities). These are estimates with light
+   sampling alone; the renders (2.) combine it with BSDF sampling by MIS.
 2. Measured, with --scene: the mean over pixels of the per-pixel variance across --seeds renders
    divided by (mean² + 0.01), for pellucid's `pellucid-render` and, when bench/peers/setup_mitsuba.sh
    has been run, Mitsuba 3 `llvm_ad_rgb` on the same scene at the same spp; with `--variant
@@ -60,20 +62,24 @@ def analytic(map_path: str, sub: int = 8) -> None:
     dw = np.broadcast_to(2 * np.pi ** 2 * sin * duv, radiance.shape)
     cell_mean = (radiance * sin).reshape(nv, sub, nu, sub).mean(axis=(1, 3))
     constant = np.repeat(np.repeat(cell_mean, sub, axis=0), sub, axis=1)
-    g = lbar * np.sin(np.pi * np.arange(h) / (h - 1))[:, None]
-    densities = {"constant in each cell": constant, "bilinear (pellucid)": bilinear(g)}
+    rows = np.sin(np.pi * np.arange(h) / (h - 1))[:, None]
+    lum = img @ np.array([0.2126, 0.7152, 0.0722])
+    densities = {"constant in each cell": constant, "bilinear L̄ sin θ": bilinear(lbar * rows),
+                 "bilinear Y sin θ (pellucid)": bilinear(lum * rows)}
     cos = np.clip(np.cos(np.pi * v), 0.0, None)[:, None]
+    channels = [bilinear(img[..., c]) for c in range(3)]
     print(f"{map_path}: {w} x {h}")
+
+    def rel_var(f: np.ndarray, p: np.ndarray) -> float:
+        ok = p > 0
+        mean = (f * dw).sum()
+        return float((f[ok] ** 2 / p[ok] * dw[ok]).sum() / mean ** 2 - 1.0)
+
     for name, p_uv in densities.items():
         p_uv = p_uv / (p_uv * duv).sum()
         p = p_uv / (2 * np.pi ** 2 * sin)
-        row = []
-        for f in (radiance, radiance * cos):
-            ok = p > 0
-            mean = (f * dw).sum()
-            second = (f[ok] ** 2 / p[ok] * dw[ok]).sum()
-            row.append(second / mean ** 2 - 1.0)
-        print(f"  {name:24s} relative variance: map integral {row[0]:.4f}, floor irradiance {row[1]:.4f}")
+        floor = np.mean([rel_var(c * cos, p) for c in channels])
+        print(f"  {name:28s} relative variance: map integral {rel_var(radiance, p):.4f}, floor irradiance {floor:.4f}")
 
 
 def measured(scene: str, variant: str, seeds: int, spp: int, binary: str) -> None:

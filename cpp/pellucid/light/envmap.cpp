@@ -25,21 +25,22 @@ EnvmapLight::EnvmapLight(const Image& image, float scale, const Mat3f& rotation,
         }
     // Cell (x, j) spans u' = u − ½/W ∈ [x/W, (x+1)/W) and θ ∈ [θ0, θ1] = π[j, j+1]/(H−1); its
     // corners are texels (x, j), (x+1, j), (x, j+1), (x+1, j+1). Sampling follows the bilinear
-    // interpolation in (u', v) of g = L̄ sin θ at the texels (envmap.h): a cell is chosen by the
-    // mean of its corners' g (the integral of the bilinear g over it, relative to its area), then
-    // placed by the bilinear density through them (uniformly where all four are 0). The power uses the exact integral: the radiance
-    // is linear in u' (columns x, x+1) and in t = (θ − θ0)/Δθ (rows j, j+1), so with A, B the
-    // u'-averages of rows j and j+1,
+    // interpolation in (u', v) of g = Y sin θ at the texels (Y the luminance; envmap.h): a cell is
+    // chosen by the mean of its corners' g (the integral of the bilinear g over it, relative to its
+    // area), then placed by the bilinear density through them (uniformly where all four are 0).
+    // The power uses the exact integral of the channel average L̄: the radiance is linear in u'
+    // (columns x, x+1) and in t = (θ − θ0)/Δθ (rows j, j+1), so with A, B the u'-averages of L̄ on
+    // rows j and j+1,
     //   ∫ L̄ sin θ dθ over the cell = A (I0 − I1) + B I1,
     //   I0 = ∫ sin θ dθ = cos θ0 − cos θ1,  I1 = ∫ t sin θ dθ = (sin θ1 − sin θ0)/Δθ − cos θ1,
     // and Σ over cells of (that / Δθ)·(1/nu)·(1/nv)·2π² = ∫ L̄ dω.
     const int nu = m_w, nv = m_h - 1;
     const double dtheta = M_PI / double(nv);
-    std::vector<float> g(size_t(m_w) * size_t(m_h));  // L̄ sin θ at the texels (0 on the pole rows)
+    std::vector<float> g(size_t(m_w) * size_t(m_h));  // Y sin θ at the texels (0 on the pole rows)
     for (int y = 0; y < m_h; ++y) {
         const double st = (y == 0 || y == m_h - 1) ? 0.0 : std::sin(y * dtheta);
         for (int x = 0; x < m_w; ++x)
-            g[size_t(y) * m_w + x] = float(double(texels[size_t(y) * m_w + x].average()) * st);
+            g[size_t(y) * m_w + x] = float(double(texels[size_t(y) * m_w + x].luminance()) * st);
     }
     std::vector<float> weights(size_t(nu) * size_t(nv));
     double total = 0.0;
@@ -53,7 +54,7 @@ EnvmapLight::EnvmapLight(const Image& image, float scale, const Mat3f& rotation,
                               double(texels[size_t(j) * m_w + x1].average()));
             double b = 0.5 * (double(texels[size_t(j + 1) * m_w + x].average()) +
                               double(texels[size_t(j + 1) * m_w + x1].average()));
-            const double exact = std::max(0.0, (a * (i0 - i1) + b * i1) / dtheta);  // mean of L̄ sin θ
+            const double exact = std::max(0.0, (a * (i0 - i1) + b * i1) / dtheta);  // mean of L̄ sin θ (Y = 0 only where L̄ = 0)
             total += exact;
             const size_t r0 = size_t(j) * m_w, r1 = r0 + size_t(m_w);
             const float corners = float(0.25 * ((double(g[r0 + x]) + double(g[r0 + x1])) +
