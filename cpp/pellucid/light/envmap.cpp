@@ -65,9 +65,10 @@ EnvmapLight::EnvmapLight(const Image& image, float scale, const Mat3f& rotation,
         }
     }
     m_integral = total / (double(nu) * double(nv)) * 2.0 * M_PI * M_PI;
-    // One buffer: the CDFs and their guides, then the texels (RGB), then g, addressed by 32-bit
-    // offsets (g at texels + 3·W·H).
-    const size_t n = 2 * (size_t(nv) + 1 + size_t(nv) * (size_t(nu) + 1)) + 4 * texels.size();
+    // One buffer: the CDFs and their guides, then the texels (RGB), then g, then each cell's
+    // density (piecewise_2d_cell_pdf, so that envmap_pdf reads it with one load), addressed by
+    // 32-bit offsets (g at texels + 3·W·H, the cells at texels + 4·W·H).
+    const size_t n = 2 * (size_t(nv) + 1 + size_t(nv) * (size_t(nu) + 1)) + 5 * texels.size();
     PELLUCID_CHECK(n < size_t(INT32_MAX), "envmap image too large: " + std::to_string(m_w) + "x" + std::to_string(m_h));
     auto data = std::make_shared<std::vector<float>>();
     data->reserve(n);
@@ -75,6 +76,11 @@ EnvmapLight::EnvmapLight(const Image& image, float scale, const Mat3f& rotation,
     m_texels = int32_t(data->size());
     for (const Spectrum& t : texels) data->insert(data->end(), {t.r, t.g, t.b});
     data->insert(data->end(), g.begin(), g.end());
+    const Piecewise2DLanes<float> dist{data->data(), m_dist.marginal, m_dist.conditional, m_dist.nu, m_dist.nv};
+    std::vector<float> cells(size_t(nu) * size_t(nv));
+    for (int j = 0; j < nv; ++j)
+        for (int x = 0; x < nu; ++x) cells[size_t(j) * nu + x] = piecewise_2d_cell_pdf<float>(dist, x, j);
+    data->insert(data->end(), cells.begin(), cells.end());
     m_data = std::move(data);
 }
 

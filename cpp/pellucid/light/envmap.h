@@ -53,7 +53,9 @@ namespace pellucid {
 template <class F>
 struct EnvmapLanes {
     Piecewise2DLanes<F> dist;  ///< over (u − half texel, v): w × (h − 1) cells
-    IntT<F> texels;            ///< offset of texel (0, 0)'s red; texel (x, y) at texels + 3(y·w + x), then g (x, y) at texels + 3·w·h + y·w + x
+    /// Offset of texel (0, 0)'s red: texel (x, y) at texels + 3(y·w + x), g (x, y) at
+    /// texels + 3·w·h + y·w + x, the density of cell (i, j) (piecewise_2d_cell_pdf) at texels + 4·w·h + j·w + i.
+    IntT<F> texels;
     IntT<F> w, h;
     F rot[9];
 };
@@ -176,13 +178,11 @@ inline void cell_corners(const EnvmapLanes<F>& e, const IntT<F>& i, const IntT<F
 }
 }  // namespace envmap_detail
 
-/// Solid-angle density with which envmap_sample produces world direction wi (unit); 0 at the poles.
+/// The solid-angle density of envmap_sample at the map-frame point uv (envmap_direction_to_uv of a
+/// unit direction whose sin θ is st); 0 at the poles.
 template <class F>
-inline F envmap_pdf(const EnvmapLanes<F>& e, const V3<F>& wi) {
+inline F envmap_pdf_uv(const EnvmapLanes<F>& e, const V2<F>& uv, const F& st) {
     using I = IntT<F>;
-    const V3<F> d = envmap_to_local<F>(e, wi);
-    const F st = lane::sqrt(d.x * d.x + d.z * d.z);
-    const V2<F> uv = envmap_direction_to_uv<F>(d, st);
     F s = uv.x - F(0.5f) / lane::to_float(e.w);
     s = s - lane::floor(s);
     // The cell as piecewise_2d_pdf finds it, and where in it the point lies.
@@ -197,9 +197,29 @@ inline F envmap_pdf(const EnvmapLanes<F>& e, const V3<F>& wi) {
     const I i = cell(s, e.dist.nu, &fs), j = cell(uv.y, e.dist.nv, &ft);
     F a, b, c, dd;
     envmap_detail::cell_corners<F>(e, i, j, &a, &b, &c, &dd);
-    const F p = piecewise_2d_cell_pdf<F>(e.dist, i, j) * bilinear_density<F>(fs, ft, a, b, c, dd);
+    const F cell_pdf = lane::gather(e.dist.base, e.texels + I(4) * (e.w * e.h) + j * e.w + i);
+    const F p = cell_pdf * bilinear_density<F>(fs, ft, a, b, c, dd);
     const auto ok = st > F(0.f);
     return lane::select(ok, p / (F(2.f * kPi * kPi) * lane::select(ok, st, F(1.f))), F(0.f));
+}
+
+/// Solid-angle density with which envmap_sample produces world direction wi (unit); 0 at the poles.
+template <class F>
+inline F envmap_pdf(const EnvmapLanes<F>& e, const V3<F>& wi) {
+    const V3<F> d = envmap_to_local<F>(e, wi);
+    const F st = lane::sqrt(d.x * d.x + d.z * d.z);
+    return envmap_pdf_uv<F>(e, envmap_direction_to_uv<F>(d, st), st);
+}
+
+/// envmap_Le and envmap_pdf toward world direction wi (unit) together, the direction's (u, v) found
+/// once (the same bits as the two calls).
+template <class F>
+inline RGB<F> envmap_Le_pdf(const EnvmapLanes<F>& e, const V3<F>& wi, F* pdf) {
+    const V3<F> d = envmap_to_local<F>(e, wi);
+    const F st = lane::sqrt(d.x * d.x + d.z * d.z);
+    const V2<F> uv = envmap_direction_to_uv<F>(d, st);
+    *pdf = envmap_pdf_uv<F>(e, uv, st);
+    return envmap_lookup<F>(e, uv);
 }
 
 /// A direction with u ∈ [0,1)²: a cell by its weight, placed in it by the bilinear density through

@@ -89,6 +89,7 @@ LightTable make_light_table(const std::vector<LightT>& lights, const std::vector
             irow[2] = pool_at + e->texel_offset();
             irow[3] = e->width(), irow[4] = e->height();
             if (maps.size() > 1) pool_at += int32_t(e->data()->size());
+            t.sole_envmap = maps.size() == 1 ? int32_t(i) : -1;
             row[0] = float(t.kind[i]);
             t.infinite.push_back(int32_t(i));
             t.infinite_pmf.push_back(i < pmf.size() ? pmf[i] : 0.f);

@@ -43,6 +43,7 @@ struct LightTable {
     bool any = false;           ///< some light has a packet form
     /// The environment maps' buffer: the one map's own, or their copies one after another.
     std::shared_ptr<const std::vector<float>> env;
+    int32_t sole_envmap = -1;  ///< the row of the table's one environment map, −1 without or with several
     const float* env_base() const { return env ? env->data() : nullptr; }
     /// The lights at infinity (constant environments, environment maps) in index order, with the
     /// probability with which NEE picks each.
@@ -88,6 +89,19 @@ inline EnvmapLanes<F> envmap_lanes(const LightTable& t, const IntT<F>& light) {
     e.dist = Piecewise2DLanes<F>{t.env_base(), N(0), N(1), e.w, e.h - I(1)};
     e.texels = N(2);
     for (int k = 0; k < 9; ++k) e.rot[k] = lane::gather(t.data.data() + 1 + k, base);
+    return e;
+}
+/// The map of row `light` on every lane (the same values as the per-lane form, without gathers).
+template <class F>
+inline EnvmapLanes<F> envmap_row_lanes(const LightTable& t, int32_t light) {
+    using I = IntT<F>;
+    const int32_t* n = t.idata.data() + size_t(LightTable::kIntStride) * size_t(light);
+    const float* r = t.data.data() + size_t(LightTable::kStride) * size_t(light);
+    EnvmapLanes<F> e;
+    e.w = I(n[3]), e.h = I(n[4]);
+    e.dist = Piecewise2DLanes<F>{t.env_base(), I(n[0]), I(n[1]), e.w, e.h - I(1)};
+    e.texels = I(n[2]);
+    for (int k = 0; k < 9; ++k) e.rot[k] = F(r[1 + k]);
     return e;
 }
 
@@ -147,7 +161,9 @@ inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>
         s.valid = s.valid || constant;
     }
     if (lane::any(envmap)) {
-        const EnvmapSampleT<F> es = envmap_sample<F>(envmap_lanes<F>(t, light), u);
+        // (Every envmap lane reads the same row when the table has one map: its values without gathers.)
+        const EnvmapSampleT<F> es = envmap_sample<F>(
+            t.sole_envmap >= 0 ? envmap_row_lanes<F>(t, t.sole_envmap) : envmap_lanes<F>(t, light), u);
         s.wi = lane::select(envmap, es.wi, s.wi);
         s.pdf = lane::select(envmap, es.pdf, s.pdf);
         s.L = lane::select(envmap, es.L, s.L);
@@ -188,9 +204,7 @@ inline RGB<F> escaped_radiance(const LightTable& t, const V3<F>& d, bool use_mis
         RGB<F> Le;
         F pdf;
         if (t.kind[size_t(li)] == LightTable::kEnvmap) {
-            const EnvmapLanes<F> e = envmap_lanes<F>(t, IntT<F>(li));
-            Le = envmap_Le<F>(e, d);
-            pdf = envmap_pdf<F>(e, d);
+            Le = envmap_Le_pdf<F>(envmap_row_lanes<F>(t, li), d, &pdf);
         } else {
             Le = RGB<F>(F(row[7]), F(row[8]), F(row[9]));
             pdf = F(kInv4Pi);

@@ -7,7 +7,8 @@
 // and the radiance escaping rays take from the lights at infinity. Inputs: fixed-seed random u,
 // directions and points, u at 0, 1/2, 1 − 2⁻²⁴ and 1e-7, directions at the poles and on the seam
 // u = 0/1 (both signs of zero), points at the point light itself, every third packet partially
-// masked. The float instantiation is EnvmapLight's, PointLight's, SpotLight's and
+// masked; with both maps, and with map A alone (the other a constant environment: every envmap lane
+// reads the one map, LightTable::sole_envmap). The float instantiation is EnvmapLight's, PointLight's, SpotLight's and
 // DirectionalLight's own sample_li (and the envmap's pdf_li and Le), and the float CDF's density is
 // that of the cell each sample lies in; the mapping's angles match libm to float precision.
 // SPDX-License-Identifier: Apache-2.0
@@ -56,12 +57,15 @@ struct Cases {
     std::vector<int32_t> light;
     envmap_probe::In in;
 
-    Cases() {
+    /// one_map: map B is a second constant environment instead, so that the table's envmap lanes
+    /// all read its one map (LightTable::sole_envmap, whose values need no gathers).
+    explicit Cases(bool one_map = false) {
         // Map A: 8×5 under a tilted rotation; map B: 13×7, unrotated; both with black columns.
         lights = {EnvmapLight(test::asymmetric_envmap_image(), 1.5f, test::test_rotation()),
                   AreaLight(Point3f(0.3f, 0.2f, -0.1f), 0.5f, false, Spectrum(1.f, 2.f, 3.f), false),
                   ConstantLight(Spectrum(0.25f, 0.5f, 1.f)),
-                  EnvmapLight(test::asymmetric_envmap_image(13, 7), 0.7f, Mat3f(1.f)),
+                  one_map ? Light(ConstantLight(Spectrum(0.5f, 0.25f, 0.125f)))
+                          : Light(EnvmapLight(test::asymmetric_envmap_image(13, 7), 0.7f, Mat3f(1.f))),
                   PointLight(kPointAt, Spectrum(1.f, 0.5f, 2.f)),
                   // From 2 above, the cases' points span about 25° off the axis: dark, ramp and
                   // full beam all occur.
@@ -105,15 +109,20 @@ using Outputs = test::ProbeOutputs<envmap_probe::Out, envmap_probe::kOutputs, Ca
 using test::same_bits;
 }  // namespace
 
-TEST(EnvmapLanes, EveryTargetEveryLaneEqualsTheFloatInstantiation) {
-    const Cases cases;
+class EnvmapLanesMaps : public ::testing::TestWithParam<bool> {};
+INSTANTIATE_TEST_SUITE_P(Maps, EnvmapLanesMaps, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "OneMap" : "TwoMaps"; });
+
+TEST_P(EnvmapLanesMaps, EveryTargetEveryLaneEqualsTheFloatInstantiation) {
+    const Cases cases(GetParam());
+    EXPECT_EQ(cases.table.sole_envmap, GetParam() ? kEnvA : -1);
     Outputs scalar;
     envmap_probe::run<float>(cases.in, scalar.out);
     size_t env_valid = 0;
     for (int i = 0; i < Cases::kN; ++i)
-        env_valid += cases.active[i] && (cases.light[size_t(i)] == kEnvA || cases.light[size_t(i)] == kEnvB) &&
+        env_valid += cases.active[i] && std::holds_alternative<EnvmapLight>(cases.lights[size_t(cases.light[size_t(i)])]) &&
                      scalar.at(0, i) == 1.f;
-    EXPECT_GT(env_valid, size_t(Cases::kN) / 10);  // the probe sampled the maps
+    EXPECT_GT(env_valid, size_t(Cases::kN) / (GetParam() ? 20 : 10));  // the probe sampled the map(s)
     int targets = 0;
     for (SimdTarget t : available_simd_targets()) {
         Outputs packet;
@@ -155,10 +164,10 @@ TEST(EnvmapLanes, ACaseChangedInOneLaneIsSeen) {
     EXPECT_EQ(changed, std::vector<int>({9, 15}));
 }
 
-TEST(EnvmapLanes, FloatInstantiationIsTheScalarLight) {
+TEST_P(EnvmapLanesMaps, FloatInstantiationIsTheScalarLight) {
     // The table's float lanes give exactly what EnvmapLight::sample_li, pdf_li and Le give, and the
     // escaped radiance what the per-light sum gives.
-    const Cases cases;
+    const Cases cases(GetParam());
     Outputs o;
     envmap_probe::run<float>(cases.in, o.out);
     const LightSampleContext ctx;
