@@ -78,31 +78,36 @@ inline IntT<F> pick_light_lanes(const LightTable& t, const F& u, F* pmf) {
     return i;
 }
 
+namespace light_table_detail {
+/// An environment map's lanes from its row's integers N(k) (idata) and floats R(k) (data), read
+/// per lane or once for all lanes (envmap_lanes, envmap_row_lanes).
+template <class F, class N, class R>
+inline EnvmapLanes<F> envmap_from_row(const LightTable& t, N n, R r) {
+    EnvmapLanes<F> e;
+    e.w = n(3), e.h = n(4);
+    e.dist = Piecewise2DLanes<F>{t.env_base(), n(0), n(1), e.w, e.h - IntT<F>(1)};
+    e.texels = n(2);
+    for (int k = 0; k < 9; ++k) e.rot[k] = r(1 + k);
+    return e;
+}
+}  // namespace light_table_detail
+
 /// The environment map of row(s) `light` as lanes read it (light_table's rows for kEnvmap).
 template <class F>
 inline EnvmapLanes<F> envmap_lanes(const LightTable& t, const IntT<F>& light) {
     using I = IntT<F>;
     const I base = light * I(LightTable::kStride), ibase = light * I(LightTable::kIntStride);
-    auto N = [&](int k) { return lane::gather(t.idata.data() + k, ibase); };
-    EnvmapLanes<F> e;
-    e.w = N(3), e.h = N(4);
-    e.dist = Piecewise2DLanes<F>{t.env_base(), N(0), N(1), e.w, e.h - I(1)};
-    e.texels = N(2);
-    for (int k = 0; k < 9; ++k) e.rot[k] = lane::gather(t.data.data() + 1 + k, base);
-    return e;
+    return light_table_detail::envmap_from_row<F>(
+        t, [&](int k) { return lane::gather(t.idata.data() + k, ibase); },
+        [&](int k) { return lane::gather(t.data.data() + k, base); });
 }
 /// The map of row `light` on every lane (the same values as the per-lane form, without gathers).
 template <class F>
 inline EnvmapLanes<F> envmap_row_lanes(const LightTable& t, int32_t light) {
-    using I = IntT<F>;
     const int32_t* n = t.idata.data() + size_t(LightTable::kIntStride) * size_t(light);
     const float* r = t.data.data() + size_t(LightTable::kStride) * size_t(light);
-    EnvmapLanes<F> e;
-    e.w = I(n[3]), e.h = I(n[4]);
-    e.dist = Piecewise2DLanes<F>{t.env_base(), I(n[0]), I(n[1]), e.w, e.h - I(1)};
-    e.texels = I(n[2]);
-    for (int k = 0; k < 9; ++k) e.rot[k] = F(r[1 + k]);
-    return e;
+    return light_table_detail::envmap_from_row<F>(t, [&](int k) { return IntT<F>(n[k]); },
+                                                  [&](int k) { return F(r[k]); });
 }
 
 /// A light sample in kLaneWidth<F> lanes: the point (for a sphere, a point or a spot light; the
