@@ -228,41 +228,80 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         int next_s = 0, next_x, next_y;
         pixel_xy(0, &next_x, &next_y);
         Sampler::PixelSeed pixel_seed = path_services::pixel_seed(ps, next_x, next_y, job.seed);
-        // Lane i takes the chunk's next path, or goes idle.
-        auto start = [&](int i) {
-            if (next >= n_paths) {
-                active[i] = false;
-                return;
+        // The lanes `go` take the chunk's next paths, in lane order, or go idle. The paths are dealt
+        // out one lane at a time (a counter over the chunk's pixels and samples); with the
+        // independent sampler and a splatting film, each sample's seeding and pixel offset are
+        // computed for all lanes at once, from PCG32's parts in a loop the compiler vectorises
+        // (the numbers path_services::start_sample gives); otherwise one lane at a time by it.
+        const bool packet_seeding = ps.sampler == SamplerType::Independent && splat;
+        auto start_lanes = [&](const bool* go) {
+            alignas(64) uint64_t stream[W]{}, sample_of[W]{};
+            alignas(64) float x0[W]{}, y0[W]{};  // the pixel's centre
+            alignas(64) bool started[W]{};
+            bool any_started = false;
+            for (int i = 0; i < W; ++i) {
+                if (!go[i]) continue;
+                if (next >= n_paths) {
+                    active[i] = false;
+                    continue;
+                }
+                const int64_t k = next++;
+                const int x = next_x, y = next_y, sample = job.s0 + next_s;
+                path_of[i] = k;
+                if (packet_seeding) {
+                    stream[i] = pixel_seed.stream, sample_of[i] = uint64_t(sample);
+                    x0[i] = float(x) + 0.5f, y0[i] = float(y) + 0.5f;
+                } else {
+                    path_services::start_sample(ps, splat, x, y, sample, pixel_seed, &sampler[i], &done[k].fx, &done[k].fy);
+                    a.cfx[i] = done[k].fx, a.cfy[i] = done[k].fy;
+                }
+                if (ps.media || ps.subsurface)
+                    medium_rng[i] = path_services::medium_rng(ps, x, y, sample, job.seed);
+                if (ps.media) {
+                    medium[i] = ps.camera_medium;
+                    crossings[i] = 0;
+                }
+                if (++next_s == n_samples && next < n_paths) {  // on to the next pixel of the tile
+                    next_s = 0;
+                    if (++next_x == job.x1) next_x = job.x0, ++next_y;
+                    pixel_seed = path_services::pixel_seed(ps, next_x, next_y, job.seed);
+                }
+                pending_exit[i] = false;
+                active[i] = started[i] = any_started = true;
             }
-            const int64_t k = next++;
-            const int x = next_x, y = next_y, sample = job.s0 + next_s;
-            path_of[i] = k;
-            // The camera ray follows for all such lanes at once (camera_rays).
-            path_services::start_sample(ps, splat, x, y, sample, pixel_seed, &sampler[i], &done[k].fx, &done[k].fy);
-            if (++next_s == n_samples && next < n_paths) {  // on to the next pixel of the tile
-                next_s = 0;
-                if (++next_x == job.x1) next_x = job.x0, ++next_y;
-                pixel_seed = path_services::pixel_seed(ps, next_x, next_y, job.seed);
-            }
-            a.cam[i] = true, a.cfx[i] = done[k].fx, a.cfy[i] = done[k].fy;
+            if (!any_started) return;
+            // The started lanes' path state, as packets; their camera rays follow for all of them
+            // at once (camera_rays).
+            const M st = LM(started);
+            auto reset = [&](float* f, float v) { ST(f, lane::select(st, F(v), LD(f))); };
+            for (float* f : {a.Lr, a.Lg, a.Lb, a.prev_pdf, a.ppx, a.ppy, a.ppz, a.pnx, a.pny, a.pnz}) reset(f, 0.f);
+            for (float* f : {a.br, a.bg, a.bb, a.eta_scale, a.depth}) reset(f, 1.f);
+            SM(a.specular, st || LM(a.specular));  // the camera ray counts as a delta bounce
+            SM(a.cam, st || LM(a.cam));
             any_cam = true;
-            a.Lr[i] = a.Lg[i] = a.Lb[i] = 0.f;
-            a.br[i] = a.bg[i] = a.bb[i] = 1.f;
-            a.prev_pdf[i] = 0.f;
-            a.eta_scale[i] = 1.f;
-            a.depth[i] = 1.f;
-            a.ppx[i] = a.ppy[i] = a.ppz[i] = a.pnx[i] = a.pny[i] = a.pnz[i] = 0.f;
-            a.specular[i] = true;  // the camera ray counts as a delta bounce
-            if (ps.media || ps.subsurface)
-                medium_rng[i] = path_services::medium_rng(ps, x, y, sample, job.seed);
-            if (ps.media) {
-                medium[i] = ps.camera_medium;
-                crossings[i] = 0;
+            if (!packet_seeding) return;
+            // Sampler(Independent, pixel seed, sample) and its get_pixel_2d(): the stream seeded
+            // (PCG32::for_sample_of), then two draws; the film position as film_position's.
+            alignas(64) uint64_t state[W], inc[W];
+            alignas(64) float fx[W], fy[W];
+            for (int i = 0; i < W; ++i) {
+                const uint64_t c = PCG32::increment_of(stream[i]);
+                uint64_t s = PCG32::seeded_state(PCG32::sample_init(stream[i], sample_of[i]), c);
+                const float u0 = PCG32::to_float(PCG32::output(s));
+                s = PCG32::step(s, c);
+                const float u1 = PCG32::to_float(PCG32::output(s));
+                state[i] = PCG32::step(s, c), inc[i] = c;
+                fx[i] = x0[i] + (u0 - 0.5f), fy[i] = y0[i] + (u1 - 0.5f);
             }
-            pending_exit[i] = false;
-            active[i] = true;
+            for (int i = 0; i < W; ++i) {
+                if (!started[i]) continue;
+                sampler[i] = Sampler::independent_after_pixel(PCG32::from_state(state[i], inc[i]),
+                                                              Sampler::PixelSeed{stream[i], 0}, sample_of[i]);
+                FilmSample& d = done[size_t(path_of[i])];
+                a.cfx[i] = d.fx = fx[i], a.cfy[i] = d.fy = fy[i];
+            }
         };
-        // The camera rays of the lanes start() left without one, as a packet; in a scene with
+        // The camera rays of the lanes start_lanes() left without one, as a packet; in a scene with
         // textures with their differentials toward the pixels (x + 1, y) and (x, y + 1), whose
         // footprints filter the textures (PerspectiveCamera::generate_ray_differential's rays).
         auto camera_rays = [&]() {
@@ -330,13 +369,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             const RGB<F> L0(LD(a.Lr), LD(a.Lg), LD(a.Lb));
             const RGB<F> L = lane::select(esc, L0 + beta * Le * F(1.f), L0);
             ST(a.Lr, L.r), ST(a.Lg, L.g), ST(a.Lb, L.b);
-            for (int i = 0; i < W; ++i) {
-                if (!esc_b[i]) continue;
-                done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
-                start(i);
-            }
+            for (int i = 0; i < W; ++i)
+                if (esc_b[i]) done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
+            start_lanes(esc_b);
         };
-        for (int i = 0; i < W; ++i) start(i);
+        {
+            bool all[W];
+            std::fill(all, all + W, true);
+            start_lanes(all);
+        }
         camera_rays();
         for (;;) {
             bool any = false;
@@ -1111,10 +1152,13 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 ST(a.Lb, LD(a.Lb) + lane::select(lit, LD(a.Ldb), F(0.f)));
             }
             // Finished paths hand their estimate over; their lanes start the next ones.
-            for (int i = 0; i < W; ++i) {
-                if (!active[i] || a.alive[i]) continue;
-                done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
-                start(i);
+            {
+                alignas(64) bool ended[W];
+                for (int i = 0; i < W; ++i) {
+                    ended[i] = active[i] && !a.alive[i];
+                    if (ended[i]) done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
+                }
+                start_lanes(ended);
             }
             camera_rays();
         }

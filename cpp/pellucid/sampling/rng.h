@@ -35,15 +35,26 @@ public:
         return mix_bits(pixel * 0x9E3779B97F4A7C15ULL ^ mix_bits(seed + 0x632BE59BD9B4E019ULL));
     }
     static PCG32 for_sample_of(uint64_t stream, uint64_t sample_index) {
-        return PCG32(mix_bits(sample_index ^ (stream << 1)), stream);
+        return PCG32(sample_init(stream, sample_index), stream);
+    }
+
+    /// A generator at a given state and increment (what step() and seeded_state() compute).
+    static PCG32 from_state(uint64_t state, uint64_t inc) { return PCG32(Raw{}, state, inc); }
+    /// The increment of `stream`, and the state seed(init_state, stream) leaves: two steps from 0,
+    /// the second after adding init_state. Plain arithmetic, for loops that seed many streams side
+    /// by side (the path kernel starts a packet's samples at once).
+    [[gnu::always_inline]] static uint64_t increment_of(uint64_t stream) { return (stream << 1u) | 1u; }
+    [[gnu::always_inline]] static uint64_t seeded_state(uint64_t init_state, uint64_t inc) {
+        return step(step(0u, inc) + init_state, inc);
+    }
+    /// for_sample_of's init_state.
+    [[gnu::always_inline]] static uint64_t sample_init(uint64_t stream, uint64_t sample_index) {
+        return mix_bits(sample_index ^ (stream << 1));
     }
 
     void seed(uint64_t init_state, uint64_t stream) {
-        m_state = 0u;
-        m_inc = (stream << 1u) | 1u;
-        next_u32();
-        m_state += init_state;
-        next_u32();
+        m_inc = increment_of(stream);
+        m_state = seeded_state(init_state, m_inc);
     }
     // Always inlined: the path tracer's SIMD kernels draw the independent sampler's numbers
     // themselves, and each must hold its own copy (no shared out-of-line symbol).
@@ -83,6 +94,8 @@ public:
     }
 
 private:
+    struct Raw {};
+    PCG32(Raw, uint64_t state, uint64_t inc) : m_state(state), m_inc(inc) {}
     uint64_t m_state, m_inc;
 };
 }  // namespace pellucid

@@ -197,6 +197,13 @@ public:
         : m_rng(PCG32::for_sample_of(px.stream, sample_index)), m_type(type),
           m_index_rev(sobol::reverse_bits(uint32_t(sample_index))), m_pixel_hash(px.hash) {}
 
+    /// What Sampler(SamplerType::Independent, px, sample_index) is after get_pixel_2d(), built
+    /// from the stream that seeding and those two draws leave (`rng`): the path kernel seeds a
+    /// packet's samples and draws their pixel offsets side by side, with PCG32's parts.
+    static Sampler independent_after_pixel(const PCG32& rng, const PixelSeed& px, uint64_t sample_index) {
+        return Sampler(rng, px, uint32_t(sample_index), kPixelDims);
+    }
+
     SamplerType type() const { return m_type; }
     /// The sample's PCG32 stream: every number of the independent sampler (get_1d and get_2d
     /// draw from it in turn), and the Sobol sampler's past kMaxSobolDims.
@@ -238,6 +245,9 @@ private:
         sobol::sample_2d_rev(m_index_rev, seeds(d), &x0, &x1);
         return Vec2f(sobol::to_float(x0), sobol::to_float(x1));
     }
+    Sampler(const PCG32& rng, const PixelSeed& px, uint32_t sample_index, int dim)
+        : m_rng(rng), m_type(SamplerType::Independent), m_index_rev(sobol::reverse_bits(sample_index)),
+          m_pixel_hash(px.hash), m_dim(dim) {}
     sobol::GroupSeeds seeds(int d) const { return sobol::group_seeds(m_pixel_hash, uint32_t(d)); }
     PCG32 m_rng;
     SamplerType m_type;
