@@ -280,19 +280,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             SM(a.cam, st || LM(a.cam));
             any_cam = true;
             if (!packet_seeding) return;
-            // Sampler(Independent, pixel seed, sample) and its get_pixel_2d(): the stream seeded
-            // (PCG32::for_sample_of), then two draws; the film position as film_position's.
+            // Sampler(Independent, pixel seed, sample) after its get_pixel_2d(), and the film
+            // positions, as start_sample's.
             alignas(64) uint64_t state[W], inc[W];
             alignas(64) float fx[W], fy[W];
-            for (int i = 0; i < W; ++i) {
-                const uint64_t c = PCG32::increment_of(stream[i]);
-                uint64_t s = PCG32::seeded_state(PCG32::sample_init(stream[i], sample_of[i]), c);
-                const float u0 = PCG32::to_float(PCG32::output(s));
-                s = PCG32::step(s, c);
-                const float u1 = PCG32::to_float(PCG32::output(s));
-                state[i] = PCG32::step(s, c), inc[i] = c;
-                fx[i] = x0[i] + (u0 - 0.5f), fy[i] = y0[i] + (u1 - 0.5f);
-            }
+            path_services::start_independent_samples<W>(stream, sample_of, x0, y0, state, inc, fx, fy);
             for (int i = 0; i < W; ++i) {
                 if (!started[i]) continue;
                 sampler[i] = Sampler::independent_after_pixel(PCG32::from_state(state[i], inc[i]),

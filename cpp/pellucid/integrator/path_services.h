@@ -136,6 +136,26 @@ namespace path_services {
 /// (PerspectiveCamera::direction).
 void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, const Sampler::PixelSeed& px, Sampler* sampler,
                   float* fx, float* fy);
+/// start_sample for n samples of the independent sampler on a splatting film, side by side (a loop
+/// the compiler vectorises; the path kernel starts a packet's paths with it): sample `sample[i]`
+/// of the pixel whose stream is `stream[i]` (PixelSeed::stream) and whose centre is (cx[i],
+/// cy[i]) gets the film position (fx[i], fy[i]) and the PCG32 state and increment its sampler has
+/// after get_pixel_2d() (Sampler::independent_after_pixel).
+template <int N>
+[[gnu::always_inline]] inline void start_independent_samples(const uint64_t* stream, const uint64_t* sample, const float* cx,
+                                                             const float* cy, uint64_t* state, uint64_t* inc, float* fx,
+                                                             float* fy) {
+    for (int i = 0; i < N; ++i) {
+        const uint64_t c = PCG32::increment_of(stream[i]);
+        uint64_t s = PCG32::seeded_state(PCG32::sample_init(stream[i], sample[i]), c);
+        const float u0 = PCG32::to_float(PCG32::output(s));
+        s = PCG32::step(s, c);
+        const float u1 = PCG32::to_float(PCG32::output(s));
+        state[i] = PCG32::step(s, c), inc[i] = c;
+        // film_position with a splatting film: the pixel's corner + 0.5 + (u - 0.5).
+        fx[i] = cx[i] + (u0 - 0.5f), fy[i] = cy[i] + (u1 - 0.5f);
+    }
+}
 /// The part of a sample's Sampler that every sample of pixel (x, y) shares (Sampler::PixelSeed).
 Sampler::PixelSeed pixel_seed(const PathSetup& ps, int x, int y, uint64_t seed);
 /// Trace n ≤ 16 rays, given as arrays (soa = origin x, y, z, direction x, y, z, tmax), where

@@ -370,3 +370,35 @@ TEST(SimdTargetRender, ShapeTableLanesEqualLaneByLaneRecords) {
         }
     }
 }
+
+TEST(SimdTargetRender, PacketStartedSamplesAreStartSamples) {
+    // The kernel starts a packet's paths with start_independent_samples (independent sampler,
+    // splatting film): each lane's film position and sampler must be start_sample's, bit for bit,
+    // for pixels and samples across the image and its seeds.
+    auto scene = load_scene("cornell_box.json", 40, 24);
+    const PathSetup ps = make_path_setup(*scene, 8, 5, true, true, SamplerType::Independent);
+    constexpr int N = 16;
+    for (uint64_t seed : {0ull, 7ull}) {
+        uint64_t stream[N], sample[N], state[N], inc[N];
+        float cx[N], cy[N], fx[N], fy[N];
+        int px[N], py[N];
+        Sampler::PixelSeed seeds[N];
+        for (int i = 0; i < N; ++i) {
+            px[i] = (7 * i + 3) % 40, py[i] = (5 * i + 1) % 24;
+            seeds[i] = path_services::pixel_seed(ps, px[i], py[i], seed);
+            stream[i] = seeds[i].stream, sample[i] = uint64_t(i * i * 37);
+            cx[i] = float(px[i]) + 0.5f, cy[i] = float(py[i]) + 0.5f;
+        }
+        path_services::start_independent_samples<N>(stream, sample, cx, cy, state, inc, fx, fy);
+        for (int i = 0; i < N; ++i) {
+            Sampler want;
+            float wx, wy;
+            path_services::start_sample(ps, true, px[i], py[i], int(sample[i]), seeds[i], &want, &wx, &wy);
+            EXPECT_EQ(fx[i], wx) << i;
+            EXPECT_EQ(fy[i], wy) << i;
+            Sampler got = Sampler::independent_after_pixel(PCG32::from_state(state[i], inc[i]), seeds[i], sample[i]);
+            EXPECT_EQ(got.dimension(), want.dimension());
+            for (int k = 0; k < 4; ++k) EXPECT_EQ(got.get_1d(), want.get_1d()) << i;
+        }
+    }
+}

@@ -78,6 +78,30 @@ TEST(Sampler, IndependentIsThePcg32StreamOfTheSample) {
         }
 }
 
+TEST(Sampler, IndependentFromPartsIsTheSamplerAfterItsPixelOffset) {
+    // What the path kernel does for a packet of samples: seed from PCG32's parts, draw the pixel
+    // offset itself, then continue in Sampler::independent_after_pixel. Every later number equals
+    // the sampler's own.
+    for (uint64_t pixel : {0ull, 5ull, 70000ull})
+        for (uint64_t s : {0ull, 3ull, 1000ull}) {
+            const Sampler::PixelSeed px = Sampler::PixelSeed::of(SamplerType::Independent, pixel, 9);
+            Sampler u(SamplerType::Independent, px, s);
+            const Vec2f a = u.get_pixel_2d();
+            const uint64_t inc = PCG32::increment_of(px.stream);
+            uint64_t st = PCG32::seeded_state(PCG32::sample_init(px.stream, s), inc);
+            EXPECT_EQ(PCG32::to_float(PCG32::output(st)), a.x);
+            st = PCG32::step(st, inc);
+            EXPECT_EQ(PCG32::to_float(PCG32::output(st)), a.y);
+            st = PCG32::step(st, inc);
+            Sampler v = Sampler::independent_after_pixel(PCG32::from_state(st, inc), px, s);
+            EXPECT_EQ(v.dimension(), u.dimension());
+            for (int k = 0; k < 8; ++k) EXPECT_EQ(v.get_1d(), u.get_1d());
+            const Vec2f c = u.get_2d(), d = v.get_2d();
+            EXPECT_EQ(c.x, d.x);
+            EXPECT_EQ(c.y, d.y);
+        }
+}
+
 TEST(Sampler, SobolDirectionNumbersMatchJoeKuo) {
     // m_k of Joe–Kuo dimensions 2, 3, 4 worked out by hand from the recurrence
     // m_k = 2a_1 m_{k-1} ⊕ … ⊕ 2^s m_{k-s} ⊕ m_{k-s} (0x80000000, 0xc0000000, 0x60000000, ... for dimension 3).
