@@ -75,6 +75,37 @@ int dispatch_lane_count(const M& m, int width) {
 #define PELLUCID_FORM_CALL(kind, where, ...) __VA_ARGS__
 #endif
 
+/// Row `row` of `table` (`stride` floats a row), its first n entries, into out[0..n) on the lanes
+/// `on` (other lanes keep out). A packet's lanes mostly share a few rows (a scene's spheres), so
+/// each distinct row among them takes a broadcast and a select an entry, for up to kRowPasses rows;
+/// the lanes left after those gather theirs. (A gather of 16 lanes costs about 20 cycles on the
+/// AVX-512 machines of bench/README.md: the sphere table's 15 entries took 5-10 % of a render.)
+template <class F>
+void rows_by_lane(const float* table, int stride, const IntT<F>& row, const MaskT<F>& on, int n, F* out) {
+    constexpr int W = kLaneWidth<F>, kRowPasses = 3;
+    using I = IntT<F>;
+    alignas(64) bool rem[W];
+    alignas(64) int32_t rows[W];
+    lane::store(rem, on);
+    lane::store(rows, row);
+    MaskT<F> left = on;
+    int passes = 0;
+    for (int i = 0; i < W; ++i) {
+        if (!rem[i]) continue;
+        if (passes++ == kRowPasses) {
+            const I base = lane::select(lane::int_mask(left), row, I(0)) * I(stride);
+            for (int k = 0; k < n; ++k) out[k] = lane::select(left, lane::gather(table, base + I(k)), out[k]);
+            return;
+        }
+        const int32_t r = rows[i];
+        const MaskT<F> same = left && lane::float_mask(row == I(r));
+        const float* v = table + size_t(r) * size_t(stride);
+        for (int k = 0; k < n; ++k) out[k] = lane::select(same, F(v[k]), out[k]);
+        left = left && !same;
+        lane::store(rem, left);
+    }
+}
+
 template <class F>
 uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& film) {
     constexpr int W = kLaneWidth<F>;
@@ -450,14 +481,17 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 vl_mat = lane::select(vl_i, vl_mat, I(0));
             }
             M svl_m(false);  // the sphere table's lanes
+            F sph[15];       // their rows: centre, radius, rotation, flip, material (PathSetup::sphere_table)
             if (!ps.sphere_row.empty()) {
                 using I = IntT<F>;
                 const auto hit_i = lane::int_mask(LM(hit));
                 const I geom = lane::select(hit_i, lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
                 const I srow = lane::gather(ps.sphere_row.data(), geom);
                 const auto in_table = hit_i && srow >= I(0);
-                const I row = lane::select(in_table, srow, I(0)) * I(PathSetup::kSphereStride);
-                const I smat = lane::as_int(lane::gather(ps.sphere_table.data(), row + I(14)));
+                std::fill(sph, sph + 15, F(0.f));
+                sph[14] = lane::as_float(I(-1));
+                rows_by_lane<F>(ps.sphere_table.data(), PathSetup::kSphereStride, srow, lane::float_mask(in_table), 15, sph);
+                const I smat = lane::as_int(sph[14]);
                 const auto svl_i = in_table && smat >= I(0);
                 svl_m = lane::float_mask(svl_i);
                 vl_mat = lane::select(svl_i, smat, vl_mat);
@@ -484,12 +518,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             }
             if (lane::any(svl_m)) {
                 // The sphere table's lanes' vertices (sphere_vertex, as fetch_hit_vertex's lanes).
-                using I = IntT<F>;
-                const I geom = lane::select(lane::int_mask(svl_m), lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
-                const I row = lane::select(lane::int_mask(svl_m), lane::gather(ps.sphere_row.data(), geom), I(0)) *
-                              I(PathSetup::kSphereStride);
-                const float* tab = ps.sphere_table.data();
-                auto G = [&](int k) { return lane::gather(tab, row + I(k)); };
+                auto G = [&](int k) { return sph[k]; };
                 auto GV = [&](int k) { return V3<F>(G(k), G(k + 1), G(k + 2)); };
                 const V3<F> o(LD(a.ray_soa[0]), LD(a.ray_soa[1]), LD(a.ray_soa[2]));
                 const V3<F> d(LD(a.ray_soa[3]), LD(a.ray_soa[4]), LD(a.ray_soa[5]));
