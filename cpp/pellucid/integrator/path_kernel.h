@@ -270,20 +270,25 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             alignas(64) float x0[W]{}, y0[W]{};  // the pixel's centre
             alignas(64) bool started[W]{};
             bool any_started = false;
+            // The counters in locals for the loop (through the closure each would be a load and a
+            // store a lane), written back after it.
+            int64_t next_l = next;
+            int next_s_l = next_s, next_x_l = next_x, next_y_l = next_y;
+            Sampler::PixelSeed seed_l = pixel_seed;
             for (int i = 0; i < W; ++i) {
                 if (!go[i]) continue;
-                if (next >= n_paths) {
+                if (next_l >= n_paths) {
                     active[i] = false;
                     continue;
                 }
-                const int64_t k = next++;
-                const int x = next_x, y = next_y, sample = job.s0 + next_s;
+                const int64_t k = next_l++;
+                const int x = next_x_l, y = next_y_l, sample = job.s0 + next_s_l;
                 path_of[i] = k;
                 if (packet_seeding) {
-                    stream[i] = pixel_seed.stream, sample_of[i] = uint64_t(sample);
+                    stream[i] = seed_l.stream, sample_of[i] = uint64_t(sample);
                     x0[i] = float(x) + 0.5f, y0[i] = float(y) + 0.5f;
                 } else {
-                    path_services::start_sample(ps, splat, x, y, sample, pixel_seed, &sampler[i], &done[k].fx, &done[k].fy);
+                    path_services::start_sample(ps, splat, x, y, sample, seed_l, &sampler[i], &done[k].fx, &done[k].fy);
                     a.cfx[i] = done[k].fx, a.cfy[i] = done[k].fy;
                 }
                 if (ps.media || ps.subsurface)
@@ -292,14 +297,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     medium[i] = ps.camera_medium;
                     crossings[i] = 0;
                 }
-                if (++next_s == n_samples && next < n_paths) {  // on to the next pixel of the tile
-                    next_s = 0;
-                    if (++next_x == job.x1) next_x = job.x0, ++next_y;
-                    pixel_seed = path_services::pixel_seed(ps, next_x, next_y, job.seed);
+                if (++next_s_l == n_samples && next_l < n_paths) {  // on to the next pixel of the tile
+                    next_s_l = 0;
+                    if (++next_x_l == job.x1) next_x_l = job.x0, ++next_y_l;
+                    seed_l = path_services::pixel_seed(ps, next_x_l, next_y_l, job.seed);
                 }
                 pending_exit[i] = false;
                 active[i] = started[i] = any_started = true;
             }
+            next = next_l, next_s = next_s_l, next_x = next_x_l, next_y = next_y_l, pixel_seed = seed_l;
             if (!any_started) return;
             // The started lanes' path state, as packets; their camera rays follow for all of them
             // at once (camera_rays).
