@@ -243,113 +243,22 @@ std::optional<BxDFSample> PrincipledBSDF::sample_solid(const BxDFContext& ctx, c
     return s;
 }
 
-// ---- thin -----------------------------------------------------------------------------------
-PrincipledBSDF::EvalPdf PrincipledBSDF::eval_pdf_thin(const BxDFContext& ctx, const Vec3f& wo_in,
-                                                      const Vec3f& wi_in) const {
-    EvalPdf out;
-    if (wo_in.z == 0.f || wi_in.z == 0.f) return out;
-    // Mirror so that wo is on +z (the sheet is the same from both sides).
-    Vec3f wo = wo_in.z < 0.f ? -wo_in : wo_in, wi = wo_in.z < 0.f ? -wi_in : wi_in;
-    bool reflect = wi.z > 0.f;
-    float co = wo.z, aci = std::fabs(wi.z);
-    Vec3f wi_r(wi.x, wi.y, aci);  // transmission is reflection mirrored through the sheet
-    Vec3f h = normalize(wo + wi_r);
-    float dot_o = dot(wo, h);
-    float jac = 1.f / (4.f * std::fabs(dot(wi_r, h)));
-
-    float st = m_spec_trans, dt = m_diff_trans;
-    float p_sr = allows(ctx, BxDFFlags::GlossyReflection) ? 0.5f * st : 0.f;
-    float p_st = allows(ctx, BxDFFlags::GlossyTransmission) ? 0.5f * st : 0.f;
-    float p_dr = allows(ctx, BxDFFlags::DiffuseReflection) ? (1.f - st) * (1.f - dt) : 0.f;
-    float p_dt = allows(ctx, BxDFFlags::DiffuseTransmission) ? (1.f - st) * dt : 0.f;
-    float total = p_sr + p_st + p_dr + p_dt;
-    if (!(total > 0.f)) total = 1.f;
-
-    if (reflect) {
-        if (st > 0.f && dot_o > 0.f) {
-            float F = fresnel_dielectric(dot_o, m_eta);
-            Spectrum Ft(F);
-            if (m_spec_tint > 0.f) Ft = lerp(Ft, schlick(m_tint * r0_of_eta(m_eta), dot_o, m_eta), m_spec_tint);
-            out.f += Ft * (st * m_spec.D(h) * g_separable(m_spec, wo, wi, h) / (4.f * co));
-            out.pdf += p_sr / total * m_spec.pdf_visible(wo, h) * jac;
-        }
-        if (st < 1.f && dt < 1.f) {
-            float w = (1.f - st) * (1.f - dt);
-            out.f += diffuse_sheen(co, aci, dot(wi, h), w, w);
-        }
-        out.pdf += p_dr / total * aci * kInvPi;
-    } else {
-        // Mitsuba's visibility test for the mirrored lobe: wo in front of h, wi behind it.
-        if (st > 0.f && dot_o > 0.f && dot(wi, h) < 0.f) {
-            float F = fresnel_dielectric(dot_o, m_eta);
-            out.f += m_base * (st * (1.f - F) * m_trans.D(h) * g_separable(m_trans, wo, wi, h) / (4.f * co));
-            out.pdf += p_st / total * m_trans.pdf_visible(wo, h) * jac;
-        }
-        if (st < 1.f && dt > 0.f) out.f += m_base * ((1.f - st) * dt * kInvPi * aci);
-        out.pdf += p_dt / total * aci * kInvPi;
-    }
-    return out;
-}
-
-std::optional<BxDFSample> PrincipledBSDF::sample_thin(const BxDFContext& ctx, const Vec3f& wo_in, float u_lobe,
-                                                      const Vec2f& u) const {
-    if (wo_in.z == 0.f) return std::nullopt;
-    float sgn = wo_in.z < 0.f ? -1.f : 1.f;
-    Vec3f wo = wo_in * sgn;
-    float st = m_spec_trans, dt = m_diff_trans;
-    float p[4] = {allows(ctx, BxDFFlags::GlossyReflection) ? 0.5f * st : 0.f,
-                  allows(ctx, BxDFFlags::GlossyTransmission) ? 0.5f * st : 0.f,
-                  allows(ctx, BxDFFlags::DiffuseReflection) ? (1.f - st) * (1.f - dt) : 0.f,
-                  allows(ctx, BxDFFlags::DiffuseTransmission) ? (1.f - st) * dt : 0.f};
-    float total = p[0] + p[1] + p[2] + p[3];
-    if (!(total > 0.f)) return std::nullopt;
-    // The lobe whose interval of [0, total) holds u_lobe·total (the last positive one on round-off).
-    float x = u_lobe * total;
-    int lobe = -1;
-    for (int k = 0; k < 4; ++k) {
-        if (!(p[k] > 0.f)) continue;
-        lobe = k;
-        if (x < p[k]) break;
-        x -= p[k];
-    }
-    BxDFSample s;
-    Vec3f wi;
-    if (lobe == 0 || lobe == 1) {
-        const GGX& d = lobe == 0 ? m_spec : m_trans;
-        Vec3f m = d.sample_visible(wo, u);
-        wi = reflect(wo, m);
-        if (!(wi.z > 0.f && dot(wo, m) > 0.f)) return std::nullopt;
-        if (lobe == 1) {
-            wi.z = -wi.z;  // through the sheet, unbent
-            if (!(dot(wi, m) < 0.f)) return std::nullopt;  // eval's visibility test (header)
-        }
-        s.lobe = lobe == 0 ? BxDFFlags::GlossyReflection : BxDFFlags::GlossyTransmission;
-    } else {
-        wi = square_to_cosine_hemisphere(u);
-        if (lobe == 3) wi.z = -wi.z;
-        s.lobe = lobe == 2 ? BxDFFlags::DiffuseReflection : BxDFFlags::DiffuseTransmission;
-    }
-    s.wi = wi * sgn;
-    EvalPdf ep = eval_pdf_thin(ctx, wo_in, s.wi);
-    if (!(ep.pdf > 0.f)) return std::nullopt;
-    s.pdf = ep.pdf;
-    s.weight = ep.f / ep.pdf;
-    return s;
-}
-
 // ---- interface ------------------------------------------------------------------------------
 Spectrum PrincipledBSDF::eval(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
     if (has_lanes()) return lanes().eval_pdf(ctx, wo, wi, true).f;
-    return (m_thin ? eval_pdf_thin(ctx, wo, wi) : eval_pdf_solid(ctx, wo, wi)).f;
+    if (m_thin) return thin_lanes().eval_pdf(ctx, wo, wi, true).f;
+    return eval_pdf_solid(ctx, wo, wi).f;
 }
 float PrincipledBSDF::pdf(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const {
     if (has_lanes()) return lanes().eval_pdf(ctx, wo, wi, true).pdf;
-    return (m_thin ? eval_pdf_thin(ctx, wo, wi) : eval_pdf_solid(ctx, wo, wi)).pdf;
+    if (m_thin) return thin_lanes().eval_pdf(ctx, wo, wi, true).pdf;
+    return eval_pdf_solid(ctx, wo, wi).pdf;
 }
 std::optional<BxDFSample> PrincipledBSDF::sample(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
                                                  const Vec2f& u) const {
     if (has_lanes()) return to_optional(lanes().sample(ctx, wo, u_lobe, u, true));
-    return m_thin ? sample_thin(ctx, wo, u_lobe, u) : sample_solid(ctx, wo, u_lobe, u);
+    if (m_thin) return to_optional(thin_lanes().sample(ctx, wo, u_lobe, u, true));
+    return sample_solid(ctx, wo, u_lobe, u);
 }
 
 BxDFFlags PrincipledBSDF::flags() const {

@@ -79,15 +79,19 @@
 // vector and the dielectric Fresnel (in double) and the clear coat's GTR1 normal (pow, sin, cos) are
 // computed one lane at a time by functions compiled once (principled_half, principled_gtr1_normal),
 // so every lane type gives the same bits; the rest runs on the packet. ln α_c² is a parameter,
-// computed once at construction. The thin sheet and the solid with a transmission lobe keep the
-// scalar code below and run as BSDF lanes; they share the diffuse, sheen, Schlick and GTR1 terms
-// with the packet form (the float instantiations of the templates below).
+// computed once at construction. The thin sheet has a packet form of its own, PrincipledThinT<F>
+// (kPacketPrincipledThin; PrincipledBSDF's eval, pdf and sample are its float instantiation where
+// thin()): its half vector is that of wo and wi mirrored to +z, in float, so the whole form is lane
+// operations. The solid with a transmission lobe keeps the scalar code below and runs as BSDF lanes;
+// it shares the diffuse, sheen, Schlick and GTR1 terms with the packet forms (the float
+// instantiations of the templates below).
 #pragma once
 #include <optional>
 #include <string>
 #include <type_traits>
 
 #include "pellucid/bxdf/bxdf_types.h"
+#include "pellucid/bxdf/fresnel.h"
 #include "pellucid/bxdf/microfacet.h"
 #include "pellucid/bxdf/principled.h"
 
@@ -374,6 +378,174 @@ inline PrincipledBSDFT<F> principled_lanes(const MaskT<F>& where, Q q) {
             GGXT<F>{at(16, 1.f), at(17, 1.f), MaskT<F>(false)}};
 }
 
+/// The thin sheet (header comment, THIN) over a lane type F: per-lane parameters. PrincipledBSDF's
+/// eval, pdf and sample are its float instantiation where thin(), and the path tracer shades thin
+/// sheets with it (kPacketPrincipledThin). Every operation is one IEEE operation per lane (the half
+/// vector of the mirrored pair in float, the dielectric Fresnel fresnel_dielectric<F>), so every lane
+/// type gives the same bits.
+template <class F>
+struct PrincipledThinT {
+    RGB<F> base, tint;  ///< base colour and c_tint
+    F roughness, spec_tint, sheen, sheen_tint, flatness, eta;
+    F st, dt;           ///< spec_trans and d_t = diffuse_transmission/2
+    GGXT<F> spec, trans;  ///< the reflection lobe's and the transmission lobe's (roughness × (0.65η − 0.35))
+
+    struct EvalPdf {
+        RGB<F> f;
+        F pdf;
+    };
+    /// The four lobes' probabilities (specular reflection, specular transmission, diffuse
+    /// reflection, diffuse transmission; 0 for a lobe outside ctx.allowed), unnormalised.
+    void lobes(const BxDFContext& ctx, F p[4]) const {
+        using principled_detail::allows;
+        p[0] = allows(ctx, BxDFFlags::GlossyReflection) ? F(0.5f) * st : F(0.f);
+        p[1] = allows(ctx, BxDFFlags::GlossyTransmission) ? F(0.5f) * st : F(0.f);
+        p[2] = allows(ctx, BxDFFlags::DiffuseReflection) ? (F(1.f) - st) * (F(1.f) - dt) : F(0.f);
+        p[3] = allows(ctx, BxDFFlags::DiffuseTransmission) ? (F(1.f) - st) * dt : F(0.f);
+    }
+    /// f·|cos θi| and the density of sample(), on the lanes `where` (others: unspecified). The pair
+    /// is mirrored together so that wo is on +z; transmission is reflection mirrored through the sheet.
+    EvalPdf eval_pdf(const BxDFContext& ctx, const V3<F>& wo_in, const V3<F>& wi_in, const MaskT<F>& where) const {
+        using namespace principled_detail;
+        using M = MaskT<F>;
+        const M pair = wo_in.z != F(0.f) && wi_in.z != F(0.f);
+        const M flip = wo_in.z < F(0.f);
+        const V3<F> wo = lane::select(flip, -wo_in, wo_in), wi = lane::select(flip, -wi_in, wi_in);
+        const M reflect = wi.z > F(0.f);
+        const F co = wo.z, aci = lane::abs(wi.z);
+        const V3<F> wi_r(wi.x, wi.y, aci);
+        const V3<F> h = normalize(wo + wi_r);
+        const F dot_o = dot(wo, h), dot_ih = dot(wi, h);
+        const F jac = F(1.f) / (F(4.f) * lane::abs(dot(wi_r, h)));
+        F p[4];
+        lobes(ctx, p);
+        F total = p[0] + p[1] + p[2] + p[3];
+        total = lane::select(total > F(0.f), total, F(1.f));
+        const F fr = fresnel_dielectric<F>(dot_o, eta);
+        RGB<F> f(F(0.f));
+        F pdf(F(0.f));
+        // Specular reflection, and where the sheet transmits, Mitsuba's visibility test for the
+        // mirrored lobe: wo in front of h, wi behind it.
+        const M spec_r = reflect && st > F(0.f) && dot_o > F(0.f);
+        if (lane::any(where && spec_r)) {
+            RGB<F> Ft(fr);
+            const M tinted = spec_tint > F(0.f);
+            if (lane::any(where && spec_r && tinted)) {
+                const F r = (eta - F(1.f)) / (eta + F(1.f));
+                const RGB<F> s = schlick<F>(tint * (r * r), dot_o, eta);
+                const RGB<F> lerped(Ft.r + (s.r - Ft.r) * spec_tint, Ft.g + (s.g - Ft.g) * spec_tint,
+                                    Ft.b + (s.b - Ft.b) * spec_tint);
+                Ft = lane::select(tinted, lerped, Ft);
+            }
+            const F g = g1<F>(spec, wo, h) * g1<F>(spec, wi, h);
+            f = lane::select(spec_r, f + Ft * (st * spec.D(h) * g / (F(4.f) * co)), f);
+            pdf = lane::select(spec_r, pdf + p[0] / total * spec.pdf_visible(wo, h) * jac, pdf);
+        }
+        const M diff_r = reflect && st < F(1.f) && dt < F(1.f);
+        if (lane::any(where && diff_r)) {
+            const F w = (F(1.f) - st) * (F(1.f) - dt);
+            const RGB<F> ds = diffuse_sheen<F>(base, tint, roughness, flatness, sheen, sheen_tint, co, aci, dot_ih, w, w,
+                                               where && diff_r);
+            f = lane::select(diff_r, f + ds, f);
+        }
+        pdf = lane::select(reflect, pdf + p[2] / total * aci * F(kInvPi), pdf);
+        const M spec_t = !reflect && st > F(0.f) && dot_o > F(0.f) && dot_ih < F(0.f);
+        if (lane::any(where && spec_t)) {
+            const F g = g1<F>(trans, wo, h) * g1<F>(trans, wi, h);
+            f = lane::select(spec_t, f + base * (st * (F(1.f) - fr) * trans.D(h) * g / (F(4.f) * co)), f);
+            pdf = lane::select(spec_t, pdf + p[1] / total * trans.pdf_visible(wo, h) * jac, pdf);
+        }
+        const M diff_t = !reflect && st < F(1.f) && dt > F(0.f);
+        f = lane::select(diff_t, f + base * ((F(1.f) - st) * dt * F(kInvPi) * aci), f);
+        pdf = lane::select(!reflect, pdf + p[3] / total * aci * F(kInvPi), pdf);
+        EvalPdf out;
+        out.f = lane::select(pair, f, RGB<F>(F(0.f)));
+        out.pdf = lane::select(pair, pdf, F(0.f));
+        return out;
+    }
+    /// A lobe by its probability (the last positive one on round-off), its direction, then the whole
+    /// model evaluated toward it, on the lanes `where` (others: not valid).
+    BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo_in, const F& u_lobe, const V2<F>& u,
+                          const MaskT<F>& where) const {
+        using M = MaskT<F>;
+        using I = IntT<F>;
+        const F sgn = lane::select(wo_in.z < F(0.f), F(-1.f), F(1.f));
+        const V3<F> wo(wo_in.x * sgn, wo_in.y * sgn, wo_in.z * sgn);
+        F p[4];
+        lobes(ctx, p);
+        const F total = p[0] + p[1] + p[2] + p[3];
+        F x = u_lobe * total;
+        I lobe(-1);
+        M chosen(false);
+        for (int k = 0; k < 4; ++k) {
+            const M take = !chosen && p[k] > F(0.f);
+            lobe = lane::select(lane::int_mask(take), I(k), lobe);
+            const M stop = take && x < p[k];
+            chosen = chosen || stop;
+            x = lane::select(take && !stop, x - p[k], x);
+        }
+        const M is_spec = lane::float_mask(lobe == I(0) || lobe == I(1)), is_t = lane::float_mask(lobe == I(1));
+        const M diff = lane::float_mask(lobe == I(2) || lobe == I(3));
+        const V3<F> up(F(0.f), F(0.f), F(1.f));
+        // Specular: a visible normal of the lobe's distribution, reflected about; through the sheet,
+        // unbent, for transmission (with eval's visibility test).
+        V3<F> ws = up;
+        M ok_s(false);
+        if (lane::any(where && is_spec)) {
+            const GGXT<F> d{lane::select(is_t, trans.ax, spec.ax), lane::select(is_t, trans.ay, spec.ay), MaskT<F>(false)};
+            const V3<F> m = d.sample_visible(wo, u);
+            const V3<F> r = -wo + F(2.f) * dot(wo, m) * m;
+            ok_s = r.z > F(0.f) && dot(wo, m) > F(0.f);
+            ws = V3<F>(r.x, r.y, lane::select(is_t, lane::neg(r.z), r.z));
+            ok_s = ok_s && (!is_t || dot(ws, m) < F(0.f));
+        }
+        V3<F> wd = up;
+        if (lane::any(where && diff)) {
+            const V3<F> c = square_to_cosine_hemisphere<F>(u);
+            wd = V3<F>(c.x, c.y, lane::select(lane::float_mask(lobe == I(3)), lane::neg(c.z), c.z));
+        }
+        const V3<F> wsel = lane::select(is_spec, ws, lane::select(diff, wd, up));  // (up: no lobe)
+        const V3<F> wi(wsel.x * sgn, wsel.y * sgn, wsel.z * sgn);
+        const M ok = where && wo_in.z != F(0.f) && total > F(0.f) && ((is_spec && ok_s) || diff);
+        const EvalPdf ep = eval_pdf(ctx, wo_in, wi, ok);
+        // (Lanes without a sample get weight and density 0: eval_pdf's terms outside `ok` are not
+        // computed alike on every lane type.)
+        BxDFSampleT<F> s;
+        s.valid = ok && ep.pdf > F(0.f);
+        s.wi = wi;
+        s.pdf = lane::select(s.valid, ep.pdf, F(0.f));
+        s.weight = lane::select(s.valid, ep.f / lane::select(s.valid, ep.pdf, F(1.f)), RGB<F>(F(0.f)));
+        s.eta = F(1.f);
+        s.lobe = lane::select(lobe == I(0), I(int32_t(BxDFFlags::GlossyReflection)),
+                              lane::select(lobe == I(1), I(int32_t(BxDFFlags::GlossyTransmission)),
+                                           lane::select(lobe == I(2), I(int32_t(BxDFFlags::DiffuseReflection)),
+                                                        I(int32_t(BxDFFlags::DiffuseTransmission)))));
+        return s;
+    }
+};
+
+/// The path tracer's packet parameters of a thin sheet (kPrincipledThinParams floats): 0–2 base,
+/// 3–5 c_tint, 6 roughness, 7 specular_tint, 8 sheen, 9 sheen_tint, 10 flatness, 11 η, 12
+/// spec_trans, 13 d_t, 14–15 the reflection lobe's αx, αy, 16–17 the transmission lobe's.
+inline constexpr int kPrincipledThinParams = 18;
+inline void principled_thin_packet_params(const PrincipledThinT<float>& l, float* q) {
+    for (int c = 0; c < 3; ++c) q[c] = l.base[c], q[3 + c] = l.tint[c];
+    q[6] = l.roughness, q[7] = l.spec_tint, q[8] = l.sheen, q[9] = l.sheen_tint, q[10] = l.flatness, q[11] = l.eta;
+    q[12] = l.st, q[13] = l.dt, q[14] = l.spec.ax, q[15] = l.spec.ay, q[16] = l.trans.ax, q[17] = l.trans.ay;
+}
+/// The thin sheet from packet parameters q(k) on the lanes `where`; the other lanes (other models)
+/// get a black diffuse sheet of α 1.
+template <class F, class Q>
+inline PrincipledThinT<F> principled_thin_lanes(const MaskT<F>& where, Q q) {
+    auto at = [&](int k, float other) { return lane::select(where, q(k), F(other)); };
+    return {RGB<F>(at(0, 0.f), at(1, 0.f), at(2, 0.f)),
+            RGB<F>(at(3, 1.f), at(4, 1.f), at(5, 1.f)),
+            at(6, 1.f), at(7, 0.f), at(8, 0.f), at(9, 0.f), at(10, 0.f), at(11, 1.5f),
+            at(12, 0.f), at(13, 0.f),
+            GGXT<F>{at(14, 1.f), at(15, 1.f), MaskT<F>(false)},
+            GGXT<F>{at(16, 1.f), at(17, 1.f), MaskT<F>(false)}};
+}
+
 class PrincipledBSDF {
 public:
     /// Reads the 2015 fields of `p` (the `variant` field is not consulted). Scalars are clamped to
@@ -394,6 +566,11 @@ public:
         return {m_base,     m_tint,       m_metallic, m_roughness, m_spec_tint, m_sheen,
                 m_sheen_tint, m_flatness, m_clearcoat, m_cc_alpha,  m_cc_log_a2, m_eta,
                 m_w_brdf,   m_spec.lanes()};
+    }
+    /// The thin sheet's packet form's parameters (PrincipledThinT<float>; meaningful where thin()).
+    PrincipledThinT<float> thin_lanes() const {
+        return {m_base,       m_tint,     m_roughness, m_spec_tint, m_sheen,        m_sheen_tint,
+                m_flatness,   m_eta,      m_spec_trans, m_diff_trans, m_spec.lanes(), m_trans.lanes()};
     }
     const GGX& specular_distribution() const { return m_spec; }
     /// The thin sheet's transmission distribution (roughness × (0.65η − 0.35)).
@@ -416,11 +593,8 @@ private:
         float pdf = 0.f;
     };
     EvalPdf eval_pdf_solid(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
-    EvalPdf eval_pdf_thin(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
     std::optional<BxDFSample> sample_solid(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
                                            const Vec2f& u) const;
-    std::optional<BxDFSample> sample_thin(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
-                                          const Vec2f& u) const;
     /// w_diffuse·(diffuse, retro-reflection, fake subsurface) + w_sheen·sheen for a reflected pair
     /// on the +z side, as f·ci.
     Spectrum diffuse_sheen(float co, float ci, float cos_d, float w_diffuse, float w_sheen) const;

@@ -130,11 +130,18 @@ bool packet_rough_dielectric(const BxDF& b, int32_t* kind, float* q) {
 }
 
 static_assert(kPrincipledParams <= kPacketParams, "a principled BSDF's parameters fit a material's");
-/// A principled BSDF's packet form: the opaque solid (has_lanes); its parameters by
-/// principled_packet_params.
+static_assert(kPrincipledThinParams <= kPacketParams, "a thin principled BSDF's parameters fit a material's");
+/// A principled BSDF's packet form: the opaque solid (has_lanes; its parameters by
+/// principled_packet_params) or the thin sheet (principled_thin_packet_params).
 bool packet_principled(const BxDF& b, int32_t* kind, float* q) {
     const auto* p = std::get_if<PrincipledBSDF>(&b);
-    if (!p || !p->has_lanes()) return false;
+    if (!p) return false;
+    if (p->thin()) {
+        principled_thin_packet_params(p->thin_lanes(), q);
+        *kind = kPacketPrincipledThin;
+        return true;
+    }
+    if (!p->has_lanes()) return false;
     principled_packet_params(p->lanes(), q);
     *kind = kPacketPrincipled;
     return true;
@@ -164,6 +171,7 @@ int packet_param_count(int32_t kind) {
         case kPacketRoughDielectricBeckmann: return kRoughDielectricParams;
         case kPacketPrincipled: return kPrincipledParams;
         case kPacketPrincipled2012: return kPrincipled2012Params;
+        case kPacketPrincipledThin: return kPrincipledThinParams;
         case kPacketOrenNayar: return kOrenNayarParams;
         default: return 0;
     }

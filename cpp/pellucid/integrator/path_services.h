@@ -39,6 +39,7 @@ enum PacketKind : int32_t {
     kPacketThinDielectric = 11,  ///< ThinDielectricT (a delta form; parameters as the smooth dielectric's)
     kPacketOrenNayar = 12,       ///< classic or EON Oren–Nayar (OrenNayarT, oren_nayar_packet_params)
     kPacketPrincipled2012 = 13,  ///< principled BRDF, Burley 2012 (Principled2012T, principled2012_lanes)
+    kPacketPrincipledThin = 14,  ///< thin-sheet principled BSDF, Burley 2015 (PrincipledThinT, principled_thin_lanes)
 };
 constexpr int kPacketParams = 19;
 

@@ -14,8 +14,8 @@
 // through; u at 0, 1/2 and 1 − 2⁻²⁴; both transport modes and glossy-only, diffuse-only and
 // transmission-only contexts.
 //
-// Renders: bench/suite/principled.json, whose four opaque solids are packet forms beside a glass and
-// a thin sheet on BSDF lanes, gives the scalar target's image bit for bit on every SIMD target.
+// Renders: bench/suite/principled.json, whose four opaque solids and thin sheet are packet forms beside
+// a glass on BSDF lanes, gives the scalar target's image bit for bit on every SIMD target.
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
@@ -258,21 +258,26 @@ std::shared_ptr<const Scene> load_suite_scene(const char* file, int width, int h
 }  // namespace
 
 TEST(SimdTargetRenderPrincipled, SuiteSceneOpaqueSolidsArePacketForms) {
-    // The opaque solids of the suite's principled scenes run as kPacketPrincipled; the glass and
-    // the thin sheet stay BSDF lanes.
+    // The opaque solids of the suite's principled scenes run as kPacketPrincipled and the thin
+    // sheets as kPacketPrincipledThin; the glass stays a BSDF lane.
     for (const char* file : {"principled.json", "many_materials.json"}) {
         auto scene = load_suite_scene(file, 16, 16);
         const PathSetup ps = make_path_setup(*scene, 8, 5, true, true, SamplerType::Independent);
-        int packet = 0, lanes = 0;
+        int packet = 0, thin = 0, lanes = 0;
         for (size_t m = 0; m < scene->material_bxdfs.size(); ++m) {
             const auto* b = std::get_if<PrincipledBSDF>(&scene->material_bxdfs[m]);
             if (!b) continue;
-            const bool mine = ps.packet_kind[m] == int32_t(kPacketPrincipled);
-            EXPECT_EQ(mine, b->has_lanes()) << file << " " << m;
-            (mine ? packet : lanes) += 1;
+            const bool solid = ps.packet_kind[m] == int32_t(kPacketPrincipled);
+            const bool sheet = ps.packet_kind[m] == int32_t(kPacketPrincipledThin);
+            EXPECT_EQ(solid, b->has_lanes()) << file << " " << m;
+            EXPECT_EQ(sheet, b->thin()) << file << " " << m;
+            (solid ? packet : sheet ? thin : lanes) += 1;
         }
         EXPECT_GE(packet, 3) << file;
-        if (std::string(file) == "principled.json") EXPECT_EQ(lanes, 2);
+        if (std::string(file) == "principled.json") {
+            EXPECT_EQ(thin, 1);
+            EXPECT_EQ(lanes, 1);
+        }
     }
 }
 
