@@ -1,18 +1,19 @@
-// Lanes equal scalars for the opaque solid principled BSDF's packet form (bxdf/principled_probe.h):
-// on every lane of every SIMD target, eval, pdf and sample give exactly the bits the float
+// Lanes equal scalars for the principled BSDF's two packet forms, the opaque solid (PrincipledBSDFT,
+// bxdf/principled_probe.h) and the thin sheet (PrincipledThinT, bxdf/principled_thin_probe.h): on
+// every lane of every SIMD target, eval, pdf and sample give exactly the bits the float
 // instantiation gives for that lane's inputs (a bound of 0 ulp: the library and the probes are built
-// without contraction; the half vector with its Fresnel and the clear coat's GTR1 normal are the
-// float functions' own, called a lane at a time, and the rest uses only IEEE-exact lane operations).
-// The float instantiation, built from packet parameters as the path tracer builds it, in turn gives
-// the bits of the scalar BxDF API (PrincipledBSDF where has_lanes()).
+// without contraction; the solid's half vector with its Fresnel and the clear coat's GTR1 normal are
+// the float functions' own, called a lane at a time, and the rest of both forms uses only IEEE-exact
+// lane operations). The float instantiation, built from packet parameters as the path tracer builds
+// it, in turn gives the bits of the scalar BxDF API (PrincipledBSDF where has_lanes(), or thin()).
 //
 // Cases: the property suite's principled BSDFs (bxdf_cases.h: its cases and sweeps over metallic,
-// roughness, η and the tints) that are opaque solids, and a few more (η = 1, where the dielectric
-// Fresnel vanishes; the glossiest clear coat; tinted sheen and specular), one material per lane at
-// random so every packet mixes materials; lanes of other models and partially masked packets;
-// directions on, near and below the horizon, at the normal, in the mirror direction and straight
-// through; u at 0, 1/2 and 1 − 2⁻²⁴; both transport modes and glossy-only, diffuse-only and
-// transmission-only contexts.
+// roughness, η, the transmissions and the tints) of each form, and a few more (η = 1, where the
+// dielectric Fresnel vanishes; the glossiest clear coat; tinted sheen and specular; a sheet all
+// diffuse transmission, one all specular), one material per lane at random so every packet mixes
+// materials; lanes of other models and partially masked packets; directions on, near and below the
+// horizon, at the normal, in the mirror direction and straight through; u at 0, 1/2 and 1 − 2⁻²⁴;
+// both transport modes and glossy-only, diffuse-only and transmission-only contexts.
 //
 // Renders: bench/suite/principled.json, whose four opaque solids and thin sheet are packet forms beside
 // a glass on BSDF lanes, gives the scalar target's image bit for bit on every SIMD target.
@@ -26,6 +27,7 @@
 
 #include "bxdf/bxdf_cases.h"
 #include "bxdf/principled_probe.h"
+#include "bxdf/principled_thin_probe.h"
 #include "pellucid/api.h"
 #include "pellucid/integrator/path_services.h"
 #include "pellucid/integrator/simd_target.h"
@@ -47,12 +49,21 @@ void run_avx2(const In& in, Out& out);
 void run_sse4(const In& in, Out& out);
 #endif
 }  // namespace pellucid::principled_probe
+namespace pellucid::principled_thin_probe {
+#ifdef PELLUCID_PRINCIPLED_THIN_PROBE_AVX512
+void run_avx512(const In& in, Out& out);
+#endif
+#ifdef PELLUCID_PRINCIPLED_THIN_PROBE_AVX2
+void run_avx2(const In& in, Out& out);
+#endif
+#ifdef PELLUCID_PRINCIPLED_THIN_PROBE_SSE4
+void run_sse4(const In& in, Out& out);
+#endif
+}  // namespace pellucid::principled_thin_probe
 
 namespace {
-constexpr int kP = kPrincipledParams;
-
-/// The property suite's principled BSDFs that have a packet form (opaque solids), and a few more.
-std::vector<PrincipledBSDF> materials() {
+/// The property suite's opaque solid principled BSDFs, and a few more.
+std::vector<PrincipledBSDF> solid_materials() {
     std::vector<PrincipledBSDF> m;
     using test::BxDFCases;
     auto add = [&](const PrincipledBSDF& b) {
@@ -86,19 +97,99 @@ std::vector<PrincipledBSDF> materials() {
     return m;
 }
 
+/// The property suite's thin principled BSDFs, and a few more.
+std::vector<PrincipledBSDF> thin_materials() {
+    std::vector<PrincipledBSDF> m;
+    using test::BxDFCases;
+    auto add = [&](const PrincipledBSDF& b) {
+        if (b.thin()) m.push_back(b);
+    };
+    for (const auto& c : BxDFCases<PrincipledBSDF>::cases()) add(c.bxdf);
+    for (const auto& b : BxDFCases<PrincipledBSDF>::sweep()) add(b);
+    PrincipledInputs p;
+    p.variant = PrincipledVariant::Burley2015;
+    p.thin = true;
+    p.base_color = Spectrum(0.2f, 0.5f, 0.9f);
+    p.roughness = 0.35f;
+    p.anisotropic = 0.6f;
+    p.sheen = 0.8f;
+    p.sheen_tint = 0.7f;
+    p.specular_tint = 0.6f;
+    p.specular_transmission = 0.4f;
+    p.diffuse_transmission = 0.7f;
+    add(PrincipledBSDF(p));
+    p.eta = 1.f;  // F_η = 0: no specular reflection value, but its lobe is still sampled
+    add(PrincipledBSDF(p));
+    p.eta = 0.f;
+    p.specular_transmission = 0.f;
+    p.diffuse_transmission = 2.f;  // all diffuse transmission
+    add(PrincipledBSDF(p));
+    p.specular_transmission = 1.f;  // all specular
+    p.roughness = 0.05f;
+    add(PrincipledBSDF(p));
+    return m;
+}
+
+/// The two packet forms: their materials, packet parameters, probes and the parameter a test
+/// changes in one lane (the solid's clear coat, the sheet's specular transmission).
+struct Solid {
+    static constexpr int kP = kPrincipledParams, kChanged = 12;
+    using In = principled_probe::In;
+    static std::vector<PrincipledBSDF> materials() { return solid_materials(); }
+    static void params(const PrincipledBSDF& b, float* q) { principled_packet_params(b.lanes(), q); }
+    static void run_float(const In& in, form_probe::Out& out) { principled_probe::run<float>(in, out); }
+    static bool run_target(SimdTarget t, const In& in, form_probe::Out& out) {
+        switch (t) {
+#ifdef PELLUCID_PRINCIPLED_PROBE_AVX512
+            case SimdTarget::AVX512: principled_probe::run_avx512(in, out); return true;
+#endif
+#ifdef PELLUCID_PRINCIPLED_PROBE_AVX2
+            case SimdTarget::AVX2: principled_probe::run_avx2(in, out); return true;
+#endif
+#ifdef PELLUCID_PRINCIPLED_PROBE_SSE4
+            case SimdTarget::SSE4: principled_probe::run_sse4(in, out); return true;
+#endif
+            default: return false;
+        }
+    }
+};
+struct Thin {
+    static constexpr int kP = kPrincipledThinParams, kChanged = 12;
+    using In = principled_thin_probe::In;
+    static std::vector<PrincipledBSDF> materials() { return thin_materials(); }
+    static void params(const PrincipledBSDF& b, float* q) { principled_thin_packet_params(b.thin_lanes(), q); }
+    static void run_float(const In& in, form_probe::Out& out) { principled_thin_probe::run<float>(in, out); }
+    static bool run_target(SimdTarget t, const In& in, form_probe::Out& out) {
+        switch (t) {
+#ifdef PELLUCID_PRINCIPLED_THIN_PROBE_AVX512
+            case SimdTarget::AVX512: principled_thin_probe::run_avx512(in, out); return true;
+#endif
+#ifdef PELLUCID_PRINCIPLED_THIN_PROBE_AVX2
+            case SimdTarget::AVX2: principled_thin_probe::run_avx2(in, out); return true;
+#endif
+#ifdef PELLUCID_PRINCIPLED_THIN_PROBE_SSE4
+            case SimdTarget::SSE4: principled_thin_probe::run_sse4(in, out); return true;
+#endif
+            default: return false;
+        }
+    }
+};
+
+template <class Form>
 struct Cases {
     static constexpr int kN = 16384;
-    std::vector<PrincipledBSDF> mats = materials();
+    static constexpr int kP = Form::kP;
+    std::vector<PrincipledBSDF> mats = Form::materials();
     std::vector<float> params;  // kP per material
     std::vector<float> q[kP], a[9];
     std::vector<int> mat;  // -1: a lane of another model
     std::vector<int32_t> kind;
     std::unique_ptr<bool[]> active{new bool[kN]};
-    principled_probe::In in;
+    typename Form::In in;
 
     Cases() {
         params.resize(mats.size() * kP);
-        for (size_t m = 0; m < mats.size(); ++m) principled_packet_params(mats[m].lanes(), &params[m * kP]);
+        for (size_t m = 0; m < mats.size(); ++m) Form::params(mats[m], &params[m * kP]);
         PCG32 rng(9, 31);
         for (auto& v : q) v.resize(kN);
         for (auto& v : a) v.resize(kN);
@@ -141,7 +232,8 @@ struct Cases {
     Vec3f wi(int i) const { return Vec3f(a[3][size_t(i)], a[4][size_t(i)], a[5][size_t(i)]); }
 };
 
-using Outputs = test::ProbeOutputs<principled_probe::Out, principled_probe::kOutputs, Cases::kN>;
+constexpr int kN = Cases<Solid>::kN;
+using Outputs = test::ProbeOutputs<form_probe::Out, form_probe::kOutputs, kN>;
 using test::same_bits;
 
 void expect_equal(const Outputs& scalar, const Outputs& packet, const char* target) {
@@ -150,7 +242,7 @@ void expect_equal(const Outputs& scalar, const Outputs& packet, const char* targ
 }  // namespace
 
 TEST(PrincipledLanes, TheGridIsCovered) {
-    const Cases cases;
+    const Cases<Solid> cases;
     EXPECT_GE(cases.mats.size(), 50u);
     // Every lobe of the model is present in some material.
     bool metal = false, coat = false, sheen = false, tint = false;
@@ -164,26 +256,47 @@ TEST(PrincipledLanes, TheGridIsCovered) {
     EXPECT_TRUE(metal && coat && sheen && tint);
 }
 
-TEST(PrincipledLanes, FloatInstantiationIsTheScalarBxDF) {
+TEST(PrincipledThinLanes, TheGridIsCovered) {
+    const Cases<Thin> cases;
+    EXPECT_GE(cases.mats.size(), 30u);
+    // Every lobe of the model is present in some material.
+    bool spec = false, diff_t = false, diff_r = false, tint = false, sheen = false;
+    for (const auto& m : cases.mats) {
+        const PrincipledThinT<float> l = m.thin_lanes();
+        spec = spec || l.st > 0.f;
+        diff_t = diff_t || (l.st < 1.f && l.dt > 0.f);
+        diff_r = diff_r || (l.st < 1.f && l.dt < 1.f);
+        tint = tint || l.spec_tint > 0.f;
+        sheen = sheen || (l.sheen > 0.f && l.sheen_tint > 0.f);
+    }
+    EXPECT_TRUE(spec && diff_t && diff_r && tint && sheen);
+}
+
+template <class Form>
+class PrincipledFormLanes : public ::testing::Test {};
+using PrincipledForms = ::testing::Types<Solid, Thin>;
+TYPED_TEST_SUITE(PrincipledFormLanes, PrincipledForms);
+
+TYPED_TEST(PrincipledFormLanes, FloatInstantiationIsTheScalarBxDF) {
     // The float instantiation from packet parameters gives the scalar API's bits: eval, pdf and
     // sample in each context, case by case; many cases sample each lobe.
-    const Cases cases;
+    const Cases<TypeParam> cases;
     Outputs scalar;
-    principled_probe::run<float>(cases.in, scalar.out);
+    TypeParam::run_float(cases.in, scalar.out);
     size_t compared = 0, differ = 0, diffuse = 0, glossy = 0, nonzero = 0;
     auto check = [&](float x, float y, int k, int i) {
         ++compared;
         if (!same_bits(x, y) && ++differ <= 5)
             ADD_FAILURE() << "output " << k << " case " << i << ": packet form " << x << ", BxDF " << y;
     };
-    for (int i = 0; i < Cases::kN; ++i) {
+    for (int i = 0; i < kN; ++i) {
         if (cases.mat[size_t(i)] < 0 || !cases.active[i]) continue;
         const PrincipledBSDF& b = cases.mats[size_t(cases.mat[size_t(i)])];
         const Vec3f wo = cases.wo(i), wi = cases.wi(i);
         const Vec2f u(cases.a[7][size_t(i)], cases.a[8][size_t(i)]);
-        for (int c = 0; c < principled_probe::kContexts; ++c) {
-            const BxDFContext ctx{principled_probe::kMode[c], principled_probe::kAllowed[c]};
-            const int k0 = c * principled_probe::kPerContext;
+        for (int c = 0; c < form_probe::kContexts; ++c) {
+            const BxDFContext ctx{form_probe::kMode[c], form_probe::kAllowed[c]};
+            const int k0 = c * form_probe::kPerContext;
             const Spectrum f = b.eval(ctx, wo, wi);
             nonzero += !f.is_black();
             for (int ch = 0; ch < 3; ++ch) check(scalar.at(k0 + ch, i), f[ch], k0 + ch, i);
@@ -200,47 +313,37 @@ TEST(PrincipledLanes, FloatInstantiationIsTheScalarBxDF) {
         }
     }
     EXPECT_EQ(differ, 0u) << "of " << compared;
-    EXPECT_GT(diffuse, size_t(Cases::kN) / 4);
-    EXPECT_GT(glossy, size_t(Cases::kN));
-    EXPECT_GT(nonzero, size_t(Cases::kN));
+    EXPECT_GT(diffuse, size_t(kN) / 4);
+    EXPECT_GT(glossy, size_t(kN));
+    EXPECT_GT(nonzero, size_t(kN));
 }
 
-TEST(PrincipledLanes, EveryTargetEveryLane) {
-    const Cases cases;
+TYPED_TEST(PrincipledFormLanes, EveryTargetEveryLane) {
+    const Cases<TypeParam> cases;
     Outputs scalar;
-    principled_probe::run<float>(cases.in, scalar.out);
+    TypeParam::run_float(cases.in, scalar.out);
     int targets = 0;
     for (SimdTarget t : available_simd_targets()) {
         Outputs packet;
-        switch (t) {
-#ifdef PELLUCID_PRINCIPLED_PROBE_AVX512
-            case SimdTarget::AVX512: principled_probe::run_avx512(cases.in, packet.out); break;
-#endif
-#ifdef PELLUCID_PRINCIPLED_PROBE_AVX2
-            case SimdTarget::AVX2: principled_probe::run_avx2(cases.in, packet.out); break;
-#endif
-#ifdef PELLUCID_PRINCIPLED_PROBE_SSE4
-            case SimdTarget::SSE4: principled_probe::run_sse4(cases.in, packet.out); break;
-#endif
-            default: continue;
-        }
+        if (!TypeParam::run_target(t, cases.in, packet.out)) continue;
         ++targets;
         expect_equal(scalar, packet, to_string(t).c_str());
     }
-    RecordProperty("targets", targets);
+    this->RecordProperty("targets", targets);
 }
 
-TEST(PrincipledLanes, ACaseChangedInOneLaneIsSeen) {
-    // The comparison itself: another clear coat in one lane must change that lane's outputs only.
-    Cases cases;
+TYPED_TEST(PrincipledFormLanes, ACaseChangedInOneLaneIsSeen) {
+    // The comparison itself: another value of one parameter in one lane must change that lane's
+    // outputs only.
+    Cases<TypeParam> cases;
     Outputs a, b;
-    principled_probe::run<float>(cases.in, a.out);
+    TypeParam::run_float(cases.in, a.out);
     int lane = 0;
     while (!(cases.kind[size_t(lane)] == 1 && cases.active[lane] && cases.wo(lane).z > 0.1f && cases.wi(lane).z > 0.1f &&
-             cases.q[12][size_t(lane)] > 0.f))
+             cases.q[TypeParam::kChanged][size_t(lane)] > 0.f))
         ++lane;
-    const_cast<float*>(cases.in.q[12])[lane] *= 0.5f;
-    principled_probe::run<float>(cases.in, b.out);
+    const_cast<float*>(cases.in.q[TypeParam::kChanged])[lane] *= 0.5f;
+    TypeParam::run_float(cases.in, b.out);
     const std::vector<int> changed = test::differing_cases(a, b);
     EXPECT_FALSE(changed.empty());
     for (int i : changed) EXPECT_EQ(i, lane);
