@@ -46,7 +46,7 @@ from profile_suite import suite_entries  # noqa: E402
 FORMS = {1: "lambertian", 2: "smooth dielectric", 3: "smooth conductor", 4: "rough conductor (GGX)",
          5: "plastic (smooth or GGX)", 6: "rough conductor (Beckmann)", 7: "rough plastic (Beckmann)",
          8: "rough dielectric (GGX)", 9: "rough dielectric (Beckmann)", 10: "principled 2015",
-         11: "thin dielectric", 12: "Oren-Nayar", 13: "principled 2012", 14: "principled thin sheet"}
+         11: "thin dielectric", 12: "Oren-Nayar", 13: "principled 2012", 14: "principled thin sheet", 15: "principled solid with transmission"}
 LINE = re.compile(r"dispatch form (-?\d+) calls (\d+) lanes (\d+) width (\d+) cycles (\d+)")
 
 

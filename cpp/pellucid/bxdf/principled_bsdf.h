@@ -222,6 +222,43 @@ inline V3<F> principled_gtr1_normal_lanes(const F& alpha, const V2<F>& u, const 
         return V3<F>(lane::load_as<F>(out[0]), lane::load_as<F>(out[1]), lane::load_as<F>(out[2]));
     }
 }
+/// What the solid with a transmission lobe needs of the half vector of (wo, wi) with wo.z, wi.z ≠ 0,
+/// in double as its scalar code computed it: h (generalised for transmission, Walter et al. 2007
+/// eq. 16, oriented to +z), wo·h and wi·h, the dielectric Fresnel (from wi's side for transmission
+/// from the denser side), the Jacobian's denominator (wo·h + η' wi·h)² and η' (η(wi side)/η(wo
+/// side)); ok false where h is undefined.
+struct PrincipledSolidHalf {
+    Vec3f h{0.f, 0.f, 1.f};
+    float dot_o = 0.f, dot_i = 0.f, F = 0.f, denom = 0.f, etap = 1.f;
+    bool ok = false;
+};
+PrincipledSolidHalf principled_solid_half(const Vec3f& wo, const Vec3f& wi, float eta);
+/// principled_solid_half over a lane type F, one lane at a time (lanes outside `where`: the default).
+template <class F>
+inline void principled_solid_half_lanes(const V3<F>& wo, const V3<F>& wi, const F& eta, const MaskT<F>& where,
+                                        V3<F>* h, F* dot_o, F* dot_i, F* fr, F* denom, F* etap, MaskT<F>* ok) {
+    if constexpr (std::is_same_v<F, float>) {
+        const PrincipledSolidHalf p = where ? principled_solid_half(wo, wi, eta) : PrincipledSolidHalf{};
+        *h = p.h, *dot_o = p.dot_o, *dot_i = p.dot_i, *fr = p.F, *denom = p.denom, *etap = p.etap, *ok = p.ok;
+    } else {
+        constexpr int W = kLaneWidth<F>;
+        alignas(64) float in[7][W], out[8][W];
+        alignas(64) bool on[W], good[W];
+        lane::store(in[0], wo.x), lane::store(in[1], wo.y), lane::store(in[2], wo.z);
+        lane::store(in[3], wi.x), lane::store(in[4], wi.y), lane::store(in[5], wi.z);
+        lane::store(in[6], eta), lane::store(on, where);
+        for (int i = 0; i < W; ++i) {
+            const PrincipledSolidHalf p = on[i] ? principled_solid_half(Vec3f(in[0][i], in[1][i], in[2][i]),
+                                                                        Vec3f(in[3][i], in[4][i], in[5][i]), in[6][i])
+                                                : PrincipledSolidHalf{};
+            out[0][i] = p.h.x, out[1][i] = p.h.y, out[2][i] = p.h.z, out[3][i] = p.dot_o, out[4][i] = p.dot_i;
+            out[5][i] = p.F, out[6][i] = p.denom, out[7][i] = p.etap, good[i] = p.ok;
+        }
+        auto L = [&](int k) { return lane::load_as<F>(out[k]); };
+        *h = V3<F>(L(0), L(1), L(2)), *dot_o = L(3), *dot_i = L(4), *fr = L(5), *denom = L(6), *etap = L(7);
+        *ok = lane::load_mask_as<MaskT<F>>(good);
+    }
+}
 }  // namespace principled_detail
 
 /// The opaque solid principled BSDF over a lane type F (header comment, "Packet form"): per-lane
@@ -376,6 +413,177 @@ inline PrincipledBSDFT<F> principled_lanes(const MaskT<F>& where, Q q) {
             at(13, 0.1f), at(14, -4.6051702f), at(15, 1.5f),
             at(18, 1.f),
             GGXT<F>{at(16, 1.f), at(17, 1.f), MaskT<F>(false)}};
+}
+
+/// The solid with a transmission lobe (header comment, SOLID; w_bsdf > 0) over a lane type F: the
+/// opaque form's parameters and w_bsdf. PrincipledBSDF's eval, pdf and sample are its float
+/// instantiation where neither has_lanes() nor thin(), and the path tracer shades such solids with it
+/// (kPacketPrincipledSolid). The half vector, its Fresnel and the Jacobian's denominator are the
+/// double-precision function's (principled_solid_half), called a lane at a time; the rest is lane
+/// operations.
+template <class F>
+struct PrincipledSolidT {
+    PrincipledBSDFT<F> o;  ///< base … w_brdf, as the opaque form
+    F w_bsdf;
+
+    struct EvalPdf {
+        RGB<F> f;
+        F pdf;
+    };
+    EvalPdf eval_pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi, const MaskT<F>& where) const {
+        using namespace principled_detail;
+        using M = MaskT<F>;
+        const F co = wo.z, ci = wi.z;
+        const M pair = co != F(0.f) && ci != F(0.f);
+        const M front = co > F(0.f), reflect = co * ci > F(0.f);
+        V3<F> h;
+        F dot_o, dot_i, fr, denom, etap;
+        M ok;
+        principled_solid_half_lanes<F>(wo, wi, o.eta, where && pair, &h, &dot_o, &dot_i, &fr, &denom, &etap, &ok);
+        const F s = lane::select(front, F(1.f), F(-1.f));
+        const M compatible = dot_o * s > F(0.f) && lane::select(reflect, dot_i * s > F(0.f), dot_i * s < F(0.f));
+        // Lobe probabilities: the specular group split at h by F.
+        const bool gr = allows(ctx, BxDFFlags::GlossyReflection), gt = allows(ctx, BxDFFlags::GlossyTransmission),
+                   dr = allows(ctx, BxDFFlags::DiffuseReflection);
+        const F pr = gr ? lane::select(front, F(1.f) - w_bsdf * (F(1.f) - fr), fr) : F(0.f);
+        const F pt = lane::select(w_bsdf > F(0.f) && M(gt), lane::select(front, w_bsdf * (F(1.f) - fr), F(1.f) - fr), F(0.f));
+        const F g_spec = lane::select(pr + pt > F(0.f), F(1.f), F(0.f));
+        F p_cc = lane::select(front && o.clearcoat > F(0.f) && M(gr), F(0.25f) * o.clearcoat, F(0.f));
+        F p_d = lane::select(front && o.w_brdf > F(0.f) && M(dr), o.w_brdf, F(0.f));
+        const F total = g_spec + p_cc + p_d;
+        const F inv_total = lane::select(total > F(0.f), F(1.f) / lane::select(total > F(0.f), total, F(1.f)), F(0.f));
+        const M spec = g_spec > F(0.f);
+        const F prt = lane::select(spec, pr + pt, F(1.f));
+        const F p_r = lane::select(spec, pr / prt * inv_total, F(0.f));
+        const F p_t = lane::select(spec, pt / prt * inv_total, F(0.f));
+        p_cc = p_cc * inv_total;
+        p_d = p_d * inv_total;
+
+        const F aco = lane::abs(co), aci = lane::abs(ci);
+        const F D = o.spec.D(h);
+        const F G = lane::select(compatible, g1<F>(o.spec, wo, h) * g1<F>(o.spec, wi, h), F(0.f));
+        const F vis = lane::select(compatible, o.spec.pdf_visible(wo, h), F(0.f));
+        RGB<F> f(F(0.f));
+        F pdf(F(0.f));
+        // Reflection: the blended Fresnel (front) or the bare interface (back), the clear coat and
+        // the diffuse and sheen (front).
+        {
+            const F jac = F(1.f) / (F(4.f) * lane::abs(dot_i));
+            const M lobe = reflect && compatible && fr > F(0.f);
+            RGB<F> Fp = lane::select(front, RGB<F>((F(1.f) - o.metallic) * (F(1.f) - o.spec_tint) * fr), RGB<F>(w_bsdf * fr));
+            const M metal = front && o.metallic > F(0.f), tinted = front && o.spec_tint > F(0.f);
+            if (lane::any(where && lobe && metal)) Fp = lane::select(metal, Fp + schlick<F>(o.base, dot_o, o.eta) * o.metallic, Fp);
+            if (lane::any(where && lobe && tinted)) {
+                const F eta_it = lane::select(dot_o >= F(0.f), o.eta, F(1.f) / o.eta);
+                const F r = (eta_it - F(1.f)) / (eta_it + F(1.f));
+                Fp = lane::select(tinted, Fp + schlick<F>(o.tint * (r * r), dot_o, o.eta) * ((F(1.f) - o.metallic) * o.spec_tint), Fp);
+            }
+            f = lane::select(lobe, f + Fp * (D * G / (F(4.f) * aco)), f);
+            pdf = lane::select(reflect, pdf + p_r * vis * jac, pdf);
+            const M cc = reflect && front && o.clearcoat > F(0.f);
+            if (lane::any(where && cc)) {
+                const F Dc = gtr1<F>(h.z, o.cc_alpha, o.cc_log_a2);
+                const F Fc = schlick<F>(F(0.04f), dot_o, o.eta);
+                const GGXT<F> coat{F(0.25f), F(0.25f), M(false)};
+                const F fc = F(0.25f) * o.clearcoat * Fc * Dc * (g1<F>(coat, wo, h) * g1<F>(coat, wi, h)) * aci;
+                f = lane::select(cc && compatible, f + RGB<F>(fc), f);
+                pdf = lane::select(cc, pdf + p_cc * Dc * h.z * jac, pdf);
+            }
+            const M diffuse = reflect && front && o.w_brdf > F(0.f);
+            if (lane::any(where && diffuse)) {
+                const RGB<F> ds = diffuse_sheen<F>(o.base, o.tint, o.roughness, o.flatness, o.sheen, o.sheen_tint, aco, aci,
+                                                   dot_i, o.w_brdf, F(1.f) - o.metallic, where && diffuse);
+                f = lane::select(diffuse, f + ds, f);
+            }
+            pdf = lane::select(reflect && front, pdf + p_d * aci * F(kInvPi), pdf);
+        }
+        // Transmission: Walter et al. 2007, eq. 21 × |cos θi| (Radiance divides by η'²), tinted by
+        // √base; its density by eq. 17.
+        {
+            const M lobe = !reflect && compatible && denom > F(0.f);
+            const M on = lobe && w_bsdf > F(0.f) && fr < F(1.f);
+            F ft = w_bsdf * (F(1.f) - fr) * D * G * etap * etap * lane::abs(dot_o * dot_i) / (aco * lane::select(lobe, denom, F(1.f)));
+            if (ctx.mode == TransportMode::Radiance) ft = ft / (etap * etap);
+            const RGB<F> sqrt_base(lane::sqrt(o.base.r), lane::sqrt(o.base.g), lane::sqrt(o.base.b));
+            f = lane::select(on, f + sqrt_base * ft, f);
+            pdf = lane::select(lobe, pdf + p_t * vis * etap * etap * lane::abs(dot_i) / lane::select(lobe, denom, F(1.f)), pdf);
+        }
+        EvalPdf out;
+        out.f = lane::select(pair && ok, f, RGB<F>(F(0.f)));
+        out.pdf = lane::select(pair && ok, pdf, F(0.f));
+        return out;
+    }
+    /// Mitsuba's lobe choice (header comment) on the lanes `where` (others: not valid, weight and
+    /// density 0).
+    BxDFSampleT<F> sample(const BxDFContext& ctx, const V3<F>& wo, const F& u_lobe, const V2<F>& u, const MaskT<F>& where) const {
+        using namespace principled_detail;
+        using M = MaskT<F>;
+        const F co = wo.z;
+        const M front = co > F(0.f);
+        const bool gr = allows(ctx, BxDFFlags::GlossyReflection), gt = allows(ctx, BxDFFlags::GlossyTransmission),
+                   dr = allows(ctx, BxDFFlags::DiffuseReflection);
+        const M spec_ok = M(gr) || (w_bsdf > F(0.f) && M(gt));
+        const F g_spec = lane::select(spec_ok, F(1.f), F(0.f));
+        const F p_cc = lane::select(front && o.clearcoat > F(0.f) && M(gr), F(0.25f) * o.clearcoat, F(0.f));
+        const F p_d = lane::select(front && o.w_brdf > F(0.f) && M(dr), o.w_brdf, F(0.f));
+        const F total = g_spec + p_cc + p_d;
+        const F x = u_lobe * total;
+        const M is_d = x < p_d, is_cc = !is_d && x < p_d + p_cc, is_spec = !is_d && !is_cc;
+        const V3<F> up(F(0.f), F(0.f), F(1.f));
+        const V3<F> wd = lane::any(where && is_d) ? square_to_cosine_hemisphere<F>(u) : up;
+        V3<F> wc = up;
+        M ok_c(false);
+        if (lane::any(where && is_cc)) {
+            const V3<F> mc = principled_gtr1_normal_lanes<F>(o.cc_alpha, u, where && is_cc);
+            wc = -wo + F(2.f) * dot(wo, mc) * mc;
+            ok_c = dot(wo, mc) > F(0.f) && wc.z > F(0.f);
+        }
+        V3<F> ws = up;
+        M ok_s(false), refracted(false);
+        F etap(1.f);
+        if (lane::any(where && is_spec)) {
+            const V3<F> m = o.spec.sample_visible(wo, u);
+            const F fr = fresnel_dielectric<F>(dot(wo, m), o.eta);
+            const F pr = gr ? lane::select(front, F(1.f) - w_bsdf * (F(1.f) - fr), fr) : F(0.f);
+            const F pt = lane::select(w_bsdf > F(0.f) && M(gt), lane::select(front, w_bsdf * (F(1.f) - fr), F(1.f) - fr), F(0.f));
+            const M any_lobe = pr + pt > F(0.f);
+            const F v = lane::min((x - p_d - p_cc) / g_spec, F(kOneMinusEpsilon));
+            const M refl = v * (pr + pt) < pr;
+            const V3<F> wr = -wo + F(2.f) * dot(wo, m) * m;
+            V3<F> wt;
+            const M tir_free = refract<F>(wo, m, o.eta, &etap, &wt);
+            refracted = !refl;
+            ws = lane::select(refl, wr, wt);
+            ok_s = any_lobe && lane::select(refl, wr.z * co > F(0.f), tir_free && wt.z * co < F(0.f));
+        }
+        const V3<F> wi = lane::select(is_d, wd, lane::select(is_cc, wc, ws));
+        const M ok = where && co != F(0.f) && total > F(0.f) && (is_d || (is_cc && ok_c) || (is_spec && ok_s));
+        const EvalPdf ep = eval_pdf(ctx, wo, wi, ok);
+        BxDFSampleT<F> s;
+        s.valid = ok && ep.pdf > F(0.f);
+        s.wi = wi;
+        s.pdf = lane::select(s.valid, ep.pdf, F(0.f));
+        s.weight = lane::select(s.valid, ep.f / lane::select(s.valid, ep.pdf, F(1.f)), RGB<F>(F(0.f)));
+        const M t = is_spec && refracted;
+        s.eta = lane::select(s.valid && t, etap, F(1.f));
+        s.lobe = lane::select(lane::int_mask(is_d), IntT<F>(int32_t(BxDFFlags::DiffuseReflection)),
+                              lane::select(lane::int_mask(t), IntT<F>(int32_t(BxDFFlags::GlossyTransmission)),
+                                           IntT<F>(int32_t(BxDFFlags::GlossyReflection))));
+        return s;
+    }
+};
+/// The path tracer's packet parameters of a solid with a transmission lobe (kPrincipledSolidParams
+/// floats): the opaque form's (principled_packet_params), then 19 w_bsdf.
+inline constexpr int kPrincipledSolidParams = 20;
+inline void principled_solid_packet_params(const PrincipledSolidT<float>& l, float* q) {
+    principled_packet_params(l.o, q);
+    q[19] = l.w_bsdf;
+}
+/// The solid from packet parameters q(k) on the lanes `where` (other lanes: principled_lanes' and no
+/// transmission).
+template <class F, class Q>
+inline PrincipledSolidT<F> principled_solid_lanes(const MaskT<F>& where, Q q) {
+    return {principled_lanes<F>(where, q), lane::select(where, q(19), F(0.f))};
 }
 
 /// The thin sheet (header comment, THIN) over a lane type F: per-lane parameters. PrincipledBSDF's
@@ -567,6 +775,9 @@ public:
                 m_sheen_tint, m_flatness, m_clearcoat, m_cc_alpha,  m_cc_log_a2, m_eta,
                 m_w_brdf,   m_spec.lanes()};
     }
+    /// The solid's packet form's parameters with its transmission lobe (PrincipledSolidT<float>;
+    /// meaningful where neither has_lanes() nor thin()).
+    PrincipledSolidT<float> solid_lanes() const { return {lanes(), m_w_bsdf}; }
     /// The thin sheet's packet form's parameters (PrincipledThinT<float>; meaningful where thin()).
     PrincipledThinT<float> thin_lanes() const {
         return {m_base,       m_tint,     m_roughness, m_spec_tint, m_sheen,        m_sheen_tint,
@@ -588,18 +799,7 @@ public:
     static Spectrum schlick(const Spectrum& r0, float cos_i, float eta);
 
 private:
-    struct EvalPdf {
-        Spectrum f{0.f};
-        float pdf = 0.f;
-    };
-    EvalPdf eval_pdf_solid(const BxDFContext& ctx, const Vec3f& wo, const Vec3f& wi) const;
-    std::optional<BxDFSample> sample_solid(const BxDFContext& ctx, const Vec3f& wo, float u_lobe,
-                                           const Vec2f& u) const;
-    /// w_diffuse·(diffuse, retro-reflection, fake subsurface) + w_sheen·sheen for a reflected pair
-    /// on the +z side, as f·ci.
-    Spectrum diffuse_sheen(float co, float ci, float cos_d, float w_diffuse, float w_sheen) const;
-
-    Spectrum m_base, m_sqrt_base, m_tint;  // base colour, √base, c_tint
+    Spectrum m_base, m_tint;  // base colour, c_tint
     float m_metallic, m_roughness, m_spec_trans, m_spec_tint, m_sheen, m_sheen_tint, m_flatness;
     float m_clearcoat, m_cc_alpha, m_cc_log_a2, m_diff_trans, m_eta;
     float m_w_brdf, m_w_bsdf;

@@ -966,6 +966,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const bool any_pthin = lane::any(is_pthin);
                 const PrincipledThinT<F> pthin =
                     principled_thin_lanes<F>(is_pthin, [&](int k) { return any_pthin ? LD(a.q[k]) : F(0.f); });
+                // The principled solids with a transmission lobe.
+                const M is_psolid = fast && kind == F(float(kPacketPrincipledSolid));
+                const bool any_psolid = lane::any(is_psolid);
+                const PrincipledSolidT<F> psolid =
+                    principled_solid_lanes<F>(is_psolid, [&](int k) { return any_psolid ? LD(a.q[k]) : F(0.f); });
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
                 // Bump- and normal-mapped lanes whose terminator is softened (BSDF::soften_terminator).
@@ -987,7 +992,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     // (Of the packet forms the Lambertian, Oren–Nayar, the rough conductors, the
                     // plastics, the rough dielectrics and the principled models have lobes NEE can reach.)
                     const M off = leak || !(is_lambert || is_on || is_rough || is_beckmann || is_plastic || is_plastic_b ||
-                                            is_any_rdiel || is_princ || is_princ12 || is_pthin);
+                                            is_any_rdiel || is_princ || is_princ12 || is_pthin || is_psolid);
                     // Each packet form present evaluates on all lanes; its own lanes keep the result.
                     RGB<F> f_fast(F(0.f));
                     F pdf_fast(0.f);
@@ -1021,6 +1026,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     PELLUCID_NEE_FORM(kPacketPrincipled, is_princ, princ.eval_pdf(ctx, wo, wi, is_princ && nee));
                     PELLUCID_NEE_FORM(kPacketPrincipled2012, is_princ12, princ12.eval_pdf(ctx, wo, wi, is_princ12 && nee));
                     PELLUCID_NEE_FORM(kPacketPrincipledThin, is_pthin, pthin.eval_pdf(ctx, wo, wi, is_pthin && nee));
+                    PELLUCID_NEE_FORM(kPacketPrincipledSolid, is_psolid, psolid.eval_pdf(ctx, wo, wi, is_psolid && nee));
 #undef PELLUCID_NEE_FORM
                     f_fast = lane::select(off, RGB<F>(F(0.f)), soften(f_fast, wi, wi_w));
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
@@ -1068,6 +1074,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     PELLUCID_SAMPLE_FORM(kPacketPrincipled, is_princ, princ.sample(ctx, wo, u_lobe, u2, is_princ));
                     PELLUCID_SAMPLE_FORM(kPacketPrincipled2012, is_princ12, princ12.sample(ctx, wo, u_lobe, u2, is_princ12));
                     PELLUCID_SAMPLE_FORM(kPacketPrincipledThin, is_pthin, pthin.sample(ctx, wo, u_lobe, u2, is_pthin));
+                    PELLUCID_SAMPLE_FORM(kPacketPrincipledSolid, is_psolid, psolid.sample(ctx, wo, u_lobe, u2, is_psolid));
                     PELLUCID_SAMPLE_FORM(kPacketSmoothDielectric, is_dielectric,
                                          SmoothDielectricT<F>{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
                                                               RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))}

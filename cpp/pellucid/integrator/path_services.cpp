@@ -131,8 +131,10 @@ bool packet_rough_dielectric(const BxDF& b, int32_t* kind, float* q) {
 
 static_assert(kPrincipledParams <= kPacketParams, "a principled BSDF's parameters fit a material's");
 static_assert(kPrincipledThinParams <= kPacketParams, "a thin principled BSDF's parameters fit a material's");
+static_assert(kPrincipledSolidParams <= kPacketParams, "a principled solid's parameters fit a material's");
 /// A principled BSDF's packet form: the opaque solid (has_lanes; its parameters by
-/// principled_packet_params) or the thin sheet (principled_thin_packet_params).
+/// principled_packet_params), the thin sheet (principled_thin_packet_params) or the solid with a
+/// transmission lobe (principled_solid_packet_params).
 bool packet_principled(const BxDF& b, int32_t* kind, float* q) {
     const auto* p = std::get_if<PrincipledBSDF>(&b);
     if (!p) return false;
@@ -141,7 +143,11 @@ bool packet_principled(const BxDF& b, int32_t* kind, float* q) {
         *kind = kPacketPrincipledThin;
         return true;
     }
-    if (!p->has_lanes()) return false;
+    if (!p->has_lanes()) {
+        principled_solid_packet_params(p->solid_lanes(), q);
+        *kind = kPacketPrincipledSolid;
+        return true;
+    }
     principled_packet_params(p->lanes(), q);
     *kind = kPacketPrincipled;
     return true;
@@ -172,6 +178,7 @@ int packet_param_count(int32_t kind) {
         case kPacketPrincipled: return kPrincipledParams;
         case kPacketPrincipled2012: return kPrincipled2012Params;
         case kPacketPrincipledThin: return kPrincipledThinParams;
+        case kPacketPrincipledSolid: return kPrincipledSolidParams;
         case kPacketOrenNayar: return kOrenNayarParams;
         default: return 0;
     }

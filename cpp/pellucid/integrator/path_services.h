@@ -40,8 +40,9 @@ enum PacketKind : int32_t {
     kPacketOrenNayar = 12,       ///< classic or EON Oren–Nayar (OrenNayarT, oren_nayar_packet_params)
     kPacketPrincipled2012 = 13,  ///< principled BRDF, Burley 2012 (Principled2012T, principled2012_lanes)
     kPacketPrincipledThin = 14,  ///< thin-sheet principled BSDF, Burley 2015 (PrincipledThinT, principled_thin_lanes)
+    kPacketPrincipledSolid = 15,  ///< principled solid with a transmission lobe (PrincipledSolidT, principled_solid_lanes)
 };
-constexpr int kPacketParams = 19;
+constexpr int kPacketParams = 20;
 
 #if PELLUCID_DISPATCH_STATS
 /// The diagnostic build's counters (CMake PELLUCID_DISPATCH_STATS; bench/dispatch_stats.py): one

@@ -1,4 +1,4 @@
-// What tests/cpp/bxdf/test_principled_thin_lanes.cpp compares across lane types: the thin-sheet
+// What tests/cpp/bxdf/test_principled_lanes.cpp compares across lane types: the thin-sheet
 // principled BSDF's packet form (PrincipledThinT) built from packet parameters by
 // principled_thin_lanes, as the path tracer builds it, evaluated over arrays of cases,
 // kLaneWidth<F> lanes at a time (bxdf/form_probe.h). It is instantiated on float in the test and on

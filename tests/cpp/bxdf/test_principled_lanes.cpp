@@ -1,22 +1,25 @@
-// Lanes equal scalars for the principled BSDF's two packet forms, the opaque solid (PrincipledBSDFT,
-// bxdf/principled_probe.h) and the thin sheet (PrincipledThinT, bxdf/principled_thin_probe.h): on
-// every lane of every SIMD target, eval, pdf and sample give exactly the bits the float
-// instantiation gives for that lane's inputs (a bound of 0 ulp: the library and the probes are built
-// without contraction; the solid's half vector with its Fresnel and the clear coat's GTR1 normal are
-// the float functions' own, called a lane at a time, and the rest of both forms uses only IEEE-exact
-// lane operations). The float instantiation, built from packet parameters as the path tracer builds
-// it, in turn gives the bits of the scalar BxDF API (PrincipledBSDF where has_lanes(), or thin()).
+// Lanes equal scalars for the principled BSDF's three packet forms, the opaque solid
+// (PrincipledBSDFT, bxdf/principled_probe.h), the thin sheet (PrincipledThinT,
+// bxdf/principled_thin_probe.h) and the solid with a transmission lobe (PrincipledSolidT,
+// bxdf/principled_solid_probe.h): on every lane of every SIMD target, eval, pdf and sample give
+// exactly the bits the float instantiation gives for that lane's inputs (a bound of 0 ulp: the
+// library and the probes are built without contraction; the solids' half vectors with their Fresnel
+// and the clear coat's GTR1 normal are the float functions' own, called a lane at a time, and the
+// rest of every form uses only IEEE-exact lane operations). The float instantiation, built from
+// packet parameters as the path tracer builds it, in turn gives the bits of the scalar BxDF API
+// (PrincipledBSDF: has_lanes(), thin(), or neither).
 //
 // Cases: the property suite's principled BSDFs (bxdf_cases.h: its cases and sweeps over metallic,
 // roughness, η, the transmissions and the tints) of each form, and a few more (η = 1, where the
 // dielectric Fresnel vanishes; the glossiest clear coat; tinted sheen and specular; a sheet all
-// diffuse transmission, one all specular), one material per lane at random so every packet mixes
-// materials; lanes of other models and partially masked packets; directions on, near and below the
-// horizon, at the normal, in the mirror direction and straight through; u at 0, 1/2 and 1 − 2⁻²⁴;
-// both transport modes and glossy-only, diffuse-only and transmission-only contexts.
+// diffuse transmission, one all specular; glass denser and less dense than its outside), one material
+// per lane at random so every packet mixes materials; lanes of other models and partially masked
+// packets; directions on, near and below the horizon, at the normal, in the mirror direction and
+// straight through; u at 0, 1/2 and 1 − 2⁻²⁴; both transport modes and glossy-only, diffuse-only and
+// transmission-only contexts.
 //
-// Renders: bench/suite/principled.json, whose four opaque solids and thin sheet are packet forms beside
-// a glass on BSDF lanes, gives the scalar target's image bit for bit on every SIMD target.
+// Renders: bench/suite/principled.json, whose seven materials are all packet forms, gives the scalar
+// target's image bit for bit on every SIMD target.
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
@@ -28,6 +31,7 @@
 #include "bxdf/bxdf_cases.h"
 #include "bxdf/principled_probe.h"
 #include "bxdf/principled_thin_probe.h"
+#include "bxdf/principled_solid_probe.h"
 #include "pellucid/api.h"
 #include "pellucid/integrator/path_services.h"
 #include "pellucid/integrator/simd_target.h"
@@ -60,6 +64,17 @@ void run_avx2(const In& in, Out& out);
 void run_sse4(const In& in, Out& out);
 #endif
 }  // namespace pellucid::principled_thin_probe
+namespace pellucid::principled_solid_probe {
+#ifdef PELLUCID_PRINCIPLED_SOLID_PROBE_AVX512
+void run_avx512(const In& in, Out& out);
+#endif
+#ifdef PELLUCID_PRINCIPLED_SOLID_PROBE_AVX2
+void run_avx2(const In& in, Out& out);
+#endif
+#ifdef PELLUCID_PRINCIPLED_SOLID_PROBE_SSE4
+void run_sse4(const In& in, Out& out);
+#endif
+}  // namespace pellucid::principled_solid_probe
 
 namespace {
 /// The property suite's opaque solid principled BSDFs, and a few more.
@@ -130,8 +145,41 @@ std::vector<PrincipledBSDF> thin_materials() {
     return m;
 }
 
-/// The two packet forms: their materials, packet parameters, probes and the parameter a test
-/// changes in one lane (the solid's clear coat, the sheet's specular transmission).
+/// The property suite's principled solids with a transmission lobe, and a few more.
+std::vector<PrincipledBSDF> glass_materials() {
+    std::vector<PrincipledBSDF> m;
+    using test::BxDFCases;
+    auto add = [&](const PrincipledBSDF& b) {
+        if (!b.thin() && !b.has_lanes()) m.push_back(b);
+    };
+    for (const auto& c : BxDFCases<PrincipledBSDF>::cases()) add(c.bxdf);
+    for (const auto& b : BxDFCases<PrincipledBSDF>::sweep()) add(b);
+    PrincipledInputs p;
+    p.variant = PrincipledVariant::Burley2015;
+    p.base_color = Spectrum(0.2f, 0.5f, 0.9f);
+    p.roughness = 0.35f;
+    p.anisotropic = 0.6f;
+    p.sheen = 0.8f;
+    p.sheen_tint = 0.7f;
+    p.specular_tint = 0.6f;
+    p.metallic = 0.4f;
+    p.clearcoat = 0.7f;
+    p.clearcoat_gloss = 1.f;
+    p.specular_transmission = 0.5f;
+    add(PrincipledBSDF(p));
+    p.eta = 0.7f;  // the interior the less dense side
+    add(PrincipledBSDF(p));
+    p.specular_transmission = 1.f;  // clear glass, nearly smooth
+    p.metallic = 0.f;
+    p.roughness = 0.05f;
+    p.eta = 1.5f;
+    add(PrincipledBSDF(p));
+    return m;
+}
+
+/// The three packet forms: their materials, packet parameters, probes and the parameter a test
+/// changes in one lane (the opaque solid's clear coat, the sheet's specular transmission, the
+/// transmissive solid's w_bsdf).
 struct Solid {
     static constexpr int kP = kPrincipledParams, kChanged = 12;
     using In = principled_probe::In;
@@ -169,6 +217,28 @@ struct Thin {
 #endif
 #ifdef PELLUCID_PRINCIPLED_THIN_PROBE_SSE4
             case SimdTarget::SSE4: principled_thin_probe::run_sse4(in, out); return true;
+#endif
+            default: return false;
+        }
+    }
+};
+
+struct Glass {
+    static constexpr int kP = kPrincipledSolidParams, kChanged = 19;
+    using In = principled_solid_probe::In;
+    static std::vector<PrincipledBSDF> materials() { return glass_materials(); }
+    static void params(const PrincipledBSDF& b, float* q) { principled_solid_packet_params(b.solid_lanes(), q); }
+    static void run_float(const In& in, form_probe::Out& out) { principled_solid_probe::run<float>(in, out); }
+    static bool run_target(SimdTarget t, const In& in, form_probe::Out& out) {
+        switch (t) {
+#ifdef PELLUCID_PRINCIPLED_SOLID_PROBE_AVX512
+            case SimdTarget::AVX512: principled_solid_probe::run_avx512(in, out); return true;
+#endif
+#ifdef PELLUCID_PRINCIPLED_SOLID_PROBE_AVX2
+            case SimdTarget::AVX2: principled_solid_probe::run_avx2(in, out); return true;
+#endif
+#ifdef PELLUCID_PRINCIPLED_SOLID_PROBE_SSE4
+            case SimdTarget::SSE4: principled_solid_probe::run_sse4(in, out); return true;
 #endif
             default: return false;
         }
@@ -272,9 +342,26 @@ TEST(PrincipledThinLanes, TheGridIsCovered) {
     EXPECT_TRUE(spec && diff_t && diff_r && tint && sheen);
 }
 
+TEST(PrincipledGlassLanes, TheGridIsCovered) {
+    const Cases<Glass> cases;
+    EXPECT_GE(cases.mats.size(), 30u);
+    // Every lobe of the model is present in some material, and both sides of the interface.
+    bool metal = false, coat = false, diffuse = false, inside_denser = false, outside_denser = false;
+    for (const auto& m : cases.mats) {
+        const PrincipledSolidT<float> l = m.solid_lanes();
+        EXPECT_GT(l.w_bsdf, 0.f);
+        metal = metal || l.o.metallic > 0.f;
+        coat = coat || l.o.clearcoat > 0.f;
+        diffuse = diffuse || l.o.w_brdf > 0.f;
+        inside_denser = inside_denser || l.o.eta > 1.f;
+        outside_denser = outside_denser || l.o.eta < 1.f;
+    }
+    EXPECT_TRUE(metal && coat && diffuse && inside_denser && outside_denser);
+}
+
 template <class Form>
 class PrincipledFormLanes : public ::testing::Test {};
-using PrincipledForms = ::testing::Types<Solid, Thin>;
+using PrincipledForms = ::testing::Types<Solid, Thin, Glass>;
 TYPED_TEST_SUITE(PrincipledFormLanes, PrincipledForms);
 
 TYPED_TEST(PrincipledFormLanes, FloatInstantiationIsTheScalarBxDF) {
@@ -361,25 +448,27 @@ std::shared_ptr<const Scene> load_suite_scene(const char* file, int width, int h
 }  // namespace
 
 TEST(SimdTargetRenderPrincipled, SuiteSceneOpaqueSolidsArePacketForms) {
-    // The opaque solids of the suite's principled scenes run as kPacketPrincipled and the thin
-    // sheets as kPacketPrincipledThin; the glass stays a BSDF lane.
+    // The opaque solids of the suite's principled scenes run as kPacketPrincipled, the thin sheets as
+    // kPacketPrincipledThin and the glass as kPacketPrincipledSolid.
     for (const char* file : {"principled.json", "many_materials.json"}) {
         auto scene = load_suite_scene(file, 16, 16);
         const PathSetup ps = make_path_setup(*scene, 8, 5, true, true, SamplerType::Independent);
-        int packet = 0, thin = 0, lanes = 0;
+        int packet = 0, thin = 0, glass = 0;
         for (size_t m = 0; m < scene->material_bxdfs.size(); ++m) {
             const auto* b = std::get_if<PrincipledBSDF>(&scene->material_bxdfs[m]);
             if (!b) continue;
             const bool solid = ps.packet_kind[m] == int32_t(kPacketPrincipled);
             const bool sheet = ps.packet_kind[m] == int32_t(kPacketPrincipledThin);
+            const bool clear = ps.packet_kind[m] == int32_t(kPacketPrincipledSolid);
             EXPECT_EQ(solid, b->has_lanes()) << file << " " << m;
             EXPECT_EQ(sheet, b->thin()) << file << " " << m;
-            (solid ? packet : sheet ? thin : lanes) += 1;
+            EXPECT_EQ(clear, !b->has_lanes() && !b->thin()) << file << " " << m;
+            (solid ? packet : sheet ? thin : glass) += 1;
         }
         EXPECT_GE(packet, 3) << file;
         if (std::string(file) == "principled.json") {
             EXPECT_EQ(thin, 1);
-            EXPECT_EQ(lanes, 1);
+            EXPECT_EQ(glass, 1);
         }
     }
 }

@@ -155,7 +155,7 @@ TEST(SimdTargetRender, PacketKindsMatchTheirModels) {
             if (std::holds_alternative<RoughDielectric<Beckmann>>(b)) allowed.insert(kPacketRoughDielectricBeckmann);
             if (std::holds_alternative<ThinDielectric>(b)) allowed.insert(kPacketThinDielectric);
             if (std::holds_alternative<OrenNayar>(b)) allowed.insert(kPacketOrenNayar);
-            if (std::holds_alternative<PrincipledBSDF>(b)) allowed.insert({kPacketPrincipled, kPacketPrincipledThin});
+            if (std::holds_alternative<PrincipledBSDF>(b)) allowed.insert({kPacketPrincipled, kPacketPrincipledThin, kPacketPrincipledSolid});
             if (std::holds_alternative<Principled>(b)) allowed.insert(kPacketPrincipled2012);
             EXPECT_TRUE(allowed.count(ps.packet_kind[m])) << file << ": material " << m << " (BxDF alternative "
                                                            << b.index() << ") has packet kind " << ps.packet_kind[m];
