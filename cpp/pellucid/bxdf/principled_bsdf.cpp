@@ -18,19 +18,6 @@ using principled_detail::allows;
 
 principled_detail::PrincipledHalf principled_detail::principled_half(const Vec3f& wo, const Vec3f& wi, float eta) {
     PrincipledHalf out;
-    const Vec3d hh = Vec3d(wo) + Vec3d(wi);
-    const double hl = glm::length(hh);
-    if (!(hl > 0.0)) return out;
-    const Vec3d hd = hh / (hh.z < 0.0 ? -hl : hl);
-    const double dot_od = glm::dot(Vec3d(wo), hd), dot_id = glm::dot(Vec3d(wi), hd);
-    out.h = Vec3f(hd);
-    out.dot_o = float(dot_od), out.dot_i = float(dot_id);
-    out.F = float(fresnel_dielectric_d(dot_od, eta));
-    return out;
-}
-
-principled_detail::PrincipledSolidHalf principled_detail::principled_solid_half(const Vec3f& wo, const Vec3f& wi, float eta) {
-    PrincipledSolidHalf out;
     const bool front = wo.z > 0.f, reflect = wo.z * wi.z > 0.f;
     // η' = η(wi side)/η(wo side) for transmission.
     const double etap_d = front ? double(eta) : 1.0 / double(eta);

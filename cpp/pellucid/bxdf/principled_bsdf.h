@@ -82,9 +82,10 @@
 // computed once at construction. The thin sheet has a packet form of its own, PrincipledThinT<F>
 // (kPacketPrincipledThin; PrincipledBSDF's eval, pdf and sample are its float instantiation where
 // thin()): its half vector is that of wo and wi mirrored to +z, in float, so the whole form is lane
-// operations. The solid with a transmission lobe keeps the scalar code below and runs as BSDF lanes;
-// it shares the diffuse, sheen, Schlick and GTR1 terms with the packet forms (the float
-// instantiations of the templates below).
+// operations. So has the solid with a transmission lobe, PrincipledSolidT<F> (kPacketPrincipledSolid;
+// the float instantiation where neither): its generalised half vector, Fresnel and the Jacobian's
+// denominator come in double from principled_half, a lane at a time. Every principled material
+// is shaded as a packet, and the three forms share the diffuse, sheen, Schlick and GTR1 terms.
 #pragma once
 #include <optional>
 #include <string>
@@ -168,43 +169,10 @@ inline RGB<F> diffuse_sheen(const RGB<F>& base, const RGB<F>& tint, const F& rou
     return out;
 }
 
-/// What the opaque solid needs of the reflection half vector h = (wo + wi)/|wo + wi| of a pair
-/// with wo.z, wi.z > 0, computed in double (as the solid's scalar code): h, wo·h and wi·h rounded
-/// to float, and the dielectric Fresnel F_η(wo·h) (double, rounded).
-struct PrincipledHalf {
-    Vec3f h{0.f, 0.f, 1.f};
-    float dot_o = 0.f, dot_i = 0.f, F = 0.f;
-};
-PrincipledHalf principled_half(const Vec3f& wo, const Vec3f& wi, float eta);
 /// The clear coat's GTR1 normal: cos² θh = (1 − α^{2(1−u.y)})/(1 − α²), φ = 2π u.x (Burley 2012,
 /// App. B eq. 5), with libm's pow, cos and sin.
 Vec3f principled_gtr1_normal(float alpha, const Vec2f& u);
 
-/// principled_half over a lane type F, one lane at a time (lanes outside `where`: the default).
-template <class F>
-inline void principled_half_lanes(const V3<F>& wo, const V3<F>& wi, const F& eta, const MaskT<F>& where, V3<F>* h,
-                                  F* dot_o, F* dot_i, F* fr) {
-    if constexpr (std::is_same_v<F, float>) {
-        const PrincipledHalf p = where ? principled_half(wo, wi, eta) : PrincipledHalf{};
-        *h = p.h, *dot_o = p.dot_o, *dot_i = p.dot_i, *fr = p.F;
-    } else {
-        constexpr int W = kLaneWidth<F>;
-        alignas(64) float in[7][W], out[6][W];
-        alignas(64) bool on[W];
-        lane::store(in[0], wo.x), lane::store(in[1], wo.y), lane::store(in[2], wo.z);
-        lane::store(in[3], wi.x), lane::store(in[4], wi.y), lane::store(in[5], wi.z);
-        lane::store(in[6], eta), lane::store(on, where);
-        for (int i = 0; i < W; ++i) {
-            const PrincipledHalf p = on[i] ? principled_half(Vec3f(in[0][i], in[1][i], in[2][i]),
-                                                             Vec3f(in[3][i], in[4][i], in[5][i]), in[6][i])
-                                           : PrincipledHalf{};
-            out[0][i] = p.h.x, out[1][i] = p.h.y, out[2][i] = p.h.z, out[3][i] = p.dot_o, out[4][i] = p.dot_i;
-            out[5][i] = p.F;
-        }
-        auto L = [&](int k) { return lane::load_as<F>(out[k]); };
-        *h = V3<F>(L(0), L(1), L(2)), *dot_o = L(3), *dot_i = L(4), *fr = L(5);
-    }
-}
 /// principled_gtr1_normal over a lane type F, one lane at a time (lanes outside `where`: +z).
 template <class F>
 inline V3<F> principled_gtr1_normal_lanes(const F& alpha, const V2<F>& u, const MaskT<F>& where) {
@@ -222,23 +190,22 @@ inline V3<F> principled_gtr1_normal_lanes(const F& alpha, const V2<F>& u, const 
         return V3<F>(lane::load_as<F>(out[0]), lane::load_as<F>(out[1]), lane::load_as<F>(out[2]));
     }
 }
-/// What the solid with a transmission lobe needs of the half vector of (wo, wi) with wo.z, wi.z ≠ 0,
-/// in double as its scalar code computed it: h (generalised for transmission, Walter et al. 2007
+/// What the solids need of the half vector of (wo, wi) with wo.z, wi.z ≠ 0, computed in double: h (generalised for transmission, Walter et al. 2007
 /// eq. 16, oriented to +z), wo·h and wi·h, the dielectric Fresnel (from wi's side for transmission
 /// from the denser side), the Jacobian's denominator (wo·h + η' wi·h)² and η' (η(wi side)/η(wo
 /// side)); ok false where h is undefined.
-struct PrincipledSolidHalf {
+struct PrincipledHalf {
     Vec3f h{0.f, 0.f, 1.f};
     float dot_o = 0.f, dot_i = 0.f, F = 0.f, denom = 0.f, etap = 1.f;
     bool ok = false;
 };
-PrincipledSolidHalf principled_solid_half(const Vec3f& wo, const Vec3f& wi, float eta);
-/// principled_solid_half over a lane type F, one lane at a time (lanes outside `where`: the default).
+PrincipledHalf principled_half(const Vec3f& wo, const Vec3f& wi, float eta);
+/// principled_half over a lane type F, one lane at a time (lanes outside `where`: the default).
 template <class F>
-inline void principled_solid_half_lanes(const V3<F>& wo, const V3<F>& wi, const F& eta, const MaskT<F>& where,
+inline void principled_half_lanes(const V3<F>& wo, const V3<F>& wi, const F& eta, const MaskT<F>& where,
                                         V3<F>* h, F* dot_o, F* dot_i, F* fr, F* denom, F* etap, MaskT<F>* ok) {
     if constexpr (std::is_same_v<F, float>) {
-        const PrincipledSolidHalf p = where ? principled_solid_half(wo, wi, eta) : PrincipledSolidHalf{};
+        const PrincipledHalf p = where ? principled_half(wo, wi, eta) : PrincipledHalf{};
         *h = p.h, *dot_o = p.dot_o, *dot_i = p.dot_i, *fr = p.F, *denom = p.denom, *etap = p.etap, *ok = p.ok;
     } else {
         constexpr int W = kLaneWidth<F>;
@@ -248,9 +215,9 @@ inline void principled_solid_half_lanes(const V3<F>& wo, const V3<F>& wi, const 
         lane::store(in[3], wi.x), lane::store(in[4], wi.y), lane::store(in[5], wi.z);
         lane::store(in[6], eta), lane::store(on, where);
         for (int i = 0; i < W; ++i) {
-            const PrincipledSolidHalf p = on[i] ? principled_solid_half(Vec3f(in[0][i], in[1][i], in[2][i]),
+            const PrincipledHalf p = on[i] ? principled_half(Vec3f(in[0][i], in[1][i], in[2][i]),
                                                                         Vec3f(in[3][i], in[4][i], in[5][i]), in[6][i])
-                                                : PrincipledSolidHalf{};
+                                                : PrincipledHalf{};
             out[0][i] = p.h.x, out[1][i] = p.h.y, out[2][i] = p.h.z, out[3][i] = p.dot_o, out[4][i] = p.dot_i;
             out[5][i] = p.F, out[6][i] = p.denom, out[7][i] = p.etap, good[i] = p.ok;
         }
@@ -286,8 +253,9 @@ struct PrincipledBSDFT {
         const F co = o.z, ci = i.z;
         const M pair = wo.z != F(0.f) && wi.z != F(0.f) && co * ci > F(0.f);
         V3<F> h;
-        F dot_o, dot_i, fr;
-        principled_half_lanes<F>(o, i, eta, where && pair, &h, &dot_o, &dot_i, &fr);
+        F dot_o, dot_i, fr, denom, etap;
+        M defined;
+        principled_half_lanes<F>(o, i, eta, where && pair, &h, &dot_o, &dot_i, &fr, &denom, &etap, &defined);
         const M compatible = dot_o > F(0.f) && dot_i > F(0.f);
         // Lobe probabilities: the specular group 1 (its reflection share is 1 without transmission),
         // the clear coat ¼·clearcoat, the diffuse w_brdf.
@@ -419,7 +387,7 @@ inline PrincipledBSDFT<F> principled_lanes(const MaskT<F>& where, Q q) {
 /// opaque form's parameters and w_bsdf. PrincipledBSDF's eval, pdf and sample are its float
 /// instantiation where neither has_lanes() nor thin(), and the path tracer shades such solids with it
 /// (kPacketPrincipledSolid). The half vector, its Fresnel and the Jacobian's denominator are the
-/// double-precision function's (principled_solid_half), called a lane at a time; the rest is lane
+/// double-precision function's (principled_half), called a lane at a time; the rest is lane
 /// operations.
 template <class F>
 struct PrincipledSolidT {
@@ -439,7 +407,7 @@ struct PrincipledSolidT {
         V3<F> h;
         F dot_o, dot_i, fr, denom, etap;
         M ok;
-        principled_solid_half_lanes<F>(wo, wi, o.eta, where && pair, &h, &dot_o, &dot_i, &fr, &denom, &etap, &ok);
+        principled_half_lanes<F>(wo, wi, o.eta, where && pair, &h, &dot_o, &dot_i, &fr, &denom, &etap, &ok);
         const F s = lane::select(front, F(1.f), F(-1.f));
         const M compatible = dot_o * s > F(0.f) && lane::select(reflect, dot_i * s > F(0.f), dot_i * s < F(0.f));
         // Lobe probabilities: the specular group split at h by F.
