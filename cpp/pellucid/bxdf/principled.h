@@ -94,23 +94,28 @@ inline F gtr1(const F& cos_h, const F& alpha, const F& log_a2) {
 /// The clear coat's GTR1 half vector: cos² θh = (1 − α^{2(1−u.x)})/(1 − α²), φ = 2π u.y (Burley
 /// 2012, App. B eq. 5), with libm's pow, cos and sin.
 Vec3f principled2012_gtr1_normal(float alpha, const Vec2f& u);
-/// principled2012_gtr1_normal over a lane type F, one lane at a time (lanes outside `where`: +z).
-template <class F>
-inline V3<F> gtr1_normal_lanes(const F& alpha, const V2<F>& u, const MaskT<F>& where) {
+/// A clear coat's GTR1 normal Normal(α, u) (compiled once, libm inside) over a lane type F, one lane
+/// at a time (lanes outside `where`: +z), so that every lane type gets its bits.
+template <class F, Vec3f (*Normal)(float, const Vec2f&)>
+inline V3<F> normal_lanes(const F& alpha, const V2<F>& u, const MaskT<F>& where) {
     if constexpr (std::is_same_v<F, float>) {
-        return where ? principled2012_gtr1_normal(alpha, u) : Vec3f(0.f, 0.f, 1.f);
+        return where ? Normal(alpha, u) : Vec3f(0.f, 0.f, 1.f);
     } else {
         constexpr int W = kLaneWidth<F>;
         alignas(64) float in[3][W], out[3][W];
         alignas(64) bool on[W];
         lane::store(in[0], alpha), lane::store(in[1], u.x), lane::store(in[2], u.y), lane::store(on, where);
         for (int i = 0; i < W; ++i) {
-            const Vec3f m =
-                on[i] ? principled2012_gtr1_normal(in[0][i], Vec2f(in[1][i], in[2][i])) : Vec3f(0.f, 0.f, 1.f);
+            const Vec3f m = on[i] ? Normal(in[0][i], Vec2f(in[1][i], in[2][i])) : Vec3f(0.f, 0.f, 1.f);
             out[0][i] = m.x, out[1][i] = m.y, out[2][i] = m.z;
         }
         return V3<F>(lane::load_as<F>(out[0]), lane::load_as<F>(out[1]), lane::load_as<F>(out[2]));
     }
+}
+/// principled2012_gtr1_normal over a lane type F (normal_lanes).
+template <class F>
+inline V3<F> gtr1_normal_lanes(const F& alpha, const V2<F>& u, const MaskT<F>& where) {
+    return normal_lanes<F, principled2012_gtr1_normal>(alpha, u, where);
 }
 /// r0 + (1 − r0)·w per channel (fresnel_schlick with the weight w given).
 template <class F>

@@ -173,27 +173,15 @@ inline RGB<F> diffuse_sheen(const RGB<F>& base, const RGB<F>& tint, const F& rou
 /// App. B eq. 5), with libm's pow, cos and sin.
 Vec3f principled_gtr1_normal(float alpha, const Vec2f& u);
 
-/// principled_gtr1_normal over a lane type F, one lane at a time (lanes outside `where`: +z).
+/// principled_gtr1_normal over a lane type F (principled2012_detail::normal_lanes).
 template <class F>
 inline V3<F> principled_gtr1_normal_lanes(const F& alpha, const V2<F>& u, const MaskT<F>& where) {
-    if constexpr (std::is_same_v<F, float>) {
-        return where ? principled_gtr1_normal(alpha, u) : Vec3f(0.f, 0.f, 1.f);
-    } else {
-        constexpr int W = kLaneWidth<F>;
-        alignas(64) float in[3][W], out[3][W];
-        alignas(64) bool on[W];
-        lane::store(in[0], alpha), lane::store(in[1], u.x), lane::store(in[2], u.y), lane::store(on, where);
-        for (int i = 0; i < W; ++i) {
-            const Vec3f m = on[i] ? principled_gtr1_normal(in[0][i], Vec2f(in[1][i], in[2][i])) : Vec3f(0.f, 0.f, 1.f);
-            out[0][i] = m.x, out[1][i] = m.y, out[2][i] = m.z;
-        }
-        return V3<F>(lane::load_as<F>(out[0]), lane::load_as<F>(out[1]), lane::load_as<F>(out[2]));
-    }
+    return principled2012_detail::normal_lanes<F, principled_gtr1_normal>(alpha, u, where);
 }
-/// What the solids need of the half vector of (wo, wi) with wo.z, wi.z ≠ 0, computed in double: h (generalised for transmission, Walter et al. 2007
-/// eq. 16, oriented to +z), wo·h and wi·h, the dielectric Fresnel (from wi's side for transmission
-/// from the denser side), the Jacobian's denominator (wo·h + η' wi·h)² and η' (η(wi side)/η(wo
-/// side)); ok false where h is undefined.
+/// What the solids need of the half vector of (wo, wi) with wo.z, wi.z ≠ 0, computed in double: h
+/// (generalised for transmission, Walter et al. 2007 eq. 16, oriented to +z), wo·h and wi·h, the
+/// dielectric Fresnel (from wi's side for transmission from the denser side), the Jacobian's
+/// denominator (wo·h + η' wi·h)² and η' (η(wi side)/η(wo side)); ok false where h is undefined.
 struct PrincipledHalf {
     Vec3f h{0.f, 0.f, 1.f};
     float dot_o = 0.f, dot_i = 0.f, F = 0.f, denom = 0.f, etap = 1.f;
@@ -224,6 +212,23 @@ inline void principled_half_lanes(const V3<F>& wo, const V3<F>& wi, const F& eta
         auto L = [&](int k) { return lane::load_as<F>(out[k]); };
         *h = V3<F>(L(0), L(1), L(2)), *dot_o = L(3), *dot_i = L(4), *fr = L(5), *denom = L(6), *etap = L(7);
         *ok = lane::load_mask_as<MaskT<F>>(good);
+    }
+}
+/// The solids' diffuse and clear-coat directions for wo on the lanes that chose them (`diffuse`,
+/// `coat`; computed only where some lane did, +z elsewhere): a cosine-weighted direction, and wo
+/// reflected about a GTR1 normal, valid (*ok_c) where wo sees the normal and the reflection leaves
+/// above the surface.
+template <class F>
+inline void diffuse_coat_directions(const V3<F>& wo, const V2<F>& u, const F& cc_alpha, const MaskT<F>& diffuse,
+                                    const MaskT<F>& coat, V3<F>* wd, V3<F>* wc, MaskT<F>* ok_c) {
+    const V3<F> up(F(0.f), F(0.f), F(1.f));
+    *wd = lane::any(diffuse) ? square_to_cosine_hemisphere<F>(u) : up;
+    *wc = up;
+    *ok_c = MaskT<F>(false);
+    if (lane::any(coat)) {
+        const V3<F> mc = principled_gtr1_normal_lanes<F>(cc_alpha, u, coat);
+        *wc = -wo + F(2.f) * dot(wo, mc) * mc;
+        *ok_c = dot(wo, mc) > F(0.f) && wc->z > F(0.f);
     }
 }
 }  // namespace principled_detail
@@ -334,17 +339,11 @@ struct PrincipledBSDFT {
         const F total = g_spec + p_cc + p_d;
         const F x = u_lobe * total;
         const M is_d = x < p_d, is_cc = !is_d && x < p_d + p_cc, is_spec = !is_d && !is_cc;
-        // Each lobe's direction where some lane of `where` chose it. Diffuse: cosine-weighted.
+        // Each lobe's direction where some lane of `where` chose it.
         const V3<F> up(F(0.f), F(0.f), F(1.f));
-        const V3<F> wd = lane::any(where && is_d) ? square_to_cosine_hemisphere<F>(u) : up;
-        // Clear coat: a GTR1 normal, reflected about.
-        V3<F> wc = up;
-        M ok_c(false);
-        if (lane::any(where && is_cc)) {
-            const V3<F> mc = principled_gtr1_normal_lanes<F>(cc_alpha, u, where && is_cc);
-            wc = -o + F(2.f) * dot(o, mc) * mc;
-            ok_c = dot(o, mc) > F(0.f) && wc.z > F(0.f);
-        }
+        V3<F> wd, wc;
+        M ok_c;
+        diffuse_coat_directions<F>(o, u, cc_alpha, where && is_d, where && is_cc, &wd, &wc, &ok_c);
         // Specular: a visible normal, reflected about (without transmission the reflection share is 1).
         V3<F> ws = up;
         M ok_s(false);
@@ -498,14 +497,9 @@ struct PrincipledSolidT {
         const F x = u_lobe * total;
         const M is_d = x < p_d, is_cc = !is_d && x < p_d + p_cc, is_spec = !is_d && !is_cc;
         const V3<F> up(F(0.f), F(0.f), F(1.f));
-        const V3<F> wd = lane::any(where && is_d) ? square_to_cosine_hemisphere<F>(u) : up;
-        V3<F> wc = up;
-        M ok_c(false);
-        if (lane::any(where && is_cc)) {
-            const V3<F> mc = principled_gtr1_normal_lanes<F>(o.cc_alpha, u, where && is_cc);
-            wc = -wo + F(2.f) * dot(wo, mc) * mc;
-            ok_c = dot(wo, mc) > F(0.f) && wc.z > F(0.f);
-        }
+        V3<F> wd, wc;
+        M ok_c;
+        diffuse_coat_directions<F>(wo, u, o.cc_alpha, where && is_d, where && is_cc, &wd, &wc, &ok_c);
         V3<F> ws = up;
         M ok_s(false), refracted(false);
         F etap(1.f);
