@@ -214,6 +214,12 @@ inline void principled_half_lanes(const V3<F>& wo, const V3<F>& wi, const F& eta
         *ok = lane::load_mask_as<MaskT<F>>(good);
     }
 }
+/// What the packet forms' eval_pdf returns: f·|cos θi| and the density.
+template <class F>
+struct EvalPdf {
+    RGB<F> f;
+    F pdf;
+};
 /// The solids' diffuse and clear-coat directions for wo on the lanes that chose them (`diffuse`,
 /// `coat`; computed only where some lane did, +z elsewhere): a cosine-weighted direction, and wo
 /// reflected about a GTR1 normal, valid (*ok_c) where wo sees the normal and the reflection leaves
@@ -244,10 +250,7 @@ struct PrincipledBSDFT {
     F eta, w_brdf;
     GGXT<F> spec;
 
-    struct EvalPdf {
-        RGB<F> f;
-        F pdf;
-    };
+    using EvalPdf = principled_detail::EvalPdf<F>;
     /// f·|cos θi| and the density of sample(), on the lanes `where` (others: unspecified). Seen from
     /// behind, the front mirrored; transmission pairs give 0.
     EvalPdf eval_pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi, const MaskT<F>& where) const {
@@ -393,10 +396,7 @@ struct PrincipledSolidT {
     PrincipledBSDFT<F> o;  ///< base … w_brdf, as the opaque form
     F w_bsdf;
 
-    struct EvalPdf {
-        RGB<F> f;
-        F pdf;
-    };
+    using EvalPdf = principled_detail::EvalPdf<F>;
     EvalPdf eval_pdf(const BxDFContext& ctx, const V3<F>& wo, const V3<F>& wi, const MaskT<F>& where) const {
         using namespace principled_detail;
         using M = MaskT<F>;
@@ -560,10 +560,7 @@ struct PrincipledThinT {
     F st, dt;           ///< spec_trans and d_t = diffuse_transmission/2
     GGXT<F> spec, trans;  ///< the reflection lobe's and the transmission lobe's (roughness × (0.65η − 0.35))
 
-    struct EvalPdf {
-        RGB<F> f;
-        F pdf;
-    };
+    using EvalPdf = principled_detail::EvalPdf<F>;
     /// The four lobes' probabilities (specular reflection, specular transmission, diffuse
     /// reflection, diffuse transmission; 0 for a lobe outside ctx.allowed), unnormalised.
     void lobes(const BxDFContext& ctx, F p[4]) const {
