@@ -357,49 +357,60 @@ __attribute__((always_inline)) inline void accumulate_impl(const AccumulateArgs&
 
 // The n accumulations of a batch, in order, on the whole (2kM + 1)² block inside the film: each
 // target's sums are loaded once, take every job's updates in the order accumulate_impl applies them
-// (a, then b, then the pair sums), and are stored once. Each sum receives the same IEEE operations
-// in the same order as from n accumulate_impl calls, so the bits are the same; only the loads and
-// stores between the jobs are gone (a job without a partner leaves the pair sums as they are).
+// (a, then b, then the pair sums), and are stored once (a job without a partner leaves the pair sums
+// as they are). A sample's update of target (i, j) is (1, L)·w with w = wx_i·wy_j; here it is
+// computed as ((1, L)·wy_j)·wx_i, the row's vector once per row and then one product per target:
+// both (1, L)·wy_j and wx_i·wy_j are exact in double (products of two floats), so either way the
+// result is the exact triple product rounded once, the same bits, for a multiply and an add per
+// target instead of two multiplies, a broadcast and an add. A partner that is not added here
+// (add_a false) adds ((0, 0)·wy)·wx = +0, which leaves a sum's bits as they are (no sum is ever −0),
+// so the loop has no branch on it.
 template <int kM, bool kVar>
 __attribute__((always_inline)) inline void accumulate_block(const AccumulateBatch& B) {
     constexpr int kT = 2 * kM + 1;
     const int n = B.n, x = B.x, y = B.y;
-    double wd[4][kT][4];
-    D4 l4[4], lp4[4];
-    bool has_a[4], add_a[4];
+    // Job k's column weights (sample a, then b) as doubles, and its row vectors (1, L)·wy.
+    double cx[4][2][kT];
+    D4 ra[4][kT], rb[4][kT], pa[4][kT];  // a's row vectors for the sums (0 without add_a) and for the pair sums
+    bool has_a[4];
     for (int k = 0; k < n; ++k) {
-        for (int t = 0; t < kT; ++t)
-            for (int r = 0; r < 4; ++r) wd[k][t][r] = double(B.w[16 * t + 4 * k + r]);
-        l4[k] = D4{1.0, double(B.L[k][0]), double(B.L[k][1]), double(B.L[k][2])};
-        has_a[k] = B.la[k] != nullptr, add_a[k] = B.add_a[k];
-        lp4[k] = has_a[k] ? D4{1.0, double(B.la[k][0]), double(B.la[k][1]), double(B.la[k][2])} : l4[k];
+        const D4 l4 = D4{1.0, double(B.L[k][0]), double(B.L[k][1]), double(B.L[k][2])};
+        has_a[k] = B.la[k] != nullptr;
+        const D4 lp4 = has_a[k] ? D4{1.0, double(B.la[k][0]), double(B.la[k][1]), double(B.la[k][2])} : l4;
+        const D4 zero{};
+        for (int t = 0; t < kT; ++t) {
+            const float* w = B.w + 16 * t + 4 * k;
+            cx[k][0][t] = double(w[0]), cx[k][1][t] = double(w[2]);
+            rb[k][t] = l4 * double(w[3]);
+            pa[k][t] = lp4 * double(w[1]);
+            ra[k][t] = B.add_a[k] ? pa[k][t] : zero;
+        }
     }
     for (int j = -kM; j <= kM; ++j) {
         const size_t row = size_t(y + j) * B.width + x;
         double* sums = B.sums + 4 * row;
         double* pairs = kVar ? B.pairs + 8 * row : nullptr;
-        for (int i = -kM; i <= kM; ++i) {
-            D4 t = load4(sums + 4 * i), q0{}, q1{};
-            if constexpr (kVar) q0 = load4(pairs + 8 * i), q1 = load4(pairs + 8 * i + 4);
-            for (int k = 0; k < n; ++k) {
-                const double wb = wd[k][i + kM][2] * wd[k][j + kM][3];
-                const D4 b = l4[k] * wb;
-                if (!has_a[k]) {
-                    t = t + b;
-                    continue;
-                }
-                const double wa = wd[k][i + kM][0] * wd[k][j + kM][1];
-                const D4 a = lp4[k] * wa;
-                if (add_a[k]) t += a;
-                t = t + b;
+        D4 t[kT], q0[kVar ? kT : 1], q1[kVar ? kT : 1];
+        for (int i = 0; i < kT; ++i) {
+            t[i] = load4(sums + 4 * (i - kM));
+            if constexpr (kVar) q0[i] = load4(pairs + 8 * (i - kM)), q1[i] = load4(pairs + 8 * (i - kM) + 4);
+        }
+        for (int k = 0; k < n; ++k) {
+            const D4 a_row = ra[k][j + kM], b_row = rb[k][j + kM];
+            for (int i = 0; i < kT; ++i) {
+                const D4 b = b_row * cx[k][1][i];
+                t[i] = (t[i] + a_row * cx[k][0][i]) + b;
                 if constexpr (kVar) {
-                    const D4 d = b - a;
-                    q0 = q0 + d * d;
-                    q1 = q1 + d * d[0];
+                    if (!has_a[k]) continue;
+                    const D4 d = b - pa[k][j + kM] * cx[k][0][i];
+                    q0[i] = q0[i] + d * d;
+                    q1[i] = q1[i] + d * d[0];
                 }
             }
-            store4(sums + 4 * i, t);
-            if constexpr (kVar) store4(pairs + 8 * i, q0), store4(pairs + 8 * i + 4, q1);
+        }
+        for (int i = 0; i < kT; ++i) {
+            store4(sums + 4 * (i - kM), t[i]);
+            if constexpr (kVar) store4(pairs + 8 * (i - kM), q0[i]), store4(pairs + 8 * (i - kM) + 4, q1[i]);
         }
     }
 }
