@@ -549,7 +549,13 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const I prim = lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.prim_id));
                 const I row = (lane::gather(ps.tri_base.data(), geom) + prim) * I(PathSetup::kTriStride);
                 const I rows = lane::select(lane::int_mask(tvl_m), row, I(0));
-                auto G = [&](int k) { return lane::gather(tab, rows + I(k)); };
+                // Each lane's row as two row reads (16 and 8 floats) transposed into packets, not a
+                // gather per entry (lane::gather_rows).
+                F rw[PathSetup::kTriStride];
+                static_assert(PathSetup::kTriStride == 24, "a triangle row is read as 16 + 8 floats");
+                lane::gather_rows<16>(tab, rows, rw);
+                lane::gather_rows<8>(tab, rows + I(16), rw + 16);
+                auto G = [&](int k) { return rw[k]; };
                 auto GV = [&](int k) { return V3<F>(G(k), G(k + 1), G(k + 2)); };
                 const HitVertexT<F> v = flat_triangle_vertex<F>(GV(0), GV(3), GV(6), LD(hl.u), LD(hl.v), GV(9),
                                                                 FrameT<F>(GV(12), GV(15), GV(18)));

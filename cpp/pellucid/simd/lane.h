@@ -81,6 +81,11 @@ inline float as_float(int32_t i) {
 /// base[idx] (one lane).
 inline float gather(const float* base, int32_t idx) { return base[idx]; }
 inline int32_t gather(const int32_t* base, int32_t idx) { return base[idx]; }
+/// out[k] = base[off + k] for k < N (one lane; simd/packet.h reads a packet's rows and transposes).
+template <int N>
+inline void gather_rows(const float* base, int32_t off, float* out) {
+    for (int k = 0; k < N; ++k) out[k] = base[off + k];
+}
 /// The float mask m as a mask of the integer lane type, and back.
 inline bool int_mask(bool m) { return m; }
 inline bool float_mask(bool m) { return m; }

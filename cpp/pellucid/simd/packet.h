@@ -118,6 +118,99 @@ inline IP<A> gather(const int32_t* base, const IP<A>& idx) {
 #endif
     return IP<A>::gather(base, idx);
 }
+namespace detail {
+#if defined(__AVX2__)
+/// Transpose of the 8 × 8 floats r[0..8) (row i → lane i of out[k] = r[i][k]).
+inline void transpose8(__m256* r) {
+    __m256 t[8], u[8];
+    for (int i = 0; i < 8; i += 2) t[i] = _mm256_unpacklo_ps(r[i], r[i + 1]), t[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
+    for (int i = 0; i < 8; i += 4) {
+        u[i + 0] = _mm256_shuffle_ps(t[i], t[i + 2], 0x44), u[i + 1] = _mm256_shuffle_ps(t[i], t[i + 2], 0xee);
+        u[i + 2] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0x44), u[i + 3] = _mm256_shuffle_ps(t[i + 1], t[i + 3], 0xee);
+    }
+    for (int k = 0; k < 4; ++k) {
+        r[k] = _mm256_permute2f128_ps(u[k], u[k + 4], 0x20);
+        r[k + 4] = _mm256_permute2f128_ps(u[k], u[k + 4], 0x31);
+    }
+}
+#endif
+#if defined(__AVX512F__)
+/// Transpose of the 16 × 16 floats r[0..16).
+inline void transpose16(__m512* r) {
+    __m512 t[16];
+    for (int i = 0; i < 16; i += 2) t[i] = _mm512_unpacklo_ps(r[i], r[i + 1]), t[i + 1] = _mm512_unpackhi_ps(r[i], r[i + 1]);
+    for (int i = 0; i < 16; i += 4) {
+        auto pd = [](__m512 x) { return _mm512_castps_pd(x); };
+        r[i + 0] = _mm512_castpd_ps(_mm512_unpacklo_pd(pd(t[i]), pd(t[i + 2])));
+        r[i + 1] = _mm512_castpd_ps(_mm512_unpackhi_pd(pd(t[i]), pd(t[i + 2])));
+        r[i + 2] = _mm512_castpd_ps(_mm512_unpacklo_pd(pd(t[i + 1]), pd(t[i + 3])));
+        r[i + 3] = _mm512_castpd_ps(_mm512_unpackhi_pd(pd(t[i + 1]), pd(t[i + 3])));
+    }
+    // r[4b + c] now holds, in 128-bit block q, column 4q' + c of rows 4b..4b+3 (q' the block).
+    for (int h = 0; h < 2; ++h)
+        for (int c = 0; c < 4; ++c) {
+            t[8 * h + c] = _mm512_shuffle_f32x4(r[8 * h + c], r[8 * h + 4 + c], 0x88);
+            t[8 * h + 4 + c] = _mm512_shuffle_f32x4(r[8 * h + c], r[8 * h + 4 + c], 0xdd);
+        }
+    for (int c = 0; c < 8; ++c) {
+        r[c] = _mm512_shuffle_f32x4(t[c], t[8 + c], 0x88);
+        r[8 + c] = _mm512_shuffle_f32x4(t[c], t[8 + c], 0xdd);
+    }
+}
+#endif
+}  // namespace detail
+
+/// out[k] = base[off + k] in every lane, for k < N (8 or 16): each lane's N consecutive floats,
+/// read as one row and transposed into N packets (a gather per column costs more where the rows
+/// are scattered: on AVX-512 sixteen row loads and a 16 × 16 transpose replace sixteen gathers).
+/// Reads N floats from every lane's offset, valid or not.
+template <int N, class A>
+inline void gather_rows(const float* base, const IP<A>& off, FP<A>* out) {
+    static_assert(N == 8 || N == 16, "rows of 8 or 16 floats");
+    constexpr int W = int(FP<A>::size);
+    alignas(64) int32_t o[W];
+    off.store_aligned(o);
+#if defined(__AVX512F__)
+    if constexpr (std::is_base_of_v<xsimd::avx512f, A>) {
+        if constexpr (N == 16) {
+            __m512 r[16];
+            for (int i = 0; i < 16; ++i) r[i] = _mm512_loadu_ps(base + o[i]);
+            detail::transpose16(r);
+            for (int k = 0; k < 16; ++k) out[k] = FP<A>(r[k]);
+        } else {
+            __m256 lo[8], hi[8];
+            for (int i = 0; i < 8; ++i) lo[i] = _mm256_loadu_ps(base + o[i]), hi[i] = _mm256_loadu_ps(base + o[i + 8]);
+            detail::transpose8(lo), detail::transpose8(hi);
+            for (int k = 0; k < 8; ++k) out[k] = FP<A>(_mm512_insertf32x8(_mm512_castps256_ps512(lo[k]), hi[k], 1));
+        }
+        return;
+    }
+#endif
+#if defined(__AVX2__)
+    if constexpr (std::is_same_v<A, xsimd::avx2>) {
+        for (int h = 0; h < N; h += 8) {
+            __m256 r[8];
+            for (int i = 0; i < 8; ++i) r[i] = _mm256_loadu_ps(base + o[i] + h);
+            detail::transpose8(r);
+            for (int k = 0; k < 8; ++k) out[h + k] = FP<A>(r[k]);
+        }
+        return;
+    }
+#endif
+#if defined(__SSE4_2__)
+    if constexpr (std::is_same_v<A, xsimd::sse4_2>) {
+        for (int h = 0; h < N; h += 4) {
+            __m128 r0 = _mm_loadu_ps(base + o[0] + h), r1 = _mm_loadu_ps(base + o[1] + h);
+            __m128 r2 = _mm_loadu_ps(base + o[2] + h), r3 = _mm_loadu_ps(base + o[3] + h);
+            _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+            out[h] = FP<A>(r0), out[h + 1] = FP<A>(r1), out[h + 2] = FP<A>(r2), out[h + 3] = FP<A>(r3);
+        }
+        return;
+    }
+#endif
+    for (int k = 0; k < N; ++k) out[k] = gather(base, off + IP<A>(k));
+}
+
 /// A float-lane mask as an integer-lane mask, and back.
 template <class A>
 inline MIP<A> int_mask(const MP<A>& m) { return as_int(select(m, FP<A>(1.f), FP<A>(0.f))) != IP<A>(0); }

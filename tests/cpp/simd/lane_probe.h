@@ -1,7 +1,7 @@
 // What tests/cpp/simd/test_lanes_equal_scalars.cpp compares across lane types: the packet code of
 // the path tracer (Lambertian, Fresnel terms, the conductors on GGX and Beckmann, warps, frames, ray
 // offsets, the power heuristic, the bump terminator factors, emitter sampling, the packet lights:
-// spheres and constant environments)
+// spheres and constant environments, rows read by lane::gather_rows)
 // evaluated over arrays of inputs, kLaneWidth<F> lanes at a time. It is instantiated on float in
 // the test and on each SIMD target's packet in probe_<target>.cpp (built with that target's flags,
 // exporting only its entry point, as the renderer's kernels do).
@@ -33,7 +33,7 @@ struct In {
     const int32_t* light = nullptr;  ///< per case, a row of `lights`
 };
 /// Outputs, one array of n floats per quantity (masks as 0/1), zeroed by the caller.
-constexpr int kOutputs = 96;
+constexpr int kOutputs = 128;
 struct Out {
     float* v[kOutputs];
 };
@@ -121,6 +121,15 @@ void run(const In& in, Out& out) {
         detail::sincos_two_pi<F>(L(in.u[1]), &cphi, &sphi);
         put(cphi), put(sphi);
         beckmann<F>(in, L, wo, wi, nrm, metal, put, putm);
+        {
+            // Rows read and transposed (lane::gather_rows): 16 and then 8 consecutive inputs from
+            // each lane's own offset into the u[0] inputs.
+            const IntT<F> off = detail::whole_to_int<F>(lane::floor(L(in.u[1]) * F(float(in.n - 24))));
+            F rows[24];
+            lane::gather_rows<16>(in.u[0], off, rows);
+            lane::gather_rows<8>(in.u[0], off + IntT<F>(16), rows + 16);
+            for (const F& r : rows) put(r);
+        }
         if (in.emitters) {
             const EmitterSample<F> es = sample_emitter<F>(*in.emitters, L(in.u[0]), V2<F>{L(in.u[1]), L(in.u[2])}, V(in.p));
             putm(es.valid), put(es.p.x), put(es.p.y), put(es.p.z), put(es.wi.x), put(es.pdf), put(es.L.r);
