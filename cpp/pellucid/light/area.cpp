@@ -123,6 +123,7 @@ EmitterTable make_emitter_table(const std::vector<LightT>& lights, const std::ve
         }
     }
     if (weights.empty()) return EmitterTable{};
+    t.data.insert(t.data.end(), EmitterTable::kPad, 0.f);
     double sum = 0.0, acc = 0.0;
     for (double w : weights) sum += w;
     t.cdf.push_back(0.f);

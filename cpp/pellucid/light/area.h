@@ -161,6 +161,7 @@ struct EmitterTable {
     /// Floats per triangle: corners (9), emitting normal (3), error bound of a sampled point (3),
     /// radiance (3), two-sided (1 or 0), pmf(light)/area(light) (the density per unit area).
     static constexpr int kStride = 20;
+    static constexpr int kPad = 4;  ///< zeros after the last row: a row is read as 24 floats (sample_emitter)
     std::vector<float> data;
     std::vector<float> cdf;  ///< cdf[j] = Σ_{i<j} probability of i; cdf[m] = 1
     int search_top = 0;      ///< largest power of two below the triangle count (0 for one)
@@ -194,8 +195,12 @@ inline EmitterSample<F> sample_emitter(const EmitterTable& t, const F& u_sel, co
         j = lane::select(lane::int_mask(lane::gather(t.cdf.data(), c) <= u_sel), c, j);
     }
     const I base = j * I(EmitterTable::kStride);
-    const float* d = t.data.data();
-    auto E = [&](int k) { return lane::gather(d + k, base); };
+    // Each lane's row as two row reads (16 and 8 floats; the table is padded past its last row),
+    // transposed into packets (lane::gather_rows), not a gather per entry.
+    F row[24];
+    lane::gather_rows<16>(t.data.data(), base, row);
+    lane::gather_rows<8>(t.data.data(), base + I(16), row + 16);
+    auto E = [&](int k) { return row[k]; };
     const V2<F> b = square_to_uniform_triangle<F>(u);
     const F b0 = F(1.f) - b.x - b.y;
     EmitterSample<F> s;

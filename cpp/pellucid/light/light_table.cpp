@@ -13,7 +13,7 @@ namespace pellucid {
 template <class LightT>
 LightTable make_light_table(const std::vector<LightT>& lights, const std::vector<float>& pmf) {
     LightTable t;
-    t.data.assign(LightTable::kStride * lights.size(), 0.f);
+    t.data.assign(LightTable::kStride * lights.size() + LightTable::kPad, 0.f);
     t.idata.assign(LightTable::kIntStride * lights.size(), 0);
     t.kind.assign(lights.size(), LightTable::kNone);
     std::vector<const EnvmapLight*> maps;

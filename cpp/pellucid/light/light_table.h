@@ -36,6 +36,7 @@ namespace pellucid {
 struct LightTable {
     enum Kind : int { kNone = 0, kSphere = 1, kConstant = 2, kEnvmap = 3, kPoint = 4, kSpot = 5, kDirectional = 6 };
     static constexpr int kStride = 13;
+    static constexpr int kPad = 3;  ///< zeros after the last row: a row is read as 16 floats (sample_light_table)
     static constexpr int kIntStride = 5;
     std::vector<float> data;
     std::vector<int32_t> idata;
@@ -134,8 +135,11 @@ inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>
     using I = IntT<F>;
     using M = MaskT<F>;
     const I base = light * I(LightTable::kStride);
-    const float* d = t.data.data();
-    auto E = [&](int k) { return lane::gather(d + k, base); };
+    // Each lane's row as one row read of 16 floats (the table is padded past its last row),
+    // transposed into packets (lane::gather_rows), not a gather per entry.
+    F row[16];
+    lane::gather_rows<16>(t.data.data(), base, row);
+    auto E = [&](int k) { return row[k]; };
     const F kind = lane::select(active, E(0), F(float(LightTable::kNone)));
     const M sphere = kind == F(float(LightTable::kSphere)), constant = kind == F(float(LightTable::kConstant));
     const M envmap = kind == F(float(LightTable::kEnvmap));

@@ -97,6 +97,7 @@ struct Cases {
             emitters.cdf.push_back(t == 4 ? 1.f : acc);
         }
         emitters.search_top = 4;
+        emitters.data.insert(emitters.data.end(), EmitterTable::kPad, 0.f);  // (as make_emitter_table pads it)
         // Spheres: one the points see from outside or inside (|p| ≤ 1 or ~5000), a small one (narrow
         // cones), a flipped two-sided one around every point; a constant environment; a point light
         // (no packet form: its lanes come back invalid).
