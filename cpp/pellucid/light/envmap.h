@@ -130,15 +130,28 @@ inline RGB<F> envmap_lookup(const EnvmapLanes<F>& e, const V2<F>& uv) {
     const I x0 = lane::min(detail::whole_to_int<F>(lane::floor(fx)), e.w - I(1));
     const I y0 = lane::min(detail::whole_to_int<F>(lane::floor(fy)), e.h - I(2));
     const F wx = fx - lane::to_float(x0), wy = fy - lane::to_float(y0);
-    const I x1 = lane::select(x0 + I(1) < e.w, x0 + I(1), I(0));
+    const auto wraps = x0 + I(1) >= e.w;
+    const I x1 = lane::select(wraps, I(0), x0 + I(1));
     const I r0 = e.texels + I(3) * (y0 * e.w), r1 = r0 + I(3) * e.w;
     const I a = r0 + I(3) * x0, b = r0 + I(3) * x1, c = r1 + I(3) * x0, d = r1 + I(3) * x1;
     const float* t = e.dist.base;
     const F ox = F(1.f) - wx, oy = F(1.f) - wy;
+    // The texels (x0, y0), (x0 + 1, y0) are six consecutive floats, as are those of row y0 + 1:
+    // each lane reads the two runs as rows (lane::gather_rows; the buffer goes on past the texels,
+    // with g), and the lanes whose x0 + 1 wraps to column 0 take their second texels by gathers.
+    F top_row[8], bottom_row[8];
+    lane::gather_rows<8>(t, a, top_row);
+    lane::gather_rows<8>(t, c, bottom_row);
+    if (lane::any(wraps)) {
+        const MaskT<F> wf = lane::float_mask(wraps);
+        for (int k = 0; k < 3; ++k) {
+            top_row[3 + k] = lane::select(wf, lane::gather(t, b + I(k)), top_row[3 + k]);
+            bottom_row[3 + k] = lane::select(wf, lane::gather(t, d + I(k)), bottom_row[3 + k]);
+        }
+    }
     auto channel = [&](int k) {
-        const I kk = I(k);
-        const F top = lane::gather(t, a + kk) * ox + lane::gather(t, b + kk) * wx;
-        const F bottom = lane::gather(t, c + kk) * ox + lane::gather(t, d + kk) * wx;
+        const F top = top_row[k] * ox + top_row[3 + k] * wx;
+        const F bottom = bottom_row[k] * ox + bottom_row[3 + k] * wx;
         return top * oy + bottom * wy;
     };
     return RGB<F>(channel(0), channel(1), channel(2));
