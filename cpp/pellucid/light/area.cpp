@@ -37,7 +37,23 @@ AreaLight::AreaLight(const TriangleMesh& mesh, const Spectrum& radiance, bool tw
         m_tri_err.push_back(gamma(6) * (abs(a) + abs(b) + abs(c)));
         m_area += areas[t];
     }
-    m_tri_dist = Distribution1D(areas);
+    // sample_mesh_light's rows and CDF: the triangles of nonzero area, their areas summed in double.
+    double total = 0.0;
+    for (size_t t = 0; t < n; ++t) total += areas[t] > 0.f ? double(areas[t]) : 0.0;
+    double acc = 0.0;
+    m_cdf.push_back(0.f);
+    for (size_t t = 0; t < n; ++t) {
+        if (!(areas[t] > 0.f)) continue;
+        for (int c = 0; c < 9; ++c) m_rows.push_back(m_tri[3 * t + size_t(c / 3)][c % 3]);
+        for (int c = 0; c < 3; ++c) m_rows.push_back(m_tri_n[t][c]);
+        for (int c = 0; c < 3; ++c) m_rows.push_back(m_tri_err[t][c]);
+        m_rows.push_back(0.f);
+        acc += double(areas[t]);
+        m_cdf.push_back(float(acc / total));
+    }
+    if (m_cdf.size() > 1) m_cdf.back() = 1.f;
+    const size_t count = m_cdf.size() - 1;
+    while (size_t(m_top ? 2 * m_top : 1) < count) m_top = m_top ? 2 * m_top : 1;
 }
 
 AreaLight::AreaLight(const Point3f& center, float radius, bool flip_normals, const Spectrum& radiance,
@@ -62,22 +78,18 @@ std::optional<LightLiSample> AreaLight::sample_li(const LightSampleContext& ctx,
         if (s.L.is_black()) return std::nullopt;
         return s;
     }
-    float u_rem;
-    size_t t = m_tri_dist.sample_discrete(u.x, nullptr, &u_rem);
-    Vec2f b = square_to_uniform_triangle(Vec2f(u_rem, u.y));
-    const Point3f* v = &m_tri[3 * t];
-    s.p_light = v[0] * (1.f - b.x - b.y) + v[1] * b.x + v[2] * b.y;
-    s.n_light = m_tri_n[t];
-    s.p_error = m_tri_err[t];
-    Vec3f d = s.p_light - ctx.p;
-    float dist2 = length2(d);
-    if (!(dist2 > 0.f)) return std::nullopt;
-    s.wi = d / std::sqrt(dist2);
-    float cos_l = absdot(s.n_light, s.wi);
-    if (!(cos_l > 0.f)) return std::nullopt;
-    s.pdf = dist2 / (cos_l * m_area);
+    // The packet path tracer's mesh-light sampling (sample_mesh_light), one lane.
+    if (m_cdf.size() < 2) return std::nullopt;  // no triangle of nonzero area
+    const MeshLightSample<float> ms = sample_mesh_light<float>(m_rows.data(), m_cdf.data(), 0, 0,
+                                                                int32_t(m_cdf.size() - 1), m_top, m_area, ctx.p, u);
+    if (!ms.valid) return std::nullopt;
+    s.p_light = ms.p;
+    s.n_light = ms.n;
+    s.p_error = ms.err;
+    s.wi = ms.wi;
+    s.pdf = ms.pdf;
     s.L = L(s.n_light, -s.wi);
-    if (s.L.is_black() || !std::isfinite(s.pdf)) return std::nullopt;
+    if (s.L.is_black()) return std::nullopt;
     return s;
 }
 

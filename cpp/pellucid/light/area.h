@@ -104,6 +104,59 @@ inline SphereSample<F> sample_sphere(const V3<F>& c, const F& r, const MaskT<F>&
     return s;
 }
 
+/// A mesh emitter as sample_mesh_light reads it: per triangle kMeshLightStride floats (corners 9,
+/// the unit normal of the side that emits 3, the error bound of a sampled point 3, then 0), and
+/// the running sums of the triangles' areas over the light's area in float (count + 1 entries, 0
+/// first, the last 1). Triangles of zero area are left out.
+constexpr int kMeshLightStride = 16;
+
+template <class F>
+struct MeshLightSample {
+    MaskT<F> valid;
+    V3<F> p, n, err, wi;
+    F pdf;  ///< solid-angle density at p_ref
+};
+
+/// A point on a mesh emitter as seen from p_ref, with u: a triangle by its share of the area from
+/// u.x (the largest j < count with cdf[j] ≤ u.x, by a binary search of fixed length from `top`,
+/// the largest power of two below the most triangles of any lane's light), the remainder of u.x in
+/// its interval reused for the point (as Distribution1D::sample_discrete remaps it), a uniform
+/// point on the triangle (Heitz 2019, square_to_uniform_triangle), and its area density 1/area
+/// converted to solid angle: dist²/(|cos θ_light|·area) (Veach 1997, eq. 8.10). Per lane: the
+/// light's first triangle in `tris` (rows of kMeshLightStride), its CDF's offset in `cdf`, its
+/// triangle count and its area. AreaLight::sample_li of a mesh is the float instantiation; the
+/// light table (light_table.h) runs it on packets.
+template <class F>
+inline MeshLightSample<F> sample_mesh_light(const float* tris, const float* cdf, const IntT<F>& first,
+                                            const IntT<F>& cdf_at, const IntT<F>& count, int top, const F& area,
+                                            const V3<F>& p_ref, const V2<F>& u) {
+    using I = IntT<F>;
+    I j(0);
+    const I last = count - I(1);
+    for (int step = top; step > 0; step >>= 1) {
+        const I c = lane::min(j + I(step), last);
+        j = lane::select(lane::int_mask(lane::gather(cdf, cdf_at + c) <= u.x), c, j);
+    }
+    const F c0 = lane::gather(cdf, cdf_at + j), width = lane::gather(cdf, cdf_at + j + I(1)) - c0;
+    const F u_rem = lane::min((u.x - c0) / lane::select(width > F(0.f), width, F(1.f)), F(0x1.fffffep-1f));
+    F row[kMeshLightStride];
+    lane::gather_rows<kMeshLightStride>(tris, (first + j) * I(kMeshLightStride), row);
+    const V2<F> b = square_to_uniform_triangle<F>(V2<F>{u_rem, u.y});
+    const F b0 = F(1.f) - b.x - b.y;
+    MeshLightSample<F> s;
+    s.p = V3<F>(row[0] * b0 + row[3] * b.x + row[6] * b.y, row[1] * b0 + row[4] * b.x + row[7] * b.y,
+                row[2] * b0 + row[5] * b.x + row[8] * b.y);
+    s.n = V3<F>(row[9], row[10], row[11]);
+    s.err = V3<F>(row[12], row[13], row[14]);
+    const V3<F> d = s.p - p_ref;
+    const F dist2 = dot(d, d);
+    s.wi = d / lane::sqrt(lane::select(dist2 > F(0.f), dist2, F(1.f)));
+    const F cos_l = lane::abs(dot(s.n, s.wi));
+    s.pdf = dist2 / (lane::select(cos_l > F(0.f), cos_l, F(1.f)) * area);
+    s.valid = dist2 > F(0.f) && cos_l > F(0.f) && s.pdf < F(kInfinity);
+    return s;
+}
+
 class AreaLight {
 public:
     /// Emitter on a mesh (the light keeps a copy of the triangles it needs).
@@ -134,6 +187,11 @@ public:
     const std::vector<Point3f>& triangles() const { return m_tri; }
     const std::vector<Normal3f>& triangle_normals() const { return m_tri_n; }
     const std::vector<Vec3f>& triangle_errors() const { return m_tri_err; }
+    /// Mesh emitter as sample_mesh_light reads it: its triangles of nonzero area as rows, their
+    /// area CDF, and the largest power of two below their count (0 for one).
+    const std::vector<float>& sampling_rows() const { return m_rows; }
+    const std::vector<float>& sampling_cdf() const { return m_cdf; }
+    int sampling_top() const { return m_top; }
     std::string to_string() const;
 
 private:
@@ -144,7 +202,9 @@ private:
     std::vector<Point3f> m_tri;
     std::vector<Normal3f> m_tri_n;
     std::vector<Vec3f> m_tri_err;  ///< error bound of a sampled point, per triangle (its vertices are fixed)
-    Distribution1D m_tri_dist;
+    std::vector<float> m_rows;     ///< sample_mesh_light's rows (kMeshLightStride per triangle of nonzero area)
+    std::vector<float> m_cdf;      ///< and the running sums of their areas over the light's
+    int m_top = 0;
     // Sphere emitter.
     Point3f m_center{0.f};
     float m_radius = 0.f;

@@ -57,7 +57,21 @@ LightTable make_light_table(const std::vector<LightT>& lights, const std::vector
         int32_t* irow = &t.idata[LightTable::kIntStride * i];
         irow[3] = 2, irow[4] = 3;
         Spectrum L(0.f);
-        if (const auto* a = std::get_if<AreaLight>(&lights[i]); a && a->is_sphere()) {
+        if (const auto* a = std::get_if<AreaLight>(&lights[i]); a && !a->is_sphere()) {
+            // A mesh: its triangles and CDF appended to the table's (offsets kept below 2²³, so
+            // that floats hold them exactly; a light past that stays without a row).
+            const size_t count = a->sampling_cdf().size() - 1;
+            const size_t first = t.mesh_rows.size() / kMeshLightStride, cdf_at = t.mesh_cdf.size();
+            if (count == 0 || first + count >= (size_t(1) << 23) || cdf_at + count + 1 >= (size_t(1) << 23)) continue;
+            t.kind[i] = LightTable::kMesh;
+            t.mesh_rows.insert(t.mesh_rows.end(), a->sampling_rows().begin(), a->sampling_rows().end());
+            t.mesh_cdf.insert(t.mesh_cdf.end(), a->sampling_cdf().begin(), a->sampling_cdf().end());
+            t.mesh_top = std::max(t.mesh_top, a->sampling_top());
+            row[1] = float(first), row[2] = float(cdf_at), row[3] = float(count);
+            row[4] = a->area();
+            row[6] = a->two_sided() ? 1.f : 0.f;
+            L = a->radiance();
+        } else if (const auto* a = std::get_if<AreaLight>(&lights[i]); a && a->is_sphere()) {
             t.kind[i] = LightTable::kSphere;
             for (int c = 0; c < 3; ++c) row[1 + c] = a->center()[c];
             row[4] = a->radius();

@@ -29,12 +29,15 @@ namespace pellucid {
 /// at 7..9; for an environment map its rotation (9, column-major) at 1..9; for a point light its
 /// position (3) and intensity at 7..9; for a spot light its position (3), unit axis (3), intensity
 /// (3), then the cosine of its cutoff, its cutoff and its beam angle (radians) at 10..12; for a
-/// directional light the unit direction it travels (3) and its irradiance at 7..9.
+/// directional light the unit direction it travels (3) and its irradiance at 7..9; for an area light
+/// on a mesh its first triangle in mesh_rows, its CDF's offset in mesh_cdf and its triangle count
+/// (whole numbers below 2²³, as floats) at 1..3, its area, two-sided (1 or 0) at 6 and its radiance
+/// at 7..9.
 /// Per light, kIntStride integers: for an environment map the offsets in env of its marginal
 /// CDF, its conditional CDFs and its texels, its width and height; for other lights offsets 0 and
 /// the size 2 × 3, which keep their lanes' (unused) reads inside any map's buffer.
 struct LightTable {
-    enum Kind : int { kNone = 0, kSphere = 1, kConstant = 2, kEnvmap = 3, kPoint = 4, kSpot = 5, kDirectional = 6 };
+    enum Kind : int { kNone = 0, kSphere = 1, kConstant = 2, kEnvmap = 3, kPoint = 4, kSpot = 5, kDirectional = 6, kMesh = 7 };
     static constexpr int kStride = 13;
     static constexpr int kPad = 3;  ///< zeros after the last row: a row is read as 16 floats (sample_light_table)
     static constexpr int kIntStride = 5;
@@ -42,6 +45,10 @@ struct LightTable {
     std::vector<int32_t> idata;
     std::vector<int32_t> kind;  ///< per light: Kind
     bool any = false;           ///< some light has a packet form
+    /// The mesh area lights' triangles and area CDFs (AreaLight::sampling_rows, sampling_cdf), one
+    /// light after another, and the largest sampling_top among them (sample_mesh_light).
+    std::vector<float> mesh_rows, mesh_cdf;
+    int mesh_top = 0;
     /// The environment maps' buffer: the one map's own, or their copies one after another.
     std::shared_ptr<const std::vector<float>> env;
     int32_t sole_envmap = -1;  ///< the row of the table's one environment map, −1 without or with several
@@ -145,6 +152,7 @@ inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>
     const M envmap = kind == F(float(LightTable::kEnvmap));
     const M point = kind == F(float(LightTable::kPoint)), spot = kind == F(float(LightTable::kSpot));
     const M directional = kind == F(float(LightTable::kDirectional));
+    const M mesh = kind == F(float(LightTable::kMesh));
     const RGB<F> radiance(E(7), E(8), E(9));
     LightTableSample<F> s;
     s.valid = M(false);
@@ -162,6 +170,19 @@ inline LightTableSample<F> sample_light_table(const LightTable& t, const IntT<F>
         s.pdf = lane::select(sphere, ss.pdf, F(0.f));
         s.L = lane::select(sphere && faces, radiance, RGB<F>(F(0.f)));
         s.valid = sphere && ss.valid && !is_black(s.L);
+    }
+    if (lane::any(mesh)) {
+        // (Other lanes read the first light's first triangle: their entries 1..4 are not offsets.)
+        const auto mi = lane::int_mask(mesh);
+        auto whole = [&](int k, int32_t other) { return lane::select(mi, detail::whole_to_int<F>(E(k)), I(other)); };
+        const MeshLightSample<F> ms = sample_mesh_light<F>(t.mesh_rows.data(), t.mesh_cdf.data(), whole(1, 0), whole(2, 0),
+                                                           whole(3, 1), t.mesh_top, lane::select(mesh, E(4), F(1.f)), p_ref, u);
+        const M faces = E(6) > F(0.f) || dot(ms.n, -ms.wi) > F(0.f);  // AreaLight::L
+        s.p = lane::select(mesh, ms.p, s.p), s.n = lane::select(mesh, ms.n, s.n);
+        s.err = lane::select(mesh, ms.err, s.err), s.wi = lane::select(mesh, ms.wi, s.wi);
+        s.pdf = lane::select(mesh, ms.pdf, s.pdf);
+        s.L = lane::select(mesh && faces, radiance, s.L);
+        s.valid = s.valid || (mesh && ms.valid && !is_black(s.L));
     }
     if (lane::any(constant)) {
         s.wi = lane::select(constant, square_to_uniform_sphere_lanes<F>(u), s.wi);

@@ -171,7 +171,7 @@ TEST_P(EnvmapLanesMaps, FloatInstantiationIsTheScalarLight) {
     Outputs o;
     envmap_probe::run<float>(cases.in, o.out);
     const LightSampleContext ctx;
-    size_t delta_valid[kLights] = {}, delta_invalid[kLights] = {};
+    size_t delta_valid[kLights] = {}, delta_invalid[kLights] = {}, mesh_valid = 0, mesh_invalid = 0;
     for (int i = 0; i < Cases::kN; ++i) {
         if (!cases.active[i]) continue;
         const size_t li = size_t(cases.light[size_t(i)]);
@@ -205,7 +205,25 @@ TEST_P(EnvmapLanesMaps, FloatInstantiationIsTheScalarLight) {
         } else if (!std::holds_alternative<EnvmapLight>(light)) {
             EXPECT_EQ(at(28), 0.f) << i;  // not a delta light
         }
-        if (li == 7) EXPECT_EQ(at(0), 0.f) << i;  // no packet form: invalid
+        if (const auto* m = std::get_if<AreaLight>(&light); m && !m->is_sphere()) {
+            // A mesh light: its sample_li seen from the case's point, with the shadow ray's end.
+            const LightSampleContext seen{Point3f(cases.a[5][size_t(i)], cases.a[6][size_t(i)], cases.a[7][size_t(i)]),
+                                        Normal3f(0.f, 1.f, 0.f)};
+            const auto s = m->sample_li(seen, u);
+            ASSERT_EQ(at(0) == 1.f, s.has_value()) << i;
+            ++(s ? mesh_valid : mesh_invalid);
+            if (s) {
+                EXPECT_EQ(at(1), 0.f) << i;  // not at infinity
+                EXPECT_TRUE(same_bits(at(2), s->wi.x) && same_bits(at(3), s->wi.y) && same_bits(at(4), s->wi.z)) << i;
+                EXPECT_TRUE(same_bits(at(5), s->L.r) && same_bits(at(6), s->L.g) && same_bits(at(7), s->L.b)) << i;
+                EXPECT_TRUE(same_bits(at(8), s->pdf)) << i;
+                for (int c = 0; c < 3; ++c) {
+                    EXPECT_TRUE(same_bits(at(19 + c), s->p_light[c])) << i;
+                    EXPECT_TRUE(same_bits(at(22 + c), s->n_light[c])) << i;
+                    EXPECT_TRUE(same_bits(at(25 + c), s->p_error[c])) << i;
+                }
+            }
+        }
         if (const auto* e = std::get_if<EnvmapLight>(&light)) {
             const auto s = e->sample_li(ctx, u);
             ASSERT_EQ(at(0) == 1.f, s.has_value()) << i;
@@ -242,6 +260,9 @@ TEST_P(EnvmapLanesMaps, FloatInstantiationIsTheScalarLight) {
     for (int li : {4, 5, 6, 8}) EXPECT_GT(delta_valid[li], 50u) << li;
     for (int li : {4, 5, 8}) EXPECT_GT(delta_invalid[li], 0u) << li;
     EXPECT_EQ(delta_invalid[6], 0u);
+    // The mesh light was sampled (the cases' points all lie on its emitting side).
+    EXPECT_GT(mesh_valid, 50u);
+    EXPECT_EQ(mesh_invalid, 0u);
 }
 
 TEST(EnvmapLanes, SamplesLieInTheCellWhoseDensityTheyCarry) {

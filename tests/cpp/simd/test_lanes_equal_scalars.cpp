@@ -99,15 +99,24 @@ struct Cases {
         emitters.search_top = 4;
         emitters.data.insert(emitters.data.end(), EmitterTable::kPad, 0.f);  // (as make_emitter_table pads it)
         // Spheres: one the points see from outside or inside (|p| ≤ 1 or ~5000), a small one (narrow
-        // cones), a flipped two-sided one around every point; a constant environment; a point light
-        // (no packet form: its lanes come back invalid).
+        // cones), a flipped two-sided one around every point; a constant environment; a point light;
+        // a one-sided mesh of three triangles of different areas and one of zero area, above the
+        // points, and a two-sided one of one triangle.
+        TriangleMesh quads, tri;
+        quads.positions = {Point3f(-0.5f, 2.f, -0.5f), Point3f(0.5f, 2.f, -0.5f), Point3f(0.5f, 2.1f, 0.5f),
+                           Point3f(-0.5f, 2.f, 0.5f), Point3f(1.5f, 2.f, 0.5f), Point3f(1.5f, 2.f, 0.5f)};
+        quads.indices = {0, 1, 2, 0, 2, 3, 1, 4, 2, 4, 5, 5};
+        tri.positions = {Point3f(0.f, 0.f, 0.7f), Point3f(0.9f, 0.1f, 0.6f), Point3f(0.1f, 0.8f, 0.8f)};
+        tri.indices = {0, 1, 2};
         const std::vector<Light> ls = {AreaLight(Point3f(0.3f, 0.2f, -0.1f), 0.5f, false, Spectrum(1.f, 2.f, 3.f), false),
                                        AreaLight(Point3f(-0.5f, 0.4f, 0.2f), 1e-3f, false, Spectrum(4.f), false),
                                        AreaLight(Point3f(0.f), 1e5f, true, Spectrum(0.5f), true),
-                                       ConstantLight(Spectrum(0.25f, 0.5f, 1.f)), PointLight(Point3f(1.f), Spectrum(1.f))};
+                                       ConstantLight(Spectrum(0.25f, 0.5f, 1.f)), PointLight(Point3f(1.f), Spectrum(1.f)),
+                                       AreaLight(quads, Spectrum(2.f, 1.f, 0.5f), false),
+                                       AreaLight(tri, Spectrum(0.7f), true)};
         lights = make_light_table(ls);
         light.resize(kN);
-        for (int i = 0; i < kN; ++i) light[size_t(i)] = int32_t((i / 3 + i / 64) % 5);
+        for (int i = 0; i < kN; ++i) light[size_t(i)] = int32_t((i / 3 + i / 64) % 7);
         in.lights = &lights;
         in.light = light.data();
         in.n = kN;
