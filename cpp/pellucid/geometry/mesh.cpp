@@ -107,6 +107,10 @@ void TriangleMesh::validate(const std::string& where) const {
     for (size_t i = 0; i < normals.size(); ++i)
         if (!is_finite(normals[i]) || length2(normals[i]) == 0.f)
             throw Error(where + "normals: normal " + std::to_string(i) + " is zero or not finite");
+    for (size_t i = 0; i < uvs.size(); ++i)
+        if (!std::isfinite(uvs[i].x) || !std::isfinite(uvs[i].y))
+            throw Error(where + "uvs: uv " + std::to_string(i) + " (" + std::to_string(uvs[i].x) + ", " +
+                        std::to_string(uvs[i].y) + ") is not finite");
 }
 
 void TriangleMesh::compute_smooth_normals() {

@@ -429,7 +429,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const ShapeRecord& s = scene.shapes[h.geom_id];
                 mat_of[i] = s.face_materials.empty() ? s.material : s.face_materials[h.prim_id];
                 light_of[i] = s.light;
-                if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane ||
+                if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane || ps.checker_row[mat_of[i]] >= 0 ||
                     (scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[mat_of[i]])))) {
                     scene.fill_hit(ray[i], h, si[i], scene.has_textures);
                     return;
@@ -692,6 +692,13 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     a.kind[i] = float(kind);
                     const float* q = &ps.packet_params[kPacketParams * size_t(mat_of[i])];
                     for (int k = 0, n = ps.packet_count[mat_of[i]]; k < n; ++k) a.q[k][i] = q[k];
+                    if (const int32_t cr = ps.checker_row[mat_of[i]]; cr >= 0) {
+                        // A checker material: the parameters of its hit's square (a full record's uv;
+                        // w is 0 or 1, so the sum is one colour's parameters exactly, or NaN).
+                        const float* c = &ps.checker_table[size_t(cr) * PathSetup::kCheckerStride];
+                        const float w = checkerboard_square<float>(c, si[i].uv.x, si[i].uv.y);
+                        for (int k = 0; k < 3; ++k) a.q[k][i] = c[6 + k] * (1.f - w) + c[9 + k] * w;
+                    }
                     flags = BxDFFlags(ps.packet_flags[mat_of[i]]);
                     // Delta bounces carry ray differentials on from the hit's footprint.
                     if (scene.needs_footprints && full[i]) path_services::footprint(ps, si[i], ray[i]);
@@ -735,6 +742,27 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const I qrow = vl_mat * I(kPacketParams);
                 for (int k = 0; k < ps.max_packet_count; ++k)
                     ST(a.q[k], lane::select(fast, lane::gather(ps.packet_params.data(), qrow + I(k)), LD(a.q[k])));
+                if (!ps.checker_table.empty()) {
+                    // Checker materials (triangle-table lanes only): the parameters of the square
+                    // their hit's uv lies in, the uv interpolated as fill_hit interpolates it.
+                    const I crow = lane::gather(ps.checker_row.data(), vl_mat);
+                    const M chk = fast && lane::float_mask(crow >= I(0));
+                    if (lane::any(chk)) {
+                        const auto ci = lane::int_mask(chk);
+                        const I geom = lane::select(ci, lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
+                        const I prim = lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.prim_id));
+                        const I tri = lane::select(ci, lane::gather(ps.tri_base.data(), geom) + prim, I(0));
+                        F uv[PathSetup::kTriUVStride], c[PathSetup::kCheckerStride];
+                        lane::gather_rows<PathSetup::kTriUVStride>(ps.tri_uv.data(), tri * I(PathSetup::kTriUVStride), uv);
+                        lane::gather_rows<PathSetup::kCheckerStride>(ps.checker_table.data(),
+                                                                    lane::select(ci, crow, I(0)) * I(PathSetup::kCheckerStride), c);
+                        const F b1 = LD(hl.u), b2 = LD(hl.v), b0 = F(1.f) - b1 - b2;
+                        const F u = b0 * uv[0] + b1 * uv[2] + b2 * uv[4], v = b0 * uv[1] + b1 * uv[3] + b2 * uv[5];
+                        const F w = checkerboard_square<F>(c, u, v);
+                        for (int k = 0; k < 3; ++k)
+                            ST(a.q[k], lane::select(chk, c[6 + k] * (F(1.f) - w) + c[9 + k] * w, LD(a.q[k])));
+                    }
+                }
                 const M goes = fast && lane::float_mask(flags != I(0));
                 const M nee = goes && M(ps.use_nee) &&
                               lane::float_mask((flags & I(int32_t(BxDFFlags::Diffuse | BxDFFlags::Glossy))) != I(0));

@@ -224,8 +224,10 @@ int32_t packet_form(const BSDF& b, float* q) { return packet_form_of(b.bxdf(), q
 namespace {
 // A material a vertex lane shades (the kernel's record_hit: a packet form, and no delta lobe
 // where the scene carries ray differentials), as the tables hold it: its index, else −1.
-int32_t lane_material(const Scene& scene, const PathSetup& ps, uint32_t m) {
-    const bool lane = ps.packet_kind[m] != kBSDFLane && !(scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[m])));
+// (Checker materials read their hit's uv: the sphere table has none, so they are not sphere lanes.)
+int32_t lane_material(const Scene& scene, const PathSetup& ps, uint32_t m, bool sphere = false) {
+    const bool lane = ps.packet_kind[m] != kBSDFLane && !(scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[m]))) &&
+                      !(sphere && ps.checker_row[m] >= 0);
     return lane ? int32_t(m) : -1;
 }
 
@@ -241,7 +243,7 @@ void make_sphere_table(const Scene& scene, PathSetup* ps) {
         float r[PathSetup::kSphereStride] = {s.center.x, s.center.y, s.center.z, s.radius};
         for (int c = 0; c < 9; ++c) r[4 + c] = s.rotation[c / 3][c % 3];
         r[13] = s.flip_normals ? 1.f : 0.f;
-        const int32_t id = lane_material(scene, *ps, s.material);
+        const int32_t id = lane_material(scene, *ps, s.material, true);
         std::memcpy(&r[14], &id, sizeof id);
         ps->sphere_table.insert(ps->sphere_table.end(), r, r + PathSetup::kSphereStride);
     }
@@ -265,6 +267,8 @@ void make_triangle_table(const Scene& scene, PathSetup* ps) {
         return;
     }
     ps->tri_table.assign(total * PathSetup::kTriStride, 0.f);
+    const bool uvs = !ps->checker_table.empty();
+    if (uvs) ps->tri_uv.assign(total * PathSetup::kTriUVStride, 0.f);
     size_t next = 0;
     for (size_t g = 0; g < scene.shapes.size(); ++g) {
         const ShapeRecord& s = scene.shapes[g];
@@ -283,8 +287,49 @@ void make_triangle_table(const Scene& scene, PathSetup* ps) {
             const uint32_t m = s.face_materials.empty() ? s.material : s.face_materials[t];
             const int32_t id = lane_material(scene, *ps, m);
             std::memcpy(&r[21], &id, sizeof id);
+            if (uvs) {
+                float* uv = &ps->tri_uv[next * PathSetup::kTriUVStride];
+                const Vec2f none[3] = {Vec2f(0.f, 0.f), Vec2f(1.f, 0.f), Vec2f(1.f, 1.f)};
+                for (int k = 0; k < 3; ++k) {
+                    const Vec2f c = mesh.uvs.empty() ? none[k] : mesh.uvs[mesh.indices[3 * t + size_t(k)]];
+                    uv[2 * k] = c.x, uv[2 * k + 1] = c.y;
+                }
+            }
         }
     }
+}
+
+// A two-sided Lambertian whose only texture is a point-sampled checkerboard reflectance, without a
+// bump or normal map: the packet Lambertian shades it with its square's parameters
+// (PathSetup::checker_row), given as make_bxdf builds the Lambertian of each colour. True: m is one.
+bool checker_material(const Scene& scene, size_t m, PathSetup* ps) {
+    const MaterialTextures& mt = scene.material_textures[m];
+    const auto* lp = std::get_if<LambertianParams>(&scene.materials[m]);
+    if (!lp || mt.count != 1 || mt.perturbs_normal() || !lp->reflectance.textured()) return false;
+    const auto* cb = std::get_if<CheckerboardTexture>(&scene.textures[size_t(lp->reflectance.texture)]);
+    if (!cb || cb->filtered) return false;
+    float q[2][kPacketParams];
+    BxDFFlags f[2];
+    for (int c = 0; c < 2; ++c) {
+        Spectrum v = c == 0 ? cb->color0 : cb->color1;
+        for (int k = 0; k < 3; ++k) v[k] = clamp(v[k], lp->reflectance.lo, lp->reflectance.hi);  // as TexEval
+        LambertianParams p = *lp;
+        p.reflectance = Tex<Spectrum>(v);
+        const BxDF b = make_bxdf(p, TexEval{});
+        if (packet_form_of(b, q[c], nullptr) != kPacketLambertian) return false;
+        f[c] = flags(b);
+    }
+    if (f[0] != f[1]) return false;
+    static_assert(PathSetup::kCheckerStride >= 12, "to_uv and two colours' parameters");
+    ps->packet_kind[m] = kPacketLambertian;
+    ps->packet_flags[m] = uint32_t(f[0]);
+    std::copy(q[0], q[0] + kPacketParams, &ps->packet_params[kPacketParams * m]);
+    ps->checker_row[m] = int32_t(ps->checker_table.size() / PathSetup::kCheckerStride);
+    const UVTransform& a = cb->to_uv;
+    const float row[PathSetup::kCheckerStride] = {a.a00, a.a01, a.b0,    a.a10,   a.a11,   a.b1,    q[0][0], q[0][1],
+                                                  q[0][2], q[1][0], q[1][1], q[1][2], 0.f, 0.f, 0.f, 0.f};
+    ps->checker_table.insert(ps->checker_table.end(), row, row + PathSetup::kCheckerStride);
+    return true;
 }
 }  // namespace
 
@@ -303,12 +348,14 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.packet_params.assign(kPacketParams * n, 0.f);
     ps.packet_flags.assign(n, 0u);
     ps.textured_packet.assign(n, 0);
+    ps.checker_row.assign(n, -1);
     for (size_t m = 0; m < n; ++m) {
         const MaterialTextures& mt = scene.material_textures[m];
         if (!mt.two_sided) continue;
         // A subsurface boundary's transmission goes through the probe (subsurface_entry).
         if (std::holds_alternative<SubsurfaceParams>(scene.materials[m])) continue;
         const BxDF& b = scene.material_bxdfs[m];
+        if (checker_material(scene, m, &ps)) continue;
         if (mt.has_textured_params() || mt.perturbs_normal()) {
             // Built at each hit (textures, a bump or normal map): the packet form of the model shades
             // it where its BSDF there has one (packet_form).

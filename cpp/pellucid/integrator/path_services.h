@@ -97,6 +97,21 @@ struct PathSetup {
     static constexpr size_t kMaxTriangleTable = size_t(1) << 20;
     std::vector<int32_t> tri_base;
     std::vector<float> tri_table;
+    /// Per material: its row of checker_table, or −1. A two-sided Lambertian whose one texture is a
+    /// point-sampled checkerboard reflectance (no bump or normal map) has the packet Lambertian as
+    /// its form, with the parameters of the square its hit lies in (checkerboard_square); its lanes
+    /// read the hit's uv (the triangle table's tri_uv, else a full hit record). A row is
+    /// kCheckerStride floats: the checkerboard's to_uv (a00, a01, b0, a10, a11, b1), then the packet
+    /// parameters of the Lambertian of color0 and of color1 (3 each; as make_bxdf builds them from
+    /// the colours clamped as TexEval clamps a texture value).
+    static constexpr int kCheckerStride = 16;
+    std::vector<int32_t> checker_row;
+    std::vector<float> checker_table;
+    /// With checker materials: the uvs of the triangle table's triangles as fill_hit interpolates
+    /// them (kTriUVStride floats per triangle: uv0, uv1, uv2; (0, 0), (1, 0), (1, 1) for a mesh
+    /// without uvs), else empty.
+    static constexpr int kTriUVStride = 8;
+    std::vector<float> tri_uv;
     /// The spheres likewise (gathered by geometry): sphere_row[g] is sphere geometry g's row in
     /// sphere_table, or −1 (a mesh, an emitter, a scene with media or subsurface scattering). Each
     /// row is kSphereStride floats: centre, radius, rotation columns (ShapeRecord::rotation), 1

@@ -21,6 +21,7 @@
 #include <variant>
 #include <vector>
 
+#include "pellucid/math/lane_types.h"
 #include "pellucid/math/spectrum.h"
 #include "pellucid/math/transform.h"
 #include "pellucid/math/vec.h"
@@ -64,6 +65,23 @@ struct CheckerboardTexture {
     UVTransform to_uv;
     bool filtered = true;
 };
+
+/// Which colour the point-sampled checkerboard (filtered false) shows at (u, v), over a lane type F:
+/// 1 for color1, 0 for color0, NaN where st = to_uv(u, v) is not finite (to_uv's entries in a as
+/// (a00, a01, b0, a10, a11, b1)). color1 shows where exactly one of frac(s), frac(t) exceeds ½.
+/// These are eval_texture's operations: st as UVTransform::point computes it, and the fraction
+/// x − ⌊x⌋ of a float is exact in float as in the double wave_coverage takes; eval_texture's
+/// coverage is then 0 or 1 and its value color0 or color1 exactly (and NaN where st is not finite).
+/// The packet path tracer shades a Lambertian with such a reflectance as its packet form with the
+/// parameters of that colour (PathSetup::checker_row).
+template <class F>
+inline F checkerboard_square(const F* a, const F& u, const F& v) {
+    const F s = (a[0] * u + a[1] * v) + a[2], t = (a[3] * u + a[4] * v) + a[5];
+    const F fs = s - lane::floor(s), ft = t - lane::floor(t);  // NaN where s or t is not finite
+    const MaskT<F> os = fs > F(0.5f), ot = ft > F(0.5f);
+    const F pick = lane::select((os && !ot) || (!os && ot), F(1.f), F(0.f));
+    return lane::select(fs == fs && ft == ft, pick, fs + ft);
+}
 
 /// Solid Perlin noise (Perlin 2002, "Improving Noise") on the point to_world⁻¹(p)·scale, or fBm:
 /// Σ roughnessⁱ·noise(2ⁱ·x) over `octaves`, the octaves finer than the footprint dropped (they

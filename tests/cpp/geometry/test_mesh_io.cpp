@@ -207,6 +207,16 @@ TEST(MeshIO, PlyRoundTripsAsciiAndBinary) {
             EXPECT_NEAR(length(m.uvs[i] - src.uv[i]), 0.f, 1e-6f);
         }
         m.validate(p.string());
+        // A uv that is not finite is bad input, named by its file and index.
+        TriangleMesh bad = m;
+        bad.uvs[3].y = std::nanf("");
+        try {
+            bad.validate(p.string());
+            ADD_FAILURE() << "a NaN uv was accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("uvs: uv 3"), std::string::npos) << e.what();
+        }
     }
     // Positions only, smooth normals on request.
     PlyMesh bare = src;

@@ -408,9 +408,10 @@ TEST(SimdTargetRender, PacketFormsEqualBSDFLanes) {
     // lanes (packet kinds cleared, and with them the shape tables, whose lanes are packet-form
     // lanes) gives the same image bit for bit. A form that the packet pass handles differently
     // from its BSDF (a lobe NEE does not reach, another frame) shows here; the bit-identity of the
-    // targets cannot see it, as every target runs the same pass.
+    // targets cannot see it, as every target runs the same pass. (glass.json's floor is a checker
+    // material: PathSetup::checker_row.)
     for (const char* file : {"bench/suite/principled.json", "bench/suite/cornell_spheres.json", "bench/suite/no_twin.json",
-                             "bench/suite/env_spheres.json"}) {
+                             "bench/suite/env_spheres.json", "bench/suite/glass.json"}) {
         auto scene = load_scene(file, 40, 32);
         const PathSetup with = make_path_setup(*scene, 8, 5, true, true, SamplerType::Independent);
         PathSetup without = with;

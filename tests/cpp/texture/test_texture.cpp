@@ -13,6 +13,7 @@
 #include "pellucid/scene/json_io.h"
 #include "pellucid/texture/texture.h"
 #include "pellucid/util/error.h"
+#include "support/probe_outputs.h"
 #include "support/scene_util.h"
 #include "support/surface_util.h"
 #include "support/temp_dir.h"
@@ -24,6 +25,7 @@ using pellucid::test::scene_from;
 using pellucid::test::z_two_sided;
 using pellucid::test::ctx_of;
 using pellucid::test::plane_hit;
+using pellucid::test::same_bits;
 
 namespace {
 
@@ -159,6 +161,39 @@ TEST(Checkerboard, FilteredAveragesHalfAtDistanceAndMatchesBoxAverage) {
         }
         EXPECT_NEAR(checkerboard_coverage(u0 - w, u0 + w, v0 - w, v0 + w), double(hits) / n, 0.006) << "w=" << w;
     }
+}
+
+TEST(Checkerboard, PointSampledSquareIsEvalTexturesColour) {
+    // checkerboard_square (the packet path tracer's choice of a checker material's parameters)
+    // gives eval_texture's colour of the point-sampled checkerboard, color0·(1 − w) + color1·w, bit
+    // for bit, under a scaled, sheared and shifted to_uv: at random uv over several periods, at
+    // exact halves and integers, at large and negative coordinates, at −0, and NaN where st is NaN
+    // or infinite (to_uv overflows).
+    CheckerboardTexture cb;
+    cb.color0 = Spectrum(0.8f, 0.7f, 0.6f);
+    cb.color1 = Spectrum(0.2f, 0.3f, 0.4f);
+    cb.filtered = false;
+    cb.to_uv = UVTransform{20.f, 0.5f, -0.25f, 20.f, 0.1f, -3.f};
+    const TextureList list{cb};
+    const UVTransform& t = cb.to_uv;
+    const float a[6] = {t.a00, t.a01, t.b0, t.a10, t.a11, t.b1};
+    PCG32 rng(3, 9);
+    std::vector<Vec2f> uvs = {{0.f, 0.f}, {-0.f, -0.f}, {0.5f, 0.5f}, {0.025f, 0.025f}, {1.f, 1.f}, {-3.f, 2.f},
+                              {1e6f, -1e6f}, {4e7f, 3e7f}, {std::nanf(""), 0.3f}, {3e37f, 0.1f}};
+    for (int i = 0; i < 20000; ++i) uvs.push_back(Vec2f(8.f * rng.next_float() - 4.f, 8.f * rng.next_float() - 4.f));
+    int odd = 0, even = 0;
+    for (const Vec2f& uv : uvs) {
+        TextureEvalContext c;
+        c.uv = uv;
+        const Spectrum v = eval_texture(list, 0, c);
+        const float w = checkerboard_square<float>(a, uv.x, uv.y);
+        const Spectrum want = cb.color0 * (1.f - w) + cb.color1 * w;
+        for (int k = 0; k < 3; ++k) EXPECT_TRUE(same_bits(v[k], want[k])) << uv.x << " " << uv.y << " " << v[k] << " " << want[k];
+        odd += w == 1.f, even += w == 0.f;
+        if (!std::isfinite(uv.x) || std::fabs(uv.x) > 1e30f) EXPECT_TRUE(std::isnan(w)) << uv.x;
+    }
+    EXPECT_GT(odd, 5000);
+    EXPECT_GT(even, 5000);
 }
 
 // A flat normal map — (0.5, 0.5, 1) in float, or (128, 128, 255) in 8 bits — changes nothing.
