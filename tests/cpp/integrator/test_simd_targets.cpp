@@ -294,18 +294,23 @@ TEST(SimdTargetRender, ThinDielectricsAndOrenNayarArePacketForms) {
 }
 
 TEST(SimdTargetRender, TexturedMaterialsTakeTheirModelsPacketForm) {
-    // The suite's glass floor (a checkerboard Lambertian) is built at each hit and shaded by the
-    // packet Lambertian with that hit's texel; so are textured_bump's bump-mapped Lambertians (with
-    // their softened terminators), while its rough plastic, whose coat table is built once per
-    // material, stays a BSDF lane.
+    // The suite's glass floor (a Lambertian whose one texture is a point-sampled checkerboard) is a
+    // checker material: the packet Lambertian with the parameters of its hit's square
+    // (PathSetup::checker_row, checkerboard_square), which are the parameters of the BSDF built at
+    // that hit. textured_bump's bump-mapped Lambertians are built at each hit and shaded by the
+    // packet Lambertian with that hit's texel (with their softened terminators), while its rough
+    // plastic, whose coat table is built once per material, stays a BSDF lane.
     auto glass = load_scene("bench/suite/glass.json");
     const PathSetup ps = make_path_setup(*glass, 8, 5, true, true, SamplerType::Independent);
     const auto it = std::find(glass->material_names.begin(), glass->material_names.end(), "checker");
     ASSERT_NE(it, glass->material_names.end());
     const size_t checker = size_t(it - glass->material_names.begin());
-    EXPECT_EQ(ps.packet_kind[checker], kBSDFLane);
-    EXPECT_TRUE(ps.textured_packet[checker]);
-    // Hits on the floor: the packet parameters are the BSDF's albedo there, and both colours occur.
+    EXPECT_EQ(ps.packet_kind[checker], kPacketLambertian);
+    EXPECT_FALSE(ps.textured_packet[checker]);
+    ASSERT_GE(ps.checker_row[checker], 0);
+    EXPECT_FALSE(ps.tri_uv.empty());
+    const float* row = &ps.checker_table[size_t(ps.checker_row[checker]) * PathSetup::kCheckerStride];
+    // Hits on the floor: the square's parameters are the BSDF's albedo there, and both colours occur.
     std::set<float> reds;
     for (int k = 0; k < 64; ++k) {
         const Ray r{glass->camera.origin(), glass->camera.direction<float>(4.f * float(k) + 2.f, 250.f), kInfinity};
@@ -316,16 +321,28 @@ TEST(SimdTargetRender, TexturedMaterialsTakeTheirModelsPacketForm) {
         float q[kPacketParams];
         ASSERT_EQ(path_services::packet_form(b, q), kPacketLambertian);
         const Spectrum albedo = std::get<Lambertian>(b.bxdf()).albedo();
-        for (int c = 0; c < 3; ++c) EXPECT_EQ(q[c], albedo[c]);
+        const float w = checkerboard_square<float>(row, si.uv.x, si.uv.y);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(q[c], albedo[c]);
+            EXPECT_EQ(row[6 + c] * (1.f - w) + row[9 + c] * w, q[c]);
+        }
         reds.insert(q[0]);
     }
     EXPECT_EQ(reds.size(), 2u);
     auto bump = load_scene("bench/suite/textured_bump.json");
     const PathSetup pb = make_path_setup(*bump, 8, 5, true, true, SamplerType::Independent);
-    for (size_t m = 0; m < bump->material_bxdfs.size(); ++m)
-        EXPECT_EQ(bool(pb.textured_packet[m]), std::holds_alternative<Lambertian>(bump->material_bxdfs[m]))
-            << bump->material_names[m];
-    EXPECT_EQ(std::count(pb.textured_packet.begin(), pb.textured_packet.end(), 1), 2);
+    int built = 0, checkers = 0;
+    for (size_t m = 0; m < bump->material_bxdfs.size(); ++m) {
+        const bool lambertian = std::holds_alternative<Lambertian>(bump->material_bxdfs[m]);
+        if (pb.checker_row[m] >= 0) {
+            EXPECT_TRUE(lambertian) << bump->material_names[m];
+            ++checkers;
+            continue;
+        }
+        EXPECT_EQ(bool(pb.textured_packet[m]), lambertian) << bump->material_names[m];
+        built += pb.textured_packet[m];
+    }
+    EXPECT_EQ(built + checkers, 2);
 }
 
 // The triangle and sphere tables (PathSetup::tri_table, sphere_table): hits on their shapes take
