@@ -16,28 +16,17 @@ using disney::unit;
 using principled_detail::allows;
 }  // namespace
 
+// The double instantiation of principled_half_d (principled_bsdf.h), rounded to float.
 principled_detail::PrincipledHalf principled_detail::principled_half(const Vec3f& wo, const Vec3f& wi, float eta) {
+    // The half vector in double: wo·h and wi·h of nearly orthogonal vectors otherwise lose most
+    // digits (as in RoughDielectric), which breaks the transmission's η² symmetry in the tails.
+    const PrincipledHalfD<double> d = principled_half_d<double>(Vec3P<double>(wo.x, wo.y, wo.z),
+                                                                Vec3P<double>(wi.x, wi.y, wi.z), double(eta));
     PrincipledHalf out;
-    const bool front = wo.z > 0.f, reflect = wo.z * wi.z > 0.f;
-    // η' = η(wi side)/η(wo side) for transmission.
-    const double etap_d = front ? double(eta) : 1.0 / double(eta);
-    out.etap = float(etap_d);
-    // Half vector (generalised for transmission, Walter et al. 2007 eq. 16), oriented to +z, in
-    // double: wo·h and wi·h of nearly orthogonal vectors otherwise lose most digits (as in
-    // RoughDielectric), which breaks the transmission's η² symmetry in the tails.
-    const Vec3d hh = reflect ? Vec3d(wo) + Vec3d(wi) : Vec3d(wo) + Vec3d(wi) * etap_d;
-    const double hl = glm::length(hh);
-    if (!(hl > 0.0)) return out;
-    const Vec3d hd = hh / (hh.z < 0.0 ? -hl : hl);
-    out.h = Vec3f(hd);
-    const double dot_od = glm::dot(Vec3d(wo), hd), dot_id = glm::dot(Vec3d(wi), hd);
-    out.dot_o = float(dot_od), out.dot_i = float(dot_id);
-    // F at wo·h; for transmission from the denser side evaluated from the other side (the same
-    // value, better conditioned near the critical angle; as RoughDielectric).
-    const bool from_wi = !reflect && (front != (eta >= 1.f));
-    out.F = float(fresnel_dielectric_d(from_wi ? dot_id : dot_od, eta));
-    out.denom = float(sqr(dot_od + etap_d * dot_id));
-    out.ok = true;
+    out.h = Vec3f(float(d.h.x), float(d.h.y), float(d.h.z));
+    out.dot_o = float(d.dot_o), out.dot_i = float(d.dot_i), out.F = float(d.F), out.denom = float(d.denom);
+    out.etap = float(d.etap);
+    out.ok = d.ok != 0.0;
     return out;
 }
 

@@ -76,15 +76,17 @@
 // with the blended Fresnel, clear coat, diffuse with retro-reflection and flatness, and sheen. The
 // path tracer shades such materials with it (kPacketPrincipled, integrator/path_services.h), and
 // PrincipledBSDF's eval, pdf and sample are its float instantiation wherever has_lanes(). The half
-// vector and the dielectric Fresnel (in double) and the clear coat's GTR1 normal (pow, sin, cos) are
-// computed one lane at a time by functions compiled once (principled_half, principled_gtr1_normal),
-// so every lane type gives the same bits; the rest runs on the packet. ln α_c² is a parameter,
+// vector and the dielectric Fresnel are computed in double by principled_half_d, on a packet's two
+// halves as double packets (principled_half_lanes; the float function principled_half is its double
+// instantiation), and the clear coat's GTR1 normal (pow, sin, cos) one lane at a time by a function
+// compiled once (principled_gtr1_normal), so every lane type gives the same bits; the rest runs on
+// the packet. ln α_c² is a parameter,
 // computed once at construction. The thin sheet has a packet form of its own, PrincipledThinT<F>
 // (kPacketPrincipledThin; PrincipledBSDF's eval, pdf and sample are its float instantiation where
 // thin()): its half vector is that of wo and wi mirrored to +z, in float, so the whole form is lane
 // operations. So has the solid with a transmission lobe, PrincipledSolidT<F> (kPacketPrincipledSolid;
 // the float instantiation where neither): its generalised half vector, Fresnel and the Jacobian's
-// denominator come in double from principled_half, a lane at a time. Every principled material
+// denominator come in double from principled_half_d as well. Every principled material
 // is shaded as a packet, and the three forms share the diffuse, sheen, Schlick and GTR1 terms.
 #pragma once
 #include <optional>
@@ -187,8 +189,49 @@ struct PrincipledHalf {
     float dot_o = 0.f, dot_i = 0.f, F = 0.f, denom = 0.f, etap = 1.f;
     bool ok = false;
 };
+/// principled_half over a double lane type D (double, or a double packet: simd/lane.h, "The double
+/// side"): each field is the double whose rounding to float is that PrincipledHalf field (ok is 1
+/// or 0). The float function is its double instantiation and a float packet runs it on its double
+/// parts (principled_half_lanes), so every lane gets the float function's bits: the same IEEE
+/// double operations in the same order, the early out (no half vector) as selects, and the float
+/// product wo.z·wi.z as the double product rounded to float (exact in double, as for
+/// dielectric_half_d).
+template <class D>
+struct PrincipledHalfD {
+    Vec3P<D> h;
+    D dot_o, dot_i, F, denom, etap, ok;
+};
+template <class D>
+inline PrincipledHalfD<D> principled_half_d(const Vec3P<D>& wo, const Vec3P<D>& wi, const D& eta) {
+    const D zero(0.0), one(1.0);
+    const auto front = wo.z > zero, reflect = lane::round_to_float(wo.z * wi.z) > zero;
+    // η' = η(wi side)/η(wo side) for transmission; Walter et al. 2007, eq. 16's h (wi·1 = wi
+    // exactly for reflection), oriented to +z.
+    const D etap = lane::select(front, eta, one / eta);
+    const Vec3P<D> hh = wo + wi * lane::select(reflect, one, etap);
+    const D hl = length(hh);  // sqrt((x² + y²) + z²), as glm::length
+    const auto has_h = hl > zero;
+    const Vec3P<D> hd = hh / lane::select(hh.z < zero, lane::neg(hl), hl);
+    const D dot_o = dot(wo, hd), dot_i = dot(wi, hd);  // (x + y) + z, as glm::dot
+    // F from wi's side for transmission from the denser side. (Mask inequality spelt with && and
+    // ||: simd/packet.h.)
+    const auto denser = eta >= one;
+    const auto from_wi = !reflect && ((front && !denser) || (!front && denser));
+    const D Fd = fresnel_dielectric_d(lane::select(from_wi, dot_i, dot_o), eta);
+    // The Jacobian's denominator: a double sum, rounded to float and squared in float.
+    const D s = lane::round_to_float(dot_o + etap * dot_i);
+    PrincipledHalfD<D> out;
+    out.h = Vec3P<D>(lane::select(has_h, hd.x, zero), lane::select(has_h, hd.y, zero), lane::select(has_h, hd.z, one));
+    out.dot_o = lane::select(has_h, dot_o, zero), out.dot_i = lane::select(has_h, dot_i, zero);
+    out.F = lane::select(has_h, Fd, zero);
+    out.denom = lane::select(has_h, lane::round_to_float(s * s), zero);
+    out.etap = etap;
+    out.ok = lane::select(has_h, one, zero);
+    return out;
+}
 PrincipledHalf principled_half(const Vec3f& wo, const Vec3f& wi, float eta);
-/// principled_half over a lane type F, one lane at a time (lanes outside `where`: the default).
+/// principled_half over a lane type F (lanes outside `where`: PrincipledHalf's defaults): a float is
+/// the float function, a packet runs principled_half_d on its double parts.
 template <class F>
 inline void principled_half_lanes(const V3<F>& wo, const V3<F>& wi, const F& eta, const MaskT<F>& where,
                                         V3<F>* h, F* dot_o, F* dot_i, F* fr, F* denom, F* etap, MaskT<F>* ok) {
@@ -196,22 +239,29 @@ inline void principled_half_lanes(const V3<F>& wo, const V3<F>& wi, const F& eta
         const PrincipledHalf p = where ? principled_half(wo, wi, eta) : PrincipledHalf{};
         *h = p.h, *dot_o = p.dot_o, *dot_i = p.dot_i, *fr = p.F, *denom = p.denom, *etap = p.etap, *ok = p.ok;
     } else {
-        constexpr int W = kLaneWidth<F>;
-        alignas(64) float in[7][W], out[8][W];
-        alignas(64) bool on[W], good[W];
-        lane::store(in[0], wo.x), lane::store(in[1], wo.y), lane::store(in[2], wo.z);
-        lane::store(in[3], wi.x), lane::store(in[4], wi.y), lane::store(in[5], wi.z);
-        lane::store(in[6], eta), lane::store(on, where);
-        for (int i = 0; i < W; ++i) {
-            const PrincipledHalf p = on[i] ? principled_half(Vec3f(in[0][i], in[1][i], in[2][i]),
-                                                                        Vec3f(in[3][i], in[4][i], in[5][i]), in[6][i])
-                                                : PrincipledHalf{};
-            out[0][i] = p.h.x, out[1][i] = p.h.y, out[2][i] = p.h.z, out[3][i] = p.dot_o, out[4][i] = p.dot_i;
-            out[5][i] = p.F, out[6][i] = p.denom, out[7][i] = p.etap, good[i] = p.ok;
-        }
-        auto L = [&](int k) { return lane::load_as<F>(out[k]); };
-        *h = V3<F>(L(0), L(1), L(2)), *dot_o = L(3), *dot_i = L(4), *fr = L(5), *denom = L(6), *etap = L(7);
-        *ok = lane::load_mask_as<MaskT<F>>(good);
+        using D = DoubleT<F>;
+        constexpr int P = kDoubleParts<F>;
+        D ox[P], oy[P], oz[P], ix[P], iy[P], iz[P], e[P];
+        lane::to_doubles(wo.x, ox), lane::to_doubles(wo.y, oy), lane::to_doubles(wo.z, oz);
+        lane::to_doubles(wi.x, ix), lane::to_doubles(wi.y, iy), lane::to_doubles(wi.z, iz);
+        lane::to_doubles(eta, e);
+        PrincipledHalfD<D> r[P];
+        for (int p = 0; p < P; ++p)
+            r[p] = principled_half_d<D>(Vec3P<D>(ox[p], oy[p], oz[p]), Vec3P<D>(ix[p], iy[p], iz[p]), e[p]);
+        // Each field rounded to float, on the lanes `where` (the float function's defaults elsewhere).
+        auto out = [&](auto field, float other) {
+            D parts[P];
+            for (int p = 0; p < P; ++p) parts[p] = field(r[p]);
+            return lane::select(where, lane::from_doubles(parts), F(other));
+        };
+        *h = V3<F>(out([](const auto& x) { return x.h.x; }, 0.f), out([](const auto& x) { return x.h.y; }, 0.f),
+                   out([](const auto& x) { return x.h.z; }, 1.f));
+        *dot_o = out([](const auto& x) { return x.dot_o; }, 0.f);
+        *dot_i = out([](const auto& x) { return x.dot_i; }, 0.f);
+        *fr = out([](const auto& x) { return x.F; }, 0.f);
+        *denom = out([](const auto& x) { return x.denom; }, 0.f);
+        *etap = out([](const auto& x) { return x.etap; }, 1.f);
+        *ok = out([](const auto& x) { return x.ok; }, 0.f) != F(0.f);
     }
 }
 /// What the packet forms' eval_pdf returns: f·|cos θi| and the density.
