@@ -580,7 +580,7 @@ Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow,
     const Point3f end = finite ? shadow.o + shadow.d * shadow.tmax : Point3f(0.f);
     for (int crossings = 0; crossings < 256; ++crossings) {
         SurfaceInteraction si;
-        const bool hit = scene.intersect(r, si);
+        const bool hit = scene.intersect(r, si, false);  // (no texture reads this hit: no uv)
         if (hit && !scene.shapes[si.shape_id].null_surface) return Spectrum(0.f);
         if (m >= 0) {
             Ray seg = r;

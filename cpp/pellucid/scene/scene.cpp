@@ -83,11 +83,11 @@ void fill_sphere(const ShapeRecord& s, const Ray& ray, const RayHit& h, SurfaceI
 }
 }  // namespace
 
-bool Scene::intersect(const Ray& ray, SurfaceInteraction& si) const {
+bool Scene::intersect(const Ray& ray, SurfaceInteraction& si, bool with_uv) const {
     RayHit h;
     h.t = ray.tmax;
     if (!accel.intersect(ray, h)) return false;
-    fill_hit(ray, h, si, true);
+    fill_hit(ray, h, si, with_uv);
     return true;
 }
 

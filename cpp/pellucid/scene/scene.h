@@ -65,8 +65,9 @@ public:
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
 
-    /// Closest hit, filled into si. Thread-safe.
-    bool intersect(const Ray& ray, SurfaceInteraction& si) const;
+    /// Closest hit, filled into si. Thread-safe. with_uv false leaves si.uv (0, 0) on spheres, whose
+    /// uv costs an atan2 and an acos (for callers that read no texture: shadow rays through media).
+    bool intersect(const Ray& ray, SurfaceInteraction& si, bool with_uv = true) const;
     bool occluded(const Ray& ray) const { return accel.occluded(ray); }
     /// The BSDF at a hit: textures evaluated over the hit's footprint, bump/normal maps applied.
     /// A material with two_sided false seen from the back of the shading normal scatters nothing.

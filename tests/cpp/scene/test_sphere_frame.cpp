@@ -152,6 +152,28 @@ TEST(SphereFrame, UnrotatedSphereUsesWorldAzimuth) {
     expect_vec(si.shading.t, Vec3f(0, 0, 1), "t", 1e-6f);  // t = n × s = −∂p/∂v/|∂p/∂v|
 }
 
+// Scene::intersect without uv (shadow rays through media) fills the same record but for uv, which
+// stays (0, 0) on a sphere.
+TEST(SphereFrame, IntersectWithoutUvChangesOnlyTheUv) {
+    auto scene = from_json(sphere_scene(R"({"rotate": {"axis": [1, 2, 3], "angle": 40}})"));
+    const Ray r{Point3f(0.3f, 5, 0.2f), normalize(Vec3f(-0.05f, -1, 0.02f)), kInfinity};
+    SurfaceInteraction a, b;
+    ASSERT_TRUE(scene->intersect(r, a));
+    ASSERT_TRUE(scene->intersect(r, b, false));
+    EXPECT_NE(a.uv, Vec2f(0.f));
+    EXPECT_EQ(b.uv, Vec2f(0.f));
+    EXPECT_EQ(a.t, b.t);
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(a.p[k], b.p[k]);
+        EXPECT_EQ(a.ng[k], b.ng[k]);
+        EXPECT_EQ(a.shading.s[k], b.shading.s[k]);
+        EXPECT_EQ(a.shading.n[k], b.shading.n[k]);
+        EXPECT_EQ(a.dpdu[k], b.dpdu[k]);
+        EXPECT_EQ(a.p_error[k], b.p_error[k]);
+    }
+    EXPECT_EQ(a.shape_id, b.shape_id);
+}
+
 // The one similarity check tests every pair of axes: a shear of y into z with equal column lengths
 // (the case a check that skipped the y–z pair let through) is rejected like the other two.
 TEST(SphereFrame, SimilarityScaleChecksAllThreePairsOfAxes) {
