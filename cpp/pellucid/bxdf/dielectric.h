@@ -262,20 +262,10 @@ inline DielectricHalfT<F> dielectric_half_lanes(const V3<F>& wo, const V3<F>& wi
         return {h.wm, h.dot_o, h.dot_i, h.R, h.T, h.denom, h.etap2, h.ok};
     } else {
         using D = DoubleT<F>;
-        constexpr int P = kDoubleParts<F>;
-        D ox[P], oy[P], oz[P], ix[P], iy[P], iz[P], e[P];
-        lane::to_doubles(wo.x, ox), lane::to_doubles(wo.y, oy), lane::to_doubles(wo.z, oz);
-        lane::to_doubles(wi.x, ix), lane::to_doubles(wi.y, iy), lane::to_doubles(wi.z, iz);
-        lane::to_doubles(eta, e);
-        DielectricHalfD<D> h[P];
-        for (int p = 0; p < P; ++p)
-            h[p] = dielectric_half_d<D>(Vec3P<D>(ox[p], oy[p], oz[p]), Vec3P<D>(ix[p], iy[p], iz[p]), e[p]);
+        DielectricHalfD<D> h[kDoubleParts<F>];
+        on_double_parts<F>(wo, wi, eta, [](const auto& o, const auto& i, const D& e) { return dielectric_half_d<D>(o, i, e); }, h);
         // Each field rounded to float, on the lanes `where` (the float function's defaults elsewhere).
-        auto out = [&](auto field, float other) {
-            D parts[P];
-            for (int p = 0; p < P; ++p) parts[p] = field(h[p]);
-            return lane::select(where, lane::from_doubles(parts), F(other));
-        };
+        auto out = [&](auto field, float other) { return from_double_parts<F>(where, h, field, other); };
         DielectricHalfT<F> r;
         r.wm = V3<F>(out([](const auto& x) { return x.wm.x; }, 0.f), out([](const auto& x) { return x.wm.y; }, 0.f),
                      out([](const auto& x) { return x.wm.z; }, 1.f));

@@ -13,6 +13,7 @@
 #include <type_traits>
 
 #include "pellucid/math/constants.h"
+#include "pellucid/math/lane_types.h"
 #include "pellucid/math/spectrum.h"
 #include "pellucid/simd/lane.h"
 
@@ -72,6 +73,26 @@ inline D fresnel_dielectric_d(D cos_i, D eta) {
     return lane::select(eta == one, zero, lane::select(sin2_t >= one, one, lane::select(r < one, r, one)));
 }
 inline double fresnel_dielectric_d(double cos_i, double eta) { return fresnel_dielectric_d<double>(cos_i, eta); }
+
+/// A half-vector step written over a double lane type (dielectric_half_d, principled_half_d) run on
+/// a float packet's double parts: fn(wo, wi, eta) on each part, into r[0..kDoubleParts<F>).
+template <class F, class R, class Fn>
+inline void on_double_parts(const V3<F>& wo, const V3<F>& wi, const F& eta, Fn fn, R* r) {
+    using D = DoubleT<F>;
+    constexpr int P = kDoubleParts<F>;
+    D ox[P], oy[P], oz[P], ix[P], iy[P], iz[P], e[P];
+    lane::to_doubles(wo.x, ox), lane::to_doubles(wo.y, oy), lane::to_doubles(wo.z, oz);
+    lane::to_doubles(wi.x, ix), lane::to_doubles(wi.y, iy), lane::to_doubles(wi.z, iz);
+    lane::to_doubles(eta, e);
+    for (int p = 0; p < P; ++p) r[p] = fn(Vec3P<D>(ox[p], oy[p], oz[p]), Vec3P<D>(ix[p], iy[p], iz[p]), e[p]);
+}
+/// One field of on_double_parts' results rounded to float, on the lanes `where` (`other` elsewhere).
+template <class F, class R, class Field>
+inline F from_double_parts(const MaskT<F>& where, const R* r, Field field, float other) {
+    DoubleT<F> parts[kDoubleParts<F>];
+    for (int p = 0; p < kDoubleParts<F>; ++p) parts[p] = field(r[p]);
+    return lane::select(where, lane::from_doubles(parts), F(other));
+}
 
 /// Exact unpolarised reflectance of a conductor with complex relative IOR η + i·k for one
 /// wavelength (Born & Wolf §14.2; the same formula as the dielectric case with complex η, computed

@@ -240,20 +240,10 @@ inline void principled_half_lanes(const V3<F>& wo, const V3<F>& wi, const F& eta
         *h = p.h, *dot_o = p.dot_o, *dot_i = p.dot_i, *fr = p.F, *denom = p.denom, *etap = p.etap, *ok = p.ok;
     } else {
         using D = DoubleT<F>;
-        constexpr int P = kDoubleParts<F>;
-        D ox[P], oy[P], oz[P], ix[P], iy[P], iz[P], e[P];
-        lane::to_doubles(wo.x, ox), lane::to_doubles(wo.y, oy), lane::to_doubles(wo.z, oz);
-        lane::to_doubles(wi.x, ix), lane::to_doubles(wi.y, iy), lane::to_doubles(wi.z, iz);
-        lane::to_doubles(eta, e);
-        PrincipledHalfD<D> r[P];
-        for (int p = 0; p < P; ++p)
-            r[p] = principled_half_d<D>(Vec3P<D>(ox[p], oy[p], oz[p]), Vec3P<D>(ix[p], iy[p], iz[p]), e[p]);
+        PrincipledHalfD<D> r[kDoubleParts<F>];
+        on_double_parts<F>(wo, wi, eta, [](const auto& o, const auto& i, const D& e) { return principled_half_d<D>(o, i, e); }, r);
         // Each field rounded to float, on the lanes `where` (the float function's defaults elsewhere).
-        auto out = [&](auto field, float other) {
-            D parts[P];
-            for (int p = 0; p < P; ++p) parts[p] = field(r[p]);
-            return lane::select(where, lane::from_doubles(parts), F(other));
-        };
+        auto out = [&](auto field, float other) { return from_double_parts<F>(where, r, field, other); };
         *h = V3<F>(out([](const auto& x) { return x.h.x; }, 0.f), out([](const auto& x) { return x.h.y; }, 0.f),
                    out([](const auto& x) { return x.h.z; }, 1.f));
         *dot_o = out([](const auto& x) { return x.dot_o; }, 0.f);

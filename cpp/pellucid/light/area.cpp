@@ -64,33 +64,23 @@ AreaLight::AreaLight(const Point3f& center, float radius, bool flip_normals, con
 }
 
 std::optional<LightLiSample> AreaLight::sample_li(const LightSampleContext& ctx, Vec2f u) const {
-    LightLiSample s;
-    if (m_is_sphere) {
-        // The packet path tracer's sphere sampling (sample_sphere), one lane.
-        const SphereSample<float> ss = sample_sphere<float>(m_center, m_radius, m_flip, ctx.p, u);
-        if (!ss.valid) return std::nullopt;
-        s.p_light = ss.p;
-        s.n_light = ss.n;
-        s.p_error = ss.err;
-        s.wi = ss.wi;
-        s.pdf = ss.pdf;
+    // The packet path tracer's sampling, one lane: sample_sphere, or sample_mesh_light.
+    auto to_sample = [&](const auto& x) -> std::optional<LightLiSample> {
+        if (!x.valid) return std::nullopt;
+        LightLiSample s;
+        s.p_light = x.p;
+        s.n_light = x.n;
+        s.p_error = x.err;
+        s.wi = x.wi;
+        s.pdf = x.pdf;
         s.L = L(s.n_light, -s.wi);
         if (s.L.is_black()) return std::nullopt;
         return s;
-    }
-    // The packet path tracer's mesh-light sampling (sample_mesh_light), one lane.
+    };
+    if (m_is_sphere) return to_sample(sample_sphere<float>(m_center, m_radius, m_flip, ctx.p, u));
     if (m_cdf.size() < 2) return std::nullopt;  // no triangle of nonzero area
-    const MeshLightSample<float> ms = sample_mesh_light<float>(m_rows.data(), m_cdf.data(), 0, 0,
-                                                                int32_t(m_cdf.size() - 1), m_top, m_area, ctx.p, u);
-    if (!ms.valid) return std::nullopt;
-    s.p_light = ms.p;
-    s.n_light = ms.n;
-    s.p_error = ms.err;
-    s.wi = ms.wi;
-    s.pdf = ms.pdf;
-    s.L = L(s.n_light, -s.wi);
-    if (s.L.is_black()) return std::nullopt;
-    return s;
+    return to_sample(sample_mesh_light<float>(m_rows.data(), m_cdf.data(), 0, 0, int32_t(m_cdf.size() - 1), m_top, m_area,
+                                              ctx.p, u));
 }
 
 float AreaLight::pdf_li(const LightSampleContext& ctx, const Vec3f& wi, const Point3f& p_light,
