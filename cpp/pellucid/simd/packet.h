@@ -120,7 +120,10 @@ inline IP<A> gather(const int32_t* base, const IP<A>& idx) {
 }
 namespace detail {
 #if defined(__AVX2__)
-/// Transpose of the 8 × 8 floats r[0..8) (row i → lane i of out[k] = r[i][k]).
+/// Transpose of the 8 × 8 floats r[0..8) (row i → lane i of out[k] = r[i][k]). Templated on the
+/// architecture A only so that each kernel target's copy has its own symbol (an inline function
+/// compiled with two targets' flags must not be merged by the linker).
+template <class A>
 inline void transpose8(__m256* r) {
     __m256 t[8], u[8];
     for (int i = 0; i < 8; i += 2) t[i] = _mm256_unpacklo_ps(r[i], r[i + 1]), t[i + 1] = _mm256_unpackhi_ps(r[i], r[i + 1]);
@@ -135,7 +138,8 @@ inline void transpose8(__m256* r) {
 }
 #endif
 #if defined(__AVX512F__)
-/// Transpose of the 16 × 16 floats r[0..16).
+/// Transpose of the 16 × 16 floats r[0..16) (templated on A as transpose8).
+template <class A>
 inline void transpose16(__m512* r) {
     __m512 t[16];
     for (int i = 0; i < 16; i += 2) t[i] = _mm512_unpacklo_ps(r[i], r[i + 1]), t[i + 1] = _mm512_unpackhi_ps(r[i], r[i + 1]);
@@ -175,12 +179,12 @@ inline void gather_rows(const float* base, const IP<A>& off, FP<A>* out) {
         if constexpr (N == 16) {
             __m512 r[16];
             for (int i = 0; i < 16; ++i) r[i] = _mm512_loadu_ps(base + o[i]);
-            detail::transpose16(r);
+            detail::transpose16<A>(r);
             for (int k = 0; k < 16; ++k) out[k] = FP<A>(r[k]);
         } else {
             __m256 lo[8], hi[8];
             for (int i = 0; i < 8; ++i) lo[i] = _mm256_loadu_ps(base + o[i]), hi[i] = _mm256_loadu_ps(base + o[i + 8]);
-            detail::transpose8(lo), detail::transpose8(hi);
+            detail::transpose8<A>(lo), detail::transpose8<A>(hi);
             for (int k = 0; k < 8; ++k) out[k] = FP<A>(_mm512_insertf32x8(_mm512_castps256_ps512(lo[k]), hi[k], 1));
         }
         return;
@@ -191,7 +195,7 @@ inline void gather_rows(const float* base, const IP<A>& off, FP<A>* out) {
         for (int h = 0; h < N; h += 8) {
             __m256 r[8];
             for (int i = 0; i < 8; ++i) r[i] = _mm256_loadu_ps(base + o[i] + h);
-            detail::transpose8(r);
+            detail::transpose8<A>(r);
             for (int k = 0; k < 8; ++k) out[h + k] = FP<A>(r[k]);
         }
         return;
