@@ -579,9 +579,14 @@ Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow,
     const bool finite = std::isfinite(shadow.tmax);
     const Point3f end = finite ? shadow.o + shadow.d * shadow.tmax : Point3f(0.f);
     for (int crossings = 0; crossings < 256; ++crossings) {
+        // The hit's record only where the ray goes on through a null boundary: any other surface
+        // blocks it, and its record would be of no use (nor does a texture read it: no uv).
+        RayHit h;
+        h.t = r.tmax;
+        const bool hit = scene.accel.intersect(r, h);
+        if (hit && !scene.shapes[h.geom_id].null_surface) return Spectrum(0.f);
         SurfaceInteraction si;
-        const bool hit = scene.intersect(r, si, false);  // (no texture reads this hit: no uv)
-        if (hit && !scene.shapes[si.shape_id].null_surface) return Spectrum(0.f);
+        if (hit) scene.fill_hit(r, h, si, false);
         if (m >= 0) {
             Ray seg = r;
             seg.tmax = hit ? si.t : r.tmax;
