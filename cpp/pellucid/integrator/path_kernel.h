@@ -144,6 +144,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     int32_t medium[W]{};
     PCG32 medium_rng[W];
     int crossings[W]{};
+    // A lane in a medium whose ray hit a surface makes that hit's record (si) only once distance
+    // sampling has passed the medium up to it (a collision before it makes the record of no use).
+    bool deferred[W]{};
     // Subsurface scattering (PathSetup::subsurface): a lane whose path refracted into a diffusion
     // BSSRDF continues at the exit point the probe found, without tracing a ray: pending_exit marks
     // it for the next vertex, exit_si holds the exit and exit_ss its BSSRDF.
@@ -423,12 +426,17 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             // fill_hit uses, so the same bits).
             auto record_hit = [&](int i) {
                 full[i] = true;
+                deferred[i] = false;
                 if (!hit[i]) return;
                 lane_ray(i);
                 const RayHit h = hl.lane(i);
                 const ShapeRecord& s = scene.shapes[h.geom_id];
                 mat_of[i] = s.face_materials.empty() ? s.material : s.face_materials[h.prim_id];
                 light_of[i] = s.light;
+                if (ps.media && medium[i] >= 0) {  // (made after distance sampling, if still needed)
+                    deferred[i] = true;
+                    return;
+                }
                 if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane || ps.checker_row[mat_of[i]] >= 0 ||
                     (scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[mat_of[i]])))) {
                     scene.fill_hit(ray[i], h, si[i], scene.has_textures);
@@ -632,7 +640,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     // throughput either way (medium/medium.h).
                     if (medium[i] >= 0) {
                         Ray seg = ray[i];
-                        seg.tmax = hit[i] ? si[i].t : kInfinity;
+                        seg.tmax = hit[i] ? (deferred[i] ? hl.t[i] : si[i].t) : kInfinity;  // (fill_hit's si.t is hl.t)
                         const Spectrum beta(a.br[i], a.bg[i], a.bb[i]);
                         const MediumEvent e = path_services::medium_sample(ps, medium[i], seg, beta, medium_rng[i]);
                         a.Lr[i] += beta.r * e.emitted.r, a.Lg[i] += beta.g * e.emitted.g, a.Lb[i] += beta.b * e.emitted.b;
@@ -651,6 +659,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                             continue;
                         }
                     }
+                    if (deferred[i]) scene.fill_hit(ray[i], hl.lane(i), si[i], scene.has_textures);
                     // A null boundary: the path goes on in the same direction, in the medium on
                     // its other side (bounded, so rays cannot cross forever).
                     if (hit[i] && path_services::is_null_surface(ps, si[i])) {
