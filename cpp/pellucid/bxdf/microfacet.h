@@ -23,6 +23,7 @@
 #include <string>
 
 #include "pellucid/math/constants.h"
+#include "pellucid/math/lane_exp_log.h"
 #include "pellucid/math/lane_types.h"
 #include "pellucid/math/spherical.h"
 #include "pellucid/math/vec.h"
@@ -71,49 +72,11 @@ inline F visible_pdf(const Dist& d, const V3<F>& wo, const V3<F>& wm) {
 }
 
 // ---- The transcendental functions of the Beckmann model, over a lane type F ----
-// Each is built from lane operations that IEEE 754 rounds exactly (+ − × ÷ √, comparisons,
-// selects, integer bit operations; the library is compiled without contraction), so the float
-// instantiation and every packet give the same bits. lane::exp and lane::log would not: they are
-// libm's on float and xsimd's on packets. Accuracy against double-precision libm is measured in
-// tests/cpp/bxdf/test_microfacet.cpp (BeckmannMath*).
+// e^x and ln x: math/lane_exp_log.h (the same bits on float and on every packet).
+using lane_math::exp2_int;
+using lane_math::exp_t;
+using lane_math::log_t;
 
-/// 2^n for an integer-valued n ∈ [−126, 127]: the float whose exponent field is n + 127. Adding
-/// 1.5·2²³ puts n in the low mantissa bits (exact for |n| < 2²²).
-template <class F>
-inline F exp2_int(const F& n) {
-    using I = IntT<F>;
-    const I k = lane::as_int(n + F(12582912.f)) - lane::as_int(F(12582912.f));
-    return lane::as_float((k + I(127)) << 23);
-}
-/// e^x, 0 for x < −87 (where e^x < 1.7e-38 leaves the normal floats), x clamped to ≤ 88:
-/// x = n ln 2 + r with n = round(x / ln 2) and ln 2 split in two so that n·ln2_hi is exact (Cody &
-/// Waite 1980), e^r by its Taylor series to r⁷ on |r| ≤ ln 2/2 (truncation (ln 2/2)⁸/8! < 6e-9),
-/// times 2^n.
-template <class F>
-inline F exp_t(const F& x) {
-    const F xc = lane::min(lane::max(x, F(-87.f)), F(88.f));
-    const F n = (xc * F(1.44269504f) + F(12582912.f)) - F(12582912.f);
-    const F r = (xc - n * F(0.693359375f)) - n * F(-2.12194440e-4f);
-    const F p =
-        F(1.f) + r * (F(1.f) + r * (F(0.5f) + r * (F(1.f / 6.f) + r * (F(1.f / 24.f) + r * (F(1.f / 120.f) +
-                                                                                             r * (F(1.f / 720.f) + r * F(1.f / 5040.f)))))));
-    return lane::select(x < F(-87.f), F(0.f), p * exp2_int(n));
-}
-/// ln x for a positive normal float x: x = m·2^k with m ∈ [√½, √2) read from the bits, ln m =
-/// 2 atanh s = 2(s + s³/3 + s⁵/5 + s⁷/7 + s⁹/9) with s = (m − 1)/(m + 1), |s| ≤ 0.172 (truncation
-/// below 2e-9 relative; m − 1 is exact), plus k ln 2 in two parts.
-template <class F>
-inline F log_t(const F& x) {
-    using I = IntT<F>;
-    const I bits = lane::as_int(x);
-    // 0x004afb0d = bits(1) − bits(√½): the biased exponent of x/√½, so that m lands in [√½, √2).
-    const I kb = (bits + I(0x004afb0d)) >> 23;
-    const F m = lane::as_float((bits - (kb << 23)) + I(0x3f800000));
-    const F k = lane::to_float(kb - I(127));
-    const F s = (m - F(1.f)) / (m + F(1.f)), z = s * s;
-    const F lm = F(2.f) * s * (F(1.f) + z * (F(1.f / 3.f) + z * (F(0.2f) + z * (F(1.f / 7.f) + z * F(1.f / 9.f)))));
-    return k * F(0.693359375f) + (lm + k * F(-2.12194440e-4f));
-}
 /// The scaled complementary error function e^{x²} erfc(x) for x ≥ 0: t·e^{P(t)}, t = 1/(1 + x/2),
 /// the Chebyshev fit of Press et al. 1992, Numerical Recipes in C, 2nd ed., §6.2 (erfcc) without its
 /// e^{−x²} factor: fractional error below 1.2e-7 for every x ≥ 0 in exact arithmetic.

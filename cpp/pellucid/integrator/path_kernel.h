@@ -617,6 +617,48 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 SM(f, M(false));
             for (float* f : {a.Ler, a.Leg, a.Leb, a.le_pdf, a.kind}) ST(f, F(0.f));
             lane::store(a.draw0, IntT<F>(0)), lane::store(a.draw1, IntT<F>(0));
+            // The distance sampling of the lanes in homogeneous media, as packets: each draws its
+            // two numbers from its medium stream, as medium_sample would in the loop below (nothing
+            // else draws from it in between), and the loop takes the event from hm_*.
+            alignas(64) bool hm[W]{};
+            alignas(64) float hm_t[W], hm_w[3][W], hm_e[3][W];
+            alignas(64) bool hm_scat[W];
+            if (ps.media && ps.any_homogeneous) {
+                bool any_hm = false;
+                for (int i = 0; i < W; ++i) {
+                    hm[i] = active[i] && !vl[i] && !pending_exit[i] && medium[i] >= 0 &&
+                            ps.homogeneous_media[size_t(medium[i])] != 0;
+                    any_hm = any_hm || hm[i];
+                }
+                if (any_hm) {
+                    alignas(64) float u_c[W], u_t[W], tmax[W];
+                    alignas(64) int32_t mrow[W];
+                    for (int i = 0; i < W; ++i) {
+                        // (All lanes, so that the loop vectorises; the others keep their states.)
+                        const uint64_t s0 = medium_rng[i].state(), inc = medium_rng[i].increment();
+                        const uint64_t s1 = PCG32::step(s0, inc);
+                        u_c[i] = PCG32::to_float(PCG32::output(s0)), u_t[i] = PCG32::to_float(PCG32::output(s1));
+                        medium_rng[i].set_state(hm[i] ? PCG32::step(s1, inc) : s0);
+                        tmax[i] = hit[i] ? hl.t[i] : kInfinity;  // (its record deferred: fill_hit's si.t is hl.t)
+                        mrow[i] = hm[i] ? medium[i] * PathSetup::kMediumStride : 0;
+                    }
+                    using I = IntT<F>;
+                    F row[PathSetup::kMediumStride];
+                    lane::gather_rows<PathSetup::kMediumStride>(ps.medium_rows.data(), lane::load_int_as<I>(mrow), row);
+                    const V3<F> d(LD(a.ray_soa[3]), LD(a.ray_soa[4]), LD(a.ray_soa[5]));
+                    const F len = length(d);
+                    const F st[3] = {row[0] * len, row[1] * len, row[2] * len};
+                    const F ss[3] = {row[3] * len, row[4] * len, row[5] * len};
+                    // (medium_sample's channel choice: by the throughput, or uniform.)
+                    const F one(1.f);
+                    const F beta[3] = {ps.uniform_channels ? one : LD(a.br), ps.uniform_channels ? one : LD(a.bg),
+                                       ps.uniform_channels ? one : LD(a.bb)};
+                    const HomogeneousStepT<F> h = homogeneous_step<F>(st, ss, row + 6, beta, LD(u_c), LD(u_t), LD(tmax));
+                    SM(hm_scat, h.scattered);
+                    ST(hm_t, h.t);
+                    for (int c = 0; c < 3; ++c) ST(hm_w[c], h.weight[c]), ST(hm_e[c], h.emitted[c]);
+                }
+            }
             for (int i = 0; i < W; ++i) {
                 if (!active[i] || vl[i]) continue;  // (the table lanes below, as packets)
                 lane_ray(i);
@@ -642,7 +684,15 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         Ray seg = ray[i];
                         seg.tmax = hit[i] ? (deferred[i] ? hl.t[i] : si[i].t) : kInfinity;  // (fill_hit's si.t is hl.t)
                         const Spectrum beta(a.br[i], a.bg[i], a.bb[i]);
-                        const MediumEvent e = path_services::medium_sample(ps, medium[i], seg, beta, medium_rng[i]);
+                        MediumEvent e;
+                        if (hm[i]) {
+                            e.scattered = hm_scat[i];
+                            e.t = hm_scat[i] ? hm_t[i] : 0.f;
+                            e.weight = Spectrum(hm_w[0][i], hm_w[1][i], hm_w[2][i]);
+                            e.emitted = Spectrum(hm_e[0][i], hm_e[1][i], hm_e[2][i]);
+                        } else {
+                            e = path_services::medium_sample(ps, medium[i], seg, beta, medium_rng[i]);
+                        }
                         a.Lr[i] += beta.r * e.emitted.r, a.Lg[i] += beta.g * e.emitted.g, a.Lb[i] += beta.b * e.emitted.b;
                         a.br[i] *= e.weight.r, a.bg[i] *= e.weight.g, a.bb[i] *= e.weight.b;
                         if (e.scattered) {

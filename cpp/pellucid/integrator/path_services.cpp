@@ -376,6 +376,17 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.emitters = make_emitter_table(scene.lights, pmf);
     if (ps.emitters.empty()) ps.lights = make_light_table(scene.lights, pmf);
     ps.media = scene.has_media();
+    ps.homogeneous_media.assign(scene.media.size(), 0);
+    ps.medium_rows.assign(scene.media.size() * PathSetup::kMediumStride, 0.f);
+    for (size_t k = 0; k < scene.media.size(); ++k) {
+        const auto* h = std::get_if<HomogeneousMedium>(&scene.media[k]);
+        if (!h) continue;
+        ps.homogeneous_media[k] = 1;
+        ps.any_homogeneous = true;
+        const Spectrum st = h->sigma_t();
+        float* row = &ps.medium_rows[k * PathSetup::kMediumStride];
+        for (int c = 0; c < 3; ++c) row[c] = st[c], row[3 + c] = h->sigma_s[c], row[6 + c] = h->le[c];
+    }
     ps.camera_medium = scene.camera_medium;
     ps.medium_nee = scene.integrator.medium_nee;
     ps.uniform_channels = scene.integrator.channel_sampling == "uniform";

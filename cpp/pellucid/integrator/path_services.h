@@ -133,6 +133,13 @@ struct PathSetup {
     /// in, which starts as camera_medium (-1: none).
     bool media = false;
     int32_t camera_medium = -1;
+    /// Per medium: 1 for a homogeneous one, whose lanes the kernel's distance sampling takes as
+    /// packets (homogeneous_step), else 0; and its row of medium_rows: kMediumStride floats, σt (σa
+    /// + σs), σs and Le (zeros for the others). any_homogeneous: some medium is.
+    static constexpr int kMediumStride = 16;
+    std::vector<int32_t> homogeneous_media;
+    std::vector<float> medium_rows;
+    bool any_homogeneous = false;
     bool medium_nee = true;        ///< NEE at medium collisions (integrator.medium_nee)
     bool uniform_channels = false; ///< channel_sampling "uniform": each colour channel 1/3, else ∝ throughput
     /// Some shape renders with a diffusion BSSRDF (Scene::subsurface): paths that refract into it

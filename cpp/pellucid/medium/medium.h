@@ -32,6 +32,8 @@
 #include <string>
 #include <variant>
 
+#include "pellucid/math/lane_exp_log.h"
+#include "pellucid/math/lane_types.h"
 #include "pellucid/math/ray.h"
 #include "pellucid/math/spectrum.h"
 #include "pellucid/math/transform.h"
@@ -124,39 +126,82 @@ inline Spectrum beer(const Spectrum& sigma, float t) {
 
 // ---- homogeneous --------------------------------------------------------------------------------
 
-/// Exponential distance sampling in channel c* ~ channel_pmf(beta): t = −ln(1 − u)/σt_c*
-/// (pbrt-v3 §15.2.1, eq. 15.10). The estimate of the segment's radiance
+/// One step of exponential distance sampling in a homogeneous medium, over a lane type F (float for
+/// one path, a packet for one path a lane): channel c* ~ channel_pmf(beta) picked by u_channel,
+/// t = −ln(1 − u_t)/σt_c* (pbrt-v3 §15.2.1, eq. 15.10). The estimate of the segment's radiance
 ///   L = ∫₀^tmax T(s) (σs Ls(s) + σt Le) ds + T(tmax) L_end,   T(s) = exp(−σt s)
 /// divides by the mixture pdf over channels, p_mix(t) = Σ_c p_c σt_c T_c(t) for a collision and
 /// P_mix = Σ_c p_c T_c(tmax) for passing, i.e. the balance heuristic over the channel strategies:
 ///   collision: weight = σs ⊙ T(t) / p_mix(t),  emitted = σt ⊙ Le ⊙ T(t) / p_mix(t);
 ///   passing:   weight = T(tmax) / P_mix.
-/// With grey σt this is weight = albedo on a collision and 1 when passing.
+/// With grey σt this is weight = albedo on a collision and 1 when passing. st, ss and le are σt·|d|,
+/// σs·|d| and Le per channel; tmax is +∞ for a ray that hits nothing. The logarithm and the
+/// exponentials are lane_math's, so float and every packet give the same bits (the path kernel
+/// takes its lanes in homogeneous media as packets, the float instantiation is sample_distance's).
+template <class F>
+struct HomogeneousStepT {
+    MaskT<F> scattered;
+    F t;                        ///< the collision's ray parameter (where scattered)
+    F weight[3], emitted[3];    ///< as MediumEvent's (emitted 0 where not scattered)
+};
+template <class F>
+inline HomogeneousStepT<F> homogeneous_step(const F* st, const F* ss, const F* le, const F* beta, const F& u_channel,
+                                            const F& u_t, const F& tmax) {
+    // channel_pmf(beta) and sample_channel.
+    const F s = (beta[0] + beta[1]) + beta[2];
+    const auto uniform = !(s > F(0.f)) || !(s < F(kInfinity)) || beta[0] < F(0.f) || beta[1] < F(0.f) || beta[2] < F(0.f);
+    F pmf[3];
+    for (int c = 0; c < 3; ++c) pmf[c] = lane::select(uniform, F(1.f / 3.f), beta[c] / lane::select(uniform, F(1.f), s));
+    const auto c0 = u_channel < pmf[0];
+    const auto c1 = !c0 && u_channel < pmf[0] + pmf[1];
+    auto pick = [&](const F* v) { return lane::select(c0, v[0], lane::select(c1, v[1], v[2])); };
+    const F stc = pick(st);
+    const auto pos = stc > F(0.f);
+    const F t = lane::select(pos, lane::neg(lane_math::log1p_t(lane::neg(u_t))) / lane::select(pos, stc, F(1.f)), F(kInfinity));
+    HomogeneousStepT<F> e;
+    e.scattered = t < tmax;
+    e.t = t;
+    // The transmittances up to the collision, or over the segment (exp(−0·∞) = 1), and the
+    // densities of the channel strategies: σt ⊙ T(t) for a collision, T(tmax) for passing.
+    const F d = lane::select(e.scattered, t, tmax);
+    F tr[3], p[3], m[3];
+    for (int c = 0; c < 3; ++c) {
+        const auto has = st[c] > F(0.f);
+        tr[c] = lane::select(has, lane_math::exp_t(lane::neg(st[c]) * lane::select(has, d, F(0.f))), F(1.f));
+        p[c] = lane::select(e.scattered, st[c] * tr[c], tr[c]);
+        m[c] = pmf[c] * p[c];
+    }
+    // channel_mis_weights: w_c = p_c·pdf_c / Σ_k p_k·pdf_k, and k = w_c*/(p_c*·pdf_c*).
+    const F sum = (m[0] + m[1]) + m[2];
+    const auto sum_pos = sum > F(0.f);
+    F w[3];
+    for (int c = 0; c < 3; ++c) w[c] = lane::select(sum_pos, m[c] / lane::select(sum_pos, sum, F(1.f)), F(0.f));
+    const F q = pick(pmf) * pick(p);
+    const auto q_pos = q > F(0.f);
+    const F k = lane::select(q_pos, pick(w) / lane::select(q_pos, q, F(1.f)), F(0.f));
+    for (int c = 0; c < 3; ++c) {
+        e.weight[c] = lane::select(e.scattered, (ss[c] * tr[c]) * k, tr[c] * k);
+        e.emitted[c] = lane::select(e.scattered, ((st[c] * le[c]) * tr[c]) * k, F(0.f));
+    }
+    return e;
+}
+
+/// Distance sampling in a homogeneous medium: homogeneous_step for one path, its two uniforms
+/// drawn from u in order (the channel's, then the distance's).
 template <class Uniform>
 MediumEvent sample_distance(const HomogeneousMedium& m, const Ray& ray, const Spectrum& beta, Uniform& u) {
     const float len = length(ray.d);
     const Spectrum st = m.sigma_t() * len, ss = m.sigma_s * len;
-    const Spectrum pmf = channel_pmf(beta);
-    const int c = sample_channel(pmf, detail::draw(u()));
-    const float uc = detail::draw(u());
-    const float t = st[c] > 0.f ? -std::log1p(-uc) / st[c] : kInfinity;
+    const float u_channel = detail::draw(u());
+    const float u_t = detail::draw(u());
+    const float stv[3] = {st.r, st.g, st.b}, ssv[3] = {ss.r, ss.g, ss.b}, lev[3] = {m.le.r, m.le.g, m.le.b};
+    const float bv[3] = {beta.r, beta.g, beta.b};
+    const HomogeneousStepT<float> h = homogeneous_step<float>(stv, ssv, lev, bv, u_channel, u_t, ray.tmax);
     MediumEvent e;
-    if (t < ray.tmax) {
-        const Spectrum tr = detail::beer(st, t);
-        const Spectrum pdfs = st * tr;  // per-channel densities of the collision distance
-        const Spectrum w = channel_mis_weights(pmf, pdfs);
-        const float q = pmf[c] * pdfs[c];  // this strategy's probability density
-        const float k = q > 0.f ? w[c] / q : 0.f;
-        e.scattered = true;
-        e.t = t;
-        e.weight = ss * tr * k;
-        e.emitted = st * m.le * tr * k;
-        return e;
-    }
-    const Spectrum tr = detail::beer(st, ray.tmax);
-    const Spectrum w = channel_mis_weights(pmf, tr);
-    const float q = pmf[c] * tr[c];
-    e.weight = q > 0.f ? tr * (w[c] / q) : Spectrum(0.f);
+    e.scattered = h.scattered;
+    if (h.scattered) e.t = h.t;
+    e.weight = Spectrum(h.weight[0], h.weight[1], h.weight[2]);
+    e.emitted = Spectrum(h.emitted[0], h.emitted[1], h.emitted[2]);
     return e;
 }
 

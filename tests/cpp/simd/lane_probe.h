@@ -1,7 +1,8 @@
 // What tests/cpp/simd/test_lanes_equal_scalars.cpp compares across lane types: the packet code of
 // the path tracer (Lambertian, Fresnel terms, the conductors on GGX and Beckmann, warps, frames, ray
 // offsets, the power heuristic, the bump terminator factors, emitter sampling, the packet lights:
-// spheres and constant environments, rows read by lane::gather_rows)
+// spheres and constant environments, rows read by lane::gather_rows, the homogeneous media's
+// distance sampling)
 // evaluated over arrays of inputs, kLaneWidth<F> lanes at a time. It is instantiated on float in
 // the test and on each SIMD target's packet in probe_<target>.cpp (built with that target's flags,
 // exporting only its entry point, as the renderer's kernels do).
@@ -17,6 +18,7 @@
 #include "pellucid/light/light_table.h"
 #include "pellucid/math/frame.h"
 #include "pellucid/math/ray.h"
+#include "pellucid/medium/medium.h"
 #include "pellucid/sampling/mis.h"
 #include "pellucid/sampling/warp.h"
 
@@ -33,7 +35,7 @@ struct In {
     const int32_t* light = nullptr;  ///< per case, a row of `lights`
 };
 /// Outputs, one array of n floats per quantity (masks as 0/1), zeroed by the caller.
-constexpr int kOutputs = 128;
+constexpr int kOutputs = 144;
 struct Out {
     float* v[kOutputs];
 };
@@ -121,6 +123,23 @@ void run(const In& in, Out& out) {
         detail::sincos_two_pi<F>(L(in.u[1]), &cphi, &sphi);
         put(cphi), put(sphi);
         beckmann<F>(in, L, wo, wi, nrm, metal, put, putm);
+        {
+            // Homogeneous media (medium/medium.h): ln(1 + x) on (−1, 0], and a distance-sampling
+            // step with σt (one channel 0 in a tenth of the cases), σs, Le and the throughput
+            // (black in a tenth, negative in a tenth) from the inputs, tmax finite or +∞.
+            const F u0 = L(in.u[0]), u1 = L(in.u[1]), u2 = L(in.u[2]);
+            put(lane_math::log1p_t(lane::neg(u2)));
+            const F st[3] = {F(4.f) * L(in.albedo[0]), lane::select(u2 < F(0.1f), F(0.f), F(3.f) * L(in.albedo[1])),
+                             F(0.5f) + L(in.albedo[2])};
+            const F ss[3] = {F(0.9f) * st[0], F(0.5f) * st[1], F(0.75f) * st[2]};
+            const F le[3] = {L(in.albedo[2]), F(0.f), F(2.f) * u2};
+            const F b0 = lane::select(u2 > F(0.9f), F(0.f), lane::select(u2 > F(0.8f), F(-0.5f), u1));
+            const F beta[3] = {b0, lane::select(u2 > F(0.9f), F(0.f), u0), lane::select(u2 > F(0.9f), F(0.f), F(0.25f))};
+            const F tmax = lane::select(u1 < F(0.3f), F(kInfinity), F(2.f) * u2);
+            const HomogeneousStepT<F> h = homogeneous_step<F>(st, ss, le, beta, u0, u1, tmax);
+            putm(h.scattered), put(lane::select(h.scattered, h.t, F(0.f)));
+            for (int c = 0; c < 3; ++c) put(h.weight[c]), put(h.emitted[c]);
+        }
         {
             // Rows read and transposed (lane::gather_rows): 16 and then 8 consecutive inputs from
             // each lane's own offset into the u[0] inputs.
