@@ -906,15 +906,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 }
             }
 
-            // Collisions in media whose phase function is Henyey–Greenstein: evaluated and sampled
-            // as packets after the loop below (which may sample their lights first).
-            alignas(64) bool ph[W]{};
-            bool any_ph = false;
-            if (ps.media && ps.any_hg)
-                for (int i = 0; i < W; ++i) {
-                    ph[i] = a.goes_on[i] && !a.fast[i] && a.in_medium[i] && ps.phase_hg[size_t(medium[i])] != 0;
-                    any_ph = any_ph || ph[i];
-                }
             // One lane at a time again: lights without a table, and the BSDF lanes.
             for (int i = 0; i < W; ++i) {
                 if (!a.goes_on[i]) continue;
@@ -939,7 +930,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         a.sh[3][i] = r.d.x, a.sh[4][i] = r.d.y, a.sh[5][i] = r.d.z, a.sh[6][i] = r.tmax;
                     }
                 }
-                if (a.fast[i] || ph[i]) continue;
+                if (a.fast[i]) continue;
                 BxDFSample s;
                 if (a.in_medium[i]) {  // the phase function in place of the BSDF
                     if (a.nee_ok[i]) {
@@ -982,40 +973,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     a.spdf[i] = s.pdf;
                     a.seta[i] = s.eta;
                     a.slobe[i] = int32_t(s.lobe);
-                }
-            }
-            if (any_ph) {
-                // path_services::phase_eval and phase_sample of those lanes, as packets (HGPhaseT<F>,
-                // whose float instantiation the one-lane calls run: the same bits).
-                alignas(64) float wo[3][W], g[W];
-                for (int i = 0; i < W; ++i) {
-                    wo[0][i] = si[i].wo.x, wo[1][i] = si[i].wo.y, wo[2][i] = si[i].wo.z;
-                    g[i] = ph[i] ? ps.phase_g[size_t(medium[i])] : 0.f;
-                }
-                const M on = LM(ph);
-                const HGPhaseT<F> hg{LD(g)};
-                const V3<F> w(LD(wo[0]), LD(wo[1]), LD(wo[2]));
-                const M eval = on && LM(a.nee_ok);
-                const F f = hg.eval(w, V3<F>(LD(a.lwx), LD(a.lwy), LD(a.lwz)));
-                for (float* dst : {a.gfr, a.gfg, a.gfb, a.gpdf}) ST(dst, lane::select(eval, f, LD(dst)));
-                const PhaseSampleT<F> smp = hg.sample(w, V2<F>{LD(a.u[4]), LD(a.u[5])});
-                const M ok = on && smp.valid && smp.pdf > F(0.f);
-                SM(a.s_ok, ok || (!on && LM(a.s_ok)));
-                ST(a.swx, lane::select(ok, smp.wi.x, LD(a.swx)));
-                ST(a.swy, lane::select(ok, smp.wi.y, LD(a.swy)));
-                ST(a.swz, lane::select(ok, smp.wi.z, LD(a.swz)));
-                for (float* dst : {a.swr, a.swg, a.swb}) ST(dst, lane::select(ok, smp.weight, LD(dst)));
-                ST(a.spdf, lane::select(ok, smp.pdf, LD(a.spdf)));
-                ST(a.seta, lane::select(ok, F(1.f), LD(a.seta)));
-                // The lobe: delta or diffuse reflection, and specular where the vertex had no NEE (light
-                // found by this direction is then not MIS-weighted).
-                alignas(64) bool delta[W];
-                SM(delta, smp.delta);
-                for (int i = 0; i < W; ++i) {
-                    if (!ph[i] || !a.s_ok[i]) continue;
-                    BxDFFlags lobe = delta[i] ? BxDFFlags::SpecularReflection : BxDFFlags::DiffuseReflection;
-                    if (!a.nee[i]) lobe |= BxDFFlags::Specular;
-                    a.slobe[i] = int32_t(lobe);
                 }
             }
 

@@ -378,15 +378,6 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.media = scene.has_media();
     ps.homogeneous_media.assign(scene.media.size(), 0);
     ps.medium_rows.assign(scene.media.size() * PathSetup::kMediumStride, 0.f);
-    ps.phase_hg.assign(scene.media.size(), 0);
-    ps.phase_g.assign(scene.media.size(), 0.f);
-    for (size_t k = 0; k < scene.media.size(); ++k) {
-        if (const auto* hg = std::get_if<HGPhase>(&phase_of(scene.media[k]))) {
-            ps.phase_hg[k] = 1;
-            ps.phase_g[k] = hg->g();
-            ps.any_hg = true;
-        }
-    }
     for (size_t k = 0; k < scene.media.size(); ++k) {
         const auto* h = std::get_if<HomogeneousMedium>(&scene.media[k]);
         if (!h) continue;

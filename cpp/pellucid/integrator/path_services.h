@@ -140,11 +140,6 @@ struct PathSetup {
     std::vector<int32_t> homogeneous_media;
     std::vector<float> medium_rows;
     bool any_homogeneous = false;
-    /// Per medium: 1 where its phase function is Henyey–Greenstein (the kernel evaluates and samples
-    /// it as packet code, HGPhaseT<F>), else 0; and its g. any_hg: some medium's is.
-    std::vector<int32_t> phase_hg;
-    std::vector<float> phase_g;
-    bool any_hg = false;
     bool medium_nee = true;        ///< NEE at medium collisions (integrator.medium_nee)
     bool uniform_channels = false; ///< channel_sampling "uniform": each colour channel 1/3, else ∝ throughput
     /// Some shape renders with a diffusion BSSRDF (Scene::subsurface): paths that refract into it

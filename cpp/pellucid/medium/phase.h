@@ -28,7 +28,6 @@
 #include "pellucid/math/constants.h"
 #include "pellucid/math/frame.h"
 #include "pellucid/math/lane_types.h"
-#include "pellucid/sampling/warp.h"
 
 namespace pellucid {
 
@@ -128,10 +127,9 @@ template <class F>
 inline V3<F> phase_direction(const V3<F>& wo, const F& one_minus_cos, const F& one_plus_cos, const F& u) {
     const F sin_theta = lane::sqrt(one_minus_cos * one_plus_cos);
     const F cos_theta = F(0.5f) * (one_plus_cos - one_minus_cos);
-    F cos_phi, sin_phi;
-    detail::sincos_two_pi<F>(u, &cos_phi, &sin_phi);  // (the same bits on every lane type)
+    const F phi = F(2.f * kPi) * u;
     const FrameT<F> fr = FrameT<F>::from_z(-wo);
-    return fr.to_world(V3<F>(sin_theta * cos_phi, sin_theta * sin_phi, cos_theta));
+    return fr.to_world(V3<F>(sin_theta * lane::cos(phi), sin_theta * lane::sin(phi), cos_theta));
 }
 
 /// p = 1/4π.
