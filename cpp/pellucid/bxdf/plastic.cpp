@@ -170,10 +170,13 @@ Spectrum PlasticBase::diffuse(float cos_o, float cos_i) const {
 
 float PlasticBase::coat_probability(float cos_o) const { return m_lanes.coat_probability(cos_o); }
 
-void plastic_packet_params(const PlasticBase& base, const GGXT<float>* d, std::vector<float>* tables, float* q) {
+void plastic_packet_params(const PlasticBase& base, const GGXT<float>* d, std::vector<float>* tables, float* q,
+                           const float* coat_offset) {
     const PlasticBaseT<float>& b = base.lanes();
     float coat = b.coat;
-    if (const RoughCoatTable* t = base.coat_table()) {
+    if (base.coat_table() && coat_offset) {
+        coat = *coat_offset;  // (the caller found the table among the tables already)
+    } else if (const RoughCoatTable* t = base.coat_table()) {
         const float* v = t->values();
         size_t at = 0;
         while (at < tables->size() && !std::equal(v, v + kCoatTableSize, tables->data() + at)) at += kCoatTableSize;

@@ -406,7 +406,10 @@ private:
 /// lane whose α is effectively smooth is the smooth plastic.
 constexpr int kPlasticParams = 12;
 /// d: the rough coat's αx, αy and shadowing (GGXT or BeckmannT alike), or null for the smooth coat.
-void plastic_packet_params(const PlasticBase& base, const GGXT<float>* d, std::vector<float>* tables, float* q);
+/// coat_offset: where the rough coat's table is already among the tables, its offset (tables is then
+/// not read).
+void plastic_packet_params(const PlasticBase& base, const GGXT<float>* d, std::vector<float>* tables, float* q,
+                           const float* coat_offset = nullptr);
 /// The packet of plastics whose parameters load(k) gives (k < kPlasticParams), on the lanes of
 /// `where` (other lanes get the smooth coat and no table, so they read no table and skip the rough
 /// lobe where no lane has one).

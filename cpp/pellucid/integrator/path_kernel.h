@@ -767,7 +767,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     // form: its parameters and shading frame go to the packet pass.
                     float q[kPacketParams];
                     int32_t form;
-                    if (ps.textured_packet[mat_of[i]] && (form = path_services::packet_form(bsdf(i), q)) != kBSDFLane) {
+                    if (ps.textured_packet[mat_of[i]] && (form = path_services::packet_form(ps, mat_of[i], bsdf(i), q)) != kBSDFLane) {
                         a.fast[i] = true;
                         a.kind[i] = float(form);
                         for (int k = 0, n = packet_param_count(form); k < n; ++k) a.q[k][i] = q[k];

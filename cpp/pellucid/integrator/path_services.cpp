@@ -97,17 +97,17 @@ static_assert(kPlasticParams <= kPacketParams, "a plastic's parameters fit a mat
 
 /// A plastic's packet form and parameters (plastic_packet_params): smooth, or rough over GGX or
 /// Beckmann.
-bool packet_plastic(const BxDF& b, int32_t* kind, float* q, std::vector<float>* tables) {
+bool packet_plastic(const BxDF& b, int32_t* kind, float* q, std::vector<float>* tables, const float* coat_offset = nullptr) {
     int32_t k = kPacketPlastic;
     if (const auto* p = std::get_if<SmoothPlastic>(&b)) {
-        plastic_packet_params(p->base(), nullptr, tables, q);
+        plastic_packet_params(p->base(), nullptr, tables, q, coat_offset);
     } else if (const auto* r = std::get_if<RoughPlastic<GGX>>(&b)) {
         const GGXT<float> d = r->distribution().lanes();
-        plastic_packet_params(r->base(), &d, tables, q);
+        plastic_packet_params(r->base(), &d, tables, q, coat_offset);
     } else if (const auto* rb = std::get_if<RoughPlastic<Beckmann>>(&b)) {
         const BeckmannT<float> d = rb->distribution().lanes();
         const GGXT<float> alphas{d.ax, d.ay, d.separable};  // (only α and the shadowing are stored)
-        plastic_packet_params(rb->base(), &alphas, tables, q);
+        plastic_packet_params(rb->base(), &alphas, tables, q, coat_offset);
         k = kPacketPlasticBeckmann;
     } else {
         return false;  // (kind untouched: the material stays a BSDF lane)
@@ -215,10 +215,28 @@ int32_t packet_form_of(const BxDF& b, float* q, std::vector<float>* tables) {
         return kind;
     return kBSDFLane;
 }
+
+/// The rough coat's table of a plastic, or null (another model, or a smooth coat).
+const RoughCoatTable* plastic_coat_table(const BxDF& b) {
+    if (const auto* r = std::get_if<RoughPlastic<GGX>>(&b)) return r->base().coat_table();
+    if (const auto* r = std::get_if<RoughPlastic<Beckmann>>(&b)) return r->base().coat_table();
+    if (const auto* p = std::get_if<SmoothPlastic>(&b)) return p->base().coat_table();
+    return nullptr;
+}
 }  // namespace
 
 namespace path_services {
-int32_t packet_form(const BSDF& b, float* q) { return packet_form_of(b.bxdf(), q, nullptr); }
+int32_t packet_form(const PathSetup& ps, uint32_t m, const BSDF& b, float* q) {
+    const int32_t kind = packet_form_of(b.bxdf(), q, nullptr);
+    if (kind != kBSDFLane) return kind;
+    // A plastic: its packet form where its coat is smooth or its rough coat's table is the
+    // material's, whose offset in the tables the setup found.
+    const RoughCoatTable* t = plastic_coat_table(b.bxdf());
+    if (t && t != ps.textured_coat[m]) return kBSDFLane;
+    std::vector<float> none;  // (not read: a smooth coat has no table, a rough one its offset)
+    int32_t k = kBSDFLane;
+    return packet_plastic(b.bxdf(), &k, q, &none, &ps.textured_coat_offset[m]) ? k : kBSDFLane;
+}
 }  // namespace path_services
 
 namespace {
@@ -348,6 +366,8 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.packet_params.assign(kPacketParams * n, 0.f);
     ps.packet_flags.assign(n, 0u);
     ps.textured_packet.assign(n, 0);
+    ps.textured_coat.assign(n, nullptr);
+    ps.textured_coat_offset.assign(n, 0.f);
     ps.checker_row.assign(n, -1);
     for (size_t m = 0; m < n; ++m) {
         const MaterialTextures& mt = scene.material_textures[m];
@@ -358,9 +378,15 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
         if (checker_material(scene, m, &ps)) continue;
         if (mt.has_textured_params() || mt.perturbs_normal()) {
             // Built at each hit (textures, a bump or normal map): the packet form of the model shades
-            // it where its BSDF there has one (packet_form).
+            // it where its BSDF there has one (packet_form). A plastic's rough coat table is the
+            // same at every hit (α and η are not textured): it joins the tables here.
             float q[kPacketParams];
-            ps.textured_packet[m] = packet_form_of(b, q, nullptr) != kBSDFLane;
+            int32_t kind = packet_form_of(b, q, nullptr);
+            if (kind == kBSDFLane && packet_plastic(b, &kind, q, &ps.coat_tables)) {
+                ps.textured_coat[m] = plastic_coat_table(b);
+                ps.textured_coat_offset[m] = ps.textured_coat[m] ? q[11] : 0.f;
+            }
+            ps.textured_packet[m] = kind != kBSDFLane;
             continue;
         }
         ps.packet_kind[m] = packet_form_of(b, &ps.packet_params[kPacketParams * m], &ps.coat_tables);

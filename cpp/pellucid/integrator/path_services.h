@@ -86,6 +86,11 @@ struct PathSetup {
     /// Per material: built at each hit (textured, or with a bump or normal map) and shaded by its
     /// model's packet form wherever the BSDF built there has one (path_services::packet_form).
     std::vector<uint8_t> textured_packet;
+    /// Per material built at each hit whose model is a plastic with a rough coat: the coat's table,
+    /// which every hit's BSDF shares (its α and η are not textured), and the table's offset in
+    /// coat_tables; null and 0 for the others (packet_form).
+    std::vector<const void*> textured_coat;
+    std::vector<float> textured_coat_offset;
     /// The flat triangles whose hits the kernel records as packets (gathered by triangle; the
     /// others' lanes fetch one at a time, scene/hit_packets.h): tri_base[g] is mesh geometry g's
     /// first triangle in tri_table, or −1 (a sphere, interpolated normals, an emitter, more than
@@ -199,10 +204,11 @@ Spectrum emitted(const PathSetup& ps, const SurfaceInteraction& si, const LightS
 void footprint(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray);
 /// The BSDF at si (footprint set first when the scene has textures), built into *out; its flags.
 BxDFFlags bsdf_begin(const PathSetup& ps, SurfaceInteraction& si, const RayDifferential& ray, BSDF* out);
-/// The packet form of a BSDF built at a hit and its parameters into q (kPacketParams floats), or
-/// kBSDFLane (no form for its model or parameters, or a rough plastic). The BSDF's frame and its
-/// terminator softening (BSDF::softens, terminator_factor) go with it.
-int32_t packet_form(const BSDF& b, float* q);
+/// The packet form of a BSDF built at a hit of material m and its parameters into q (kPacketParams
+/// floats), or kBSDFLane (no form for its model or parameters, or a plastic whose rough coat's table
+/// is not the material's, PathSetup::textured_coat). The BSDF's frame and its terminator softening
+/// (BSDF::softens, terminator_factor) go with it.
+int32_t packet_form(const PathSetup& ps, uint32_t m, const BSDF& b, float* q);
 Spectrum bsdf_eval(const BSDF& bsdf, const Vec3f& wo, const Vec3f& wi, float* pdf);
 bool bsdf_sample(const BSDF& bsdf, const Vec3f& wo, float u_lobe, Vec2f u, BxDFSample* out);
 /// Draw one vertex's random numbers.

@@ -298,8 +298,9 @@ TEST(SimdTargetRender, TexturedMaterialsTakeTheirModelsPacketForm) {
     // checker material: the packet Lambertian with the parameters of its hit's square
     // (PathSetup::checker_row, checkerboard_square), which are the parameters of the BSDF built at
     // that hit. textured_bump's bump-mapped Lambertians are built at each hit and shaded by the
-    // packet Lambertian with that hit's texel (with their softened terminators), while its rough
-    // plastic, whose coat table is built once per material, stays a BSDF lane.
+    // packet Lambertian with that hit's texel (with their softened terminators), and its textured,
+    // bump-mapped rough plastic by the packet plastic with that hit's parameters and the material's
+    // rough coat table, which every hit's BSDF shares (PathSetup::textured_coat).
     auto glass = load_scene("bench/suite/glass.json");
     const PathSetup ps = make_path_setup(*glass, 8, 5, true, true, SamplerType::Independent);
     const auto it = std::find(glass->material_names.begin(), glass->material_names.end(), "checker");
@@ -319,7 +320,7 @@ TEST(SimdTargetRender, TexturedMaterialsTakeTheirModelsPacketForm) {
         glass->compute_footprint(si, RayDifferential(r));
         const BSDF b = glass->bsdf(si);
         float q[kPacketParams];
-        ASSERT_EQ(path_services::packet_form(b, q), kPacketLambertian);
+        ASSERT_EQ(path_services::packet_form(ps, uint32_t(checker), b, q), kPacketLambertian);
         const Spectrum albedo = std::get<Lambertian>(b.bxdf()).albedo();
         const float w = checkerboard_square<float>(row, si.uv.x, si.uv.y);
         for (int c = 0; c < 3; ++c) {
@@ -339,10 +340,33 @@ TEST(SimdTargetRender, TexturedMaterialsTakeTheirModelsPacketForm) {
             ++checkers;
             continue;
         }
-        EXPECT_EQ(bool(pb.textured_packet[m]), lambertian) << bump->material_names[m];
+        EXPECT_TRUE(pb.textured_packet[m]) << bump->material_names[m];
+        EXPECT_EQ(pb.textured_coat[m] != nullptr, !lambertian) << bump->material_names[m];
         built += pb.textured_packet[m];
     }
-    EXPECT_EQ(built + checkers, 2);
+    EXPECT_EQ(built + checkers, 3);
+    // Hits on the plastic ball: the packet plastic, with the hit's diffuse texel and the offset of
+    // the material's coat table, whose values are the hit's BSDF's table.
+    const auto ball_it = std::find(bump->material_names.begin(), bump->material_names.end(), "ball");
+    ASSERT_NE(ball_it, bump->material_names.end());
+    const uint32_t ball = uint32_t(ball_it - bump->material_names.begin());
+    std::set<float> diffuse;
+    for (int k = 0; k < 64; ++k) {
+        const Ray r{bump->camera.origin(), bump->camera.direction<float>(100.f + float(k), 128.f + 0.5f * float(k)), kInfinity};
+        SurfaceInteraction si;
+        if (!bump->intersect(r, si) || si.material_id != ball) continue;
+        bump->compute_footprint(si, RayDifferential(r));
+        const BSDF b = bump->bsdf(si);
+        float q[kPacketParams];
+        ASSERT_EQ(path_services::packet_form(pb, ball, b, q), kPacketPlastic);
+        EXPECT_EQ(q[11], pb.textured_coat_offset[ball]);
+        const RoughCoatTable* t = std::get<RoughPlastic<GGX>>(b.bxdf()).base().coat_table();
+        ASSERT_NE(t, nullptr);
+        EXPECT_EQ(t, pb.textured_coat[ball]);
+        EXPECT_TRUE(std::equal(t->values(), t->values() + kCoatTableSize, pb.coat_tables.data() + size_t(q[11])));
+        diffuse.insert(q[1]);
+    }
+    EXPECT_GT(diffuse.size(), 4u);  // (the texture varies over the ball)
 }
 
 // The triangle and sphere tables (PathSetup::tri_table, sphere_table): hits on their shapes take
