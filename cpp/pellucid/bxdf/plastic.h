@@ -407,7 +407,7 @@ private:
 constexpr int kPlasticParams = 12;
 /// d: the rough coat's αx, αy and shadowing (GGXT or BeckmannT alike), or null for the smooth coat.
 /// coat_offset: where the rough coat's table is already among the tables, its offset (tables is then
-/// not read).
+/// not read, and may be null).
 void plastic_packet_params(const PlasticBase& base, const GGXT<float>* d, std::vector<float>* tables, float* q,
                            const float* coat_offset = nullptr);
 /// The packet of plastics whose parameters load(k) gives (k < kPlasticParams), on the lanes of

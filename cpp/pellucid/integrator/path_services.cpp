@@ -233,9 +233,8 @@ int32_t packet_form(const PathSetup& ps, uint32_t m, const BSDF& b, float* q) {
     // material's, whose offset in the tables the setup found.
     const RoughCoatTable* t = plastic_coat_table(b.bxdf());
     if (t && t != ps.textured_coat[m]) return kBSDFLane;
-    std::vector<float> none;  // (not read: a smooth coat has no table, a rough one its offset)
-    int32_t k = kBSDFLane;
-    return packet_plastic(b.bxdf(), &k, q, &none, &ps.textured_coat_offset[m]) ? k : kBSDFLane;
+    int32_t k = kBSDFLane;  // (no tables: a smooth coat has none, a rough one has its offset)
+    return packet_plastic(b.bxdf(), &k, q, nullptr, &ps.textured_coat_offset[m]) ? k : kBSDFLane;
 }
 }  // namespace path_services
 

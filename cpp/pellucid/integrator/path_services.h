@@ -89,7 +89,7 @@ struct PathSetup {
     /// Per material built at each hit whose model is a plastic with a rough coat: the coat's table,
     /// which every hit's BSDF shares (its α and η are not textured), and the table's offset in
     /// coat_tables; null and 0 for the others (packet_form).
-    std::vector<const void*> textured_coat;
+    std::vector<const RoughCoatTable*> textured_coat;
     std::vector<float> textured_coat_offset;
     /// The flat triangles whose hits the kernel records as packets (gathered by triangle; the
     /// others' lanes fetch one at a time, scene/hit_packets.h): tri_base[g] is mesh geometry g's
