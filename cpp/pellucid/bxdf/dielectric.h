@@ -215,11 +215,13 @@ inline DielectricHalfD<D> dielectric_half_d(const Vec3P<D>& wo, const Vec3P<D>& 
     const auto reflect = lane::round_to_float(co * ci) > zero;  // co · ci > 0 in float
     // Walter et al. 2007, eq. 16: h = −(η_i wi + η_o wo), here scaled by 1/η_o and oriented to +z;
     // η' = η(wi side)/η(wo side) is 1 for reflection.
-    const D etap = lane::select(reflect, one, lane::select(co > zero, eta, one / eta));
+    const D inv_eta = one / eta;
+    const D etap = lane::select(reflect, one, lane::select(co > zero, eta, inv_eta));
+    const D inv_etap = lane::select(reflect, one, lane::select(co > zero, inv_eta, eta));
     const Vec3P<D> h = wi * etap + wo;
     const D hl = length(h);  // sqrt((x² + y²) + z²), as glm::length
     const auto has_h = off_horizon && hl > zero;
-    const Vec3P<D> wm = h / lane::select(h.z < zero, lane::neg(hl), hl);
+    const Vec3P<D> wm = h * (one / lane::select(h.z < zero, lane::neg(hl), hl));
     const D dot_o = dot(wo, wm), dot_i = dot(wi, wm);  // (x + y) + z, as glm::dot
     const D fo = lane::round_to_float(dot_o), fi = lane::round_to_float(dot_i);
     // Back-facing microfacets contribute nothing (Walter et al. 2007, §5.1, χ⁺ terms); the test
@@ -230,9 +232,9 @@ inline DielectricHalfD<D> dielectric_half_d(const Vec3P<D>& wo, const Vec3P<D>& 
     // (Mask inequality spelt with && and ||: simd/packet.h.)
     const auto above = co > zero, denser = eta >= one;
     const auto from_inside = !reflect && ((above && !denser) || (!above && denser));
-    const D Fd = fresnel_dielectric_d(lane::select(from_inside, dot_i, dot_o), eta);
+    const D Fd = fresnel_dielectric_d(lane::select(from_inside, dot_i, dot_o), eta, inv_eta);
     // Eq. 17's denominator from the float dot products: a double sum, squared in float.
-    const D s = lane::round_to_float(fi + fo / etap);
+    const D s = lane::round_to_float(fi + fo * inv_etap);
     DielectricHalfD<D> out;
     out.wm = lane::select(has_h, wm, Vec3P<D>(zero, zero, one));
     out.dot_o = lane::select(has_h, dot_o, zero), out.dot_i = lane::select(has_h, dot_i, zero);

@@ -57,20 +57,27 @@ inline float fresnel_dielectric(float cos_i, float eta, float* cos_t_out = nullp
 /// so each lane of a packet is the double function's result, bit for bit. (D = float is excluded:
 /// a call with float arguments takes the double function.)
 template <class D, std::enable_if_t<std::is_same_v<D, double> || !std::is_arithmetic_v<D>, int> = 0>
-inline D fresnel_dielectric_d(D cos_i, D eta) {
+inline D fresnel_dielectric_d(D cos_i, D eta, D inv_eta) {
     const D zero(0.0), one(1.0);
     cos_i = lane::select(D(-1.0) < cos_i, cos_i, D(-1.0));  // std::max(-1, cos_i)
     cos_i = lane::select(cos_i < one, cos_i, one);          // std::min(1, cos_i)
     const auto back = cos_i < zero;
-    eta = lane::select(back, one / eta, eta);
+    const D e = lane::select(back, inv_eta, eta), inv_e = lane::select(back, eta, inv_eta);
     cos_i = lane::select(back, lane::neg(cos_i), cos_i);
     const D x = one - cos_i * cos_i;
-    const D sin2_t = lane::select(zero < x, x, zero) / (eta * eta);
+    const D sin2_t = lane::select(zero < x, x, zero) * (inv_e * inv_e);
     const D cos_t = lane::sqrt(one - sin2_t);  // NaN on TIR, not selected
-    const D r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    const D r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    const D r = D(0.5) * (r_parl * r_parl + r_perp * r_perp);
+    // r_parl = a/b, r_perp = c/d over one division: (a²d² + c²b²)/(b²d²). b, d > 0 wherever the
+    // result is selected (cos θi = 0 with cos θt = 0 is total internal reflection).
+    const D a = e * cos_i - cos_t, b = e * cos_i + cos_t;
+    const D c = cos_i - e * cos_t, d = cos_i + e * cos_t;
+    const D b2 = b * b, d2 = d * d;
+    const D r = D(0.5) * ((a * a * d2 + c * c * b2) / (b2 * d2));
     return lane::select(eta == one, zero, lane::select(sin2_t >= one, one, lane::select(r < one, r, one)));
+}
+template <class D, std::enable_if_t<std::is_same_v<D, double> || !std::is_arithmetic_v<D>, int> = 0>
+inline D fresnel_dielectric_d(D cos_i, D eta) {
+    return fresnel_dielectric_d<D>(cos_i, eta, D(1.0) / eta);
 }
 inline double fresnel_dielectric_d(double cos_i, double eta) { return fresnel_dielectric_d<double>(cos_i, eta); }
 

@@ -207,17 +207,18 @@ inline PrincipledHalfD<D> principled_half_d(const Vec3P<D>& wo, const Vec3P<D>& 
     const auto front = wo.z > zero, reflect = lane::round_to_float(wo.z * wi.z) > zero;
     // η' = η(wi side)/η(wo side) for transmission; Walter et al. 2007, eq. 16's h (wi·1 = wi
     // exactly for reflection), oriented to +z.
-    const D etap = lane::select(front, eta, one / eta);
+    const D inv_eta = one / eta;
+    const D etap = lane::select(front, eta, inv_eta);
     const Vec3P<D> hh = wo + wi * lane::select(reflect, one, etap);
     const D hl = length(hh);  // sqrt((x² + y²) + z²), as glm::length
     const auto has_h = hl > zero;
-    const Vec3P<D> hd = hh / lane::select(hh.z < zero, lane::neg(hl), hl);
+    const Vec3P<D> hd = hh * (one / lane::select(hh.z < zero, lane::neg(hl), hl));
     const D dot_o = dot(wo, hd), dot_i = dot(wi, hd);  // (x + y) + z, as glm::dot
     // F from wi's side for transmission from the denser side. (Mask inequality spelt with && and
     // ||: simd/packet.h.)
     const auto denser = eta >= one;
     const auto from_wi = !reflect && ((front && !denser) || (!front && denser));
-    const D Fd = fresnel_dielectric_d(lane::select(from_wi, dot_i, dot_o), eta);
+    const D Fd = fresnel_dielectric_d(lane::select(from_wi, dot_i, dot_o), eta, inv_eta);
     // The Jacobian's denominator: a double sum, rounded to float and squared in float.
     const D s = lane::round_to_float(dot_o + etap * dot_i);
     PrincipledHalfD<D> out;

@@ -221,34 +221,39 @@ TEST(DielectricLanes, TheHalfVectorGridIsCovered) {
 namespace {
 // The half-vector step and Fresnel written plainly, with glm's double vectors and branches (the
 // form the lane template must reproduce): what dielectric_half must give, bit for bit.
+// Fresnel with one reciprocal of η and one division for both polarisations:
+// r_parl² + r_perp² = (a/b)² + (c/d)² = (a²d² + c²b²)/(b²d²).
 double plain_fresnel(double cos_i, double eta) {
     cos_i = std::min(1.0, std::max(-1.0, cos_i));
-    if (cos_i < 0.0) eta = 1.0 / eta, cos_i = -cos_i;
+    const double inv_eta = 1.0 / eta;
+    double e = eta, inv_e = inv_eta;
+    if (cos_i < 0.0) e = inv_eta, inv_e = eta, cos_i = -cos_i;
     if (eta == 1.0) return 0.0;
-    const double sin2_t = std::max(0.0, 1.0 - cos_i * cos_i) / (eta * eta);
+    const double sin2_t = std::max(0.0, 1.0 - cos_i * cos_i) * (inv_e * inv_e);
     if (sin2_t >= 1.0) return 1.0;
     const double cos_t = std::sqrt(1.0 - sin2_t);
-    const double r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    const double r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return std::min(1.0, 0.5 * (r_parl * r_parl + r_perp * r_perp));
+    const double a = e * cos_i - cos_t, b = e * cos_i + cos_t, c = cos_i - e * cos_t, d = cos_i + e * cos_t;
+    return std::min(1.0, 0.5 * ((a * a * (d * d) + c * c * (b * b)) / (b * b * (d * d))));
 }
 DielectricHalf plain_half(const Vec3f& wo, const Vec3f& wi, float eta) {
     DielectricHalf out;
     const float co = wo.z, ci = wi.z;
     if (co == 0.f || ci == 0.f) return out;
     const bool reflect = co * ci > 0.f;
-    const double etap = reflect ? 1.0 : (co > 0.f ? double(eta) : 1.0 / double(eta));
+    const double inv_eta = 1.0 / double(eta);
+    const double etap = reflect ? 1.0 : (co > 0.f ? double(eta) : inv_eta);
+    const double inv_etap = reflect ? 1.0 : (co > 0.f ? inv_eta : double(eta));
     const Vec3d h = Vec3d(wi) * etap + Vec3d(wo);
     const double hl = glm::length(h);
     if (!(hl > 0.0)) return out;
-    const Vec3d wm = h / (h.z < 0.0 ? -hl : hl);
+    const Vec3d wm = h * (1.0 / (h.z < 0.0 ? -hl : hl));
     const double dot_o = glm::dot(Vec3d(wo), wm), dot_i = glm::dot(Vec3d(wi), wm);
     out.wm = Vec3f(wm), out.dot_o = float(dot_o), out.dot_i = float(dot_i);
     if (out.dot_i * ci <= 0.f || out.dot_o * co <= 0.f) return out;
     const bool from_inside = !reflect && ((co > 0.f) != (eta >= 1.f));
     const double F = plain_fresnel(from_inside ? dot_i : dot_o, eta);
     out.R = float(F), out.T = float(1.0 - F);
-    const float s = float(double(out.dot_i) + double(out.dot_o) / etap);
+    const float s = float(double(out.dot_i) + double(out.dot_o) * inv_etap);
     out.denom = reflect ? 0.f : s * s;
     out.etap2 = float(etap * etap);
     out.ok = true;
