@@ -30,7 +30,7 @@
 // EnvmapLight's sample_li, pdf_li, Le and lookup are the float instantiation, and the packet path
 // tracer runs the same templates on its lanes (light/light_table.h). They use IEEE-exact lane
 // operations only, and no libm: the angles come from detail::sincos_two_pi (warp.h) and
-// envmap_detail::atan2_lanes below, so every lane gives the bits of the float instantiation.
+// lane_math::atan2_t (math/lane_atan.h), so every lane gives the bits of the float instantiation.
 #pragma once
 #include <memory>
 #include <optional>
@@ -40,6 +40,7 @@
 #include "pellucid/image/image.h"
 #include "pellucid/light/light_types.h"
 #include "pellucid/math/constants.h"
+#include "pellucid/math/lane_atan.h"
 #include "pellucid/math/lane_types.h"
 #include "pellucid/math/transform.h"
 #include "pellucid/sampling/piecewise_2d.h"
@@ -68,34 +69,6 @@ struct EnvmapSampleT {
     RGB<F> L;
 };
 
-namespace envmap_detail {
-/// atan t for t ∈ [0, 1]: above tan(π/8), π/4 + atan((t − 1)/(t + 1)); then s + s·z·P(z), z = s²,
-/// |s| ≤ tan(π/8), with P a degree-4 polynomial fitted to (atan s − s)/(s z) on that interval
-/// (weighted least squares on the relative error; fit error 7e-10, below float rounding).
-template <class F>
-inline F atan_unit(const F& t) {
-    const auto big = t > F(0.41421356f);
-    const F s = lane::select(big, (t - F(1.f)) / (t + F(1.f)), t);
-    const F z = s * s;
-    const F p = F(-0.33333316f) +
-                z * (F(0.19998471f) + z * (F(-0.14243539f) + z * (F(0.10593848f) + z * F(-0.060782962f))));
-    const F a = s + s * (z * p);
-    return lane::select(big, F(kPiOver4) + a, a);
-}
-/// atan2(y, x) ∈ [−π, π] (0 for y = x = 0; the sign of y kept).
-template <class F>
-inline F atan2_lanes(const F& y, const F& x) {
-    const F ax = lane::abs(x), ay = lane::abs(y);
-    const auto steep = ay > ax;
-    const F num = lane::select(steep, ax, ay), den = lane::select(steep, ay, ax);
-    const F t = lane::select(den > F(0.f), num / lane::select(den > F(0.f), den, F(1.f)), F(0.f));
-    F a = atan_unit<F>(t);
-    a = lane::select(steep, F(kPiOver2) - a, a);
-    a = lane::select(x < F(0.f), F(kPi) - a, a);
-    return lane::copysign(a, y);
-}
-}  // namespace envmap_detail
-
 /// Mitsuba 3's lat-long mapping in the map's frame (see the header comment): the direction of
 /// (u, v) ∈ [0,1)×[0,1], and sin θ.
 template <class F>
@@ -109,10 +82,10 @@ inline V3<F> envmap_uv_to_direction(const V2<F>& uv, F* sin_theta) {
 /// (u, v) of a unit direction d of the map's frame, u ∈ [0, 1); sin_theta = √(d.x² + d.z²).
 template <class F>
 inline V2<F> envmap_direction_to_uv(const V3<F>& d, const F& sin_theta) {
-    F u = envmap_detail::atan2_lanes<F>(d.x, lane::neg(d.z)) * F(kInv2Pi);
+    F u = lane_math::atan2_t<F>(d.x, lane::neg(d.z)) * F(kInv2Pi);
     u = lane::select(u < F(0.f), u + F(1.f), u);
     u = lane::select(u < F(1.f), u, F(0.f));
-    const F v = envmap_detail::atan2_lanes<F>(sin_theta, d.y) * F(kInvPi);
+    const F v = lane_math::atan2_t<F>(sin_theta, d.y) * F(kInvPi);
     return V2<F>{u, v};
 }
 

@@ -42,6 +42,7 @@
 #include "pellucid/light/light_types.h"
 #include "pellucid/math/constants.h"
 #include "pellucid/math/frame.h"
+#include "pellucid/math/lane_atan.h"
 #include "pellucid/math/lane_types.h"
 
 namespace pellucid {
@@ -70,24 +71,12 @@ inline DeltaLightSample<F> point_light_sample(const V3<F>& p_light, const RGB<F>
 
 /// Mitsuba 3's spot falloff at cos_theta = cos of the angle from the axis: 0 at or beyond the
 /// cutoff (cos_theta ≤ cos_cutoff), 1 within the beam, linear in the angle between. The angle is
-/// libm's acos (safe_acos), taken one lane at a time on the lanes inside the cutoff only, so every
-/// lane type gives the float instantiation's bits.
+/// lane_math::acos_t (math/lane_atan.h), so every lane type gives the float instantiation's bits.
 template <class F>
 inline F spot_falloff(const F& cos_theta, const F& cos_cutoff, const F& cutoff, const F& beam) {
     const auto dark = cos_theta <= cos_cutoff;
     if (lane::all(dark)) return F(0.f);
-    F angle;
-    if constexpr (std::is_same_v<F, float>) {
-        angle = safe_acos(cos_theta);
-    } else {
-        constexpr int W = kLaneWidth<F>;
-        alignas(64) float c[W];
-        alignas(64) bool off[W];
-        lane::store(c, cos_theta);
-        lane::store(off, dark);
-        for (int i = 0; i < W; ++i) c[i] = off[i] ? 0.f : safe_acos(c[i]);
-        angle = lane::load_as<F>(c);
-    }
+    const F angle = lane_math::acos_t<F>(cos_theta);
     const F ramp = (cutoff - angle) / (cutoff - beam);
     return lane::select(dark, F(0.f), lane::select(angle <= beam, F(1.f), ramp));
 }
