@@ -7,10 +7,13 @@ samples grouped by stage.
 
 Needs Linux `perf` (linux-perf) with access to the CPU's cycle counter or, failing that, its
 software clock. Every scene of bench/suite/suite.json is rendered once at --spp samples per pixel
-on one thread (`--threads 1`, so the figures are per-core work). Samples are grouped by symbol and
-shared object into the stages below; process start-up and scene loading (the dynamic linker, the
-kernel's page faults, parsing, mesh reading and Embree's BVH build) form their own group and are
-left out of the percentages, which are shares of the render itself.
+on one thread (`--threads 1`, so the figures are per-core work), and once more at 1 spp. Samples are
+grouped by symbol and shared object into the stages below, and each stage's samples in the 1-spp run
+are subtracted from the full run's: what is left is the render of the other spp - 1 samples per pixel,
+whatever code start-up and loading share with it (the rough coat tables a plastic integrates at load
+call the same microfacet functions as one-lane BSDFs do at render time). Process start-up and scene
+loading (the dynamic linker, the kernel's page faults, parsing, mesh reading, Embree's BVH build)
+form their own group, reported as a share of the full run's process.
 """
 from __future__ import annotations
 
@@ -70,22 +73,22 @@ def classify(dso: str, sym: str) -> str:
 
 def profile(binary: str, scene: pathlib.Path, spp: int, tmp: pathlib.Path) -> Dict[str, float]:
     data = tmp / "perf.data"
-    cmd = ["perf", "record", "-q", "-o", str(data), binary, str(scene), "--spp", str(spp), "--threads", "1",
-           "-o", str(tmp / "out.exr"), "--quiet"]
+    cmd = ["perf", "record", "-q", "-F", "10000", "-o", str(data), binary, str(scene), "--spp", str(spp),
+           "--threads", "1", "-o", str(tmp / "out.exr"), "--quiet"]
     r = subprocess.run(cmd, capture_output=True, text=True, cwd=scene.parent)
     if r.returncode != 0:
         raise RuntimeError(f"perf record failed on {scene.name}: {r.stderr[-2000:]}")
-    rep = subprocess.run(["perf", "report", "-i", str(data), "--no-children", "--sort", "dso,sym", "--stdio",
+    rep = subprocess.run(["perf", "report", "-i", str(data), "--no-children", "--sort", "dso,sym", "--stdio", "-n",
                           "--percent-limit", "0"], capture_output=True, text=True)
-    shares: Dict[str, float] = {}
+    counts: Dict[str, float] = {}
     for line in rep.stdout.splitlines():
-        m = re.match(r"\s*([0-9.]+)%\s+(\S+)\s+\[[.k]\]\s+(.*)$", line)
+        m = re.match(r"\s*[0-9.]+%\s+([0-9]+)\s+(\S+)\s+\[[.k]\]\s+(.*)$", line)
         if not m:
             continue
-        pct, dso, sym = float(m.group(1)), m.group(2), m.group(3).strip()
+        n, dso, sym = float(m.group(1)), m.group(2), m.group(3).strip()
         stage = classify(dso, sym)
-        shares[stage] = shares.get(stage, 0.0) + pct
-    return shares
+        counts[stage] = counts.get(stage, 0.0) + n
+    return counts
 
 
 def suite_entries(scenes: str) -> List[dict]:
@@ -113,6 +116,9 @@ def main(argv=None) -> int:
     ap.add_argument("--binary", default=str(ROOT / "build" / "py" / "cpp" / "pellucid-render"))
     ap.add_argument("--out", default=str(ROOT / "bench" / "results" / "suite" / "profile.md"))
     args = ap.parse_args(argv)
+    if args.spp < 2:
+        print("profile_suite: --spp must be at least 2 (the 1-spp run is subtracted)", file=sys.stderr)
+        return 2
     if shutil.which("perf") is None:
         print("profile_suite: perf is not installed (Debian: linux-perf)", file=sys.stderr)
         return 2
@@ -127,18 +133,24 @@ def main(argv=None) -> int:
     rows = []
     with tempfile.TemporaryDirectory() as td:
         for name in names:
-            shares = profile(args.binary, ROOT / "bench" / "suite" / f"{name}.json", args.spp, pathlib.Path(td))
-            render = sum(v for k, v in shares.items() if k != "loading")
-            rows.append((name, {k: 100.0 * shares.get(k, 0.0) / render for k in stages}, shares.get("loading", 0.0)))
+            path = ROOT / "bench" / "suite" / f"{name}.json"
+            full = profile(args.binary, path, args.spp, pathlib.Path(td))
+            one = profile(args.binary, path, 1, pathlib.Path(td))
+            # The render of spp − 1 samples per pixel: each stage's samples less the 1-spp run's.
+            diff = {k: max(0.0, full.get(k, 0.0) - one.get(k, 0.0)) for k in stages}
+            render = sum(diff.values())
+            load = 100.0 * full.get("loading", 0.0) / sum(full.values())
+            rows.append((name, {k: 100.0 * diff[k] / render for k in stages}, load))
             print(name, " ".join(f"{k.split(' ')[0]}={v:.0f}" for k, v in rows[-1][1].items()), file=sys.stderr)
     short = {s: s for s in stages}
     lines = [
         "# Where the render time goes, per suite scene",
         "",
         f"`python bench/profile_suite.py --spp {args.spp}`: `perf record` of `pellucid-render SCENE --spp {args.spp} "
-        "--threads 1` (the default SIMD target), samples grouped by symbol into stages. Each row is the share of "
-        "the render's samples; start-up and scene loading (the last column, a share of the whole process) are "
-        "left out of the other columns.",
+        "--threads 1` (the default SIMD target) and of the same at 1 spp, samples grouped by symbol into stages. "
+        "Each row is the share of the render's samples: each stage's samples less the 1-spp run's, which leaves "
+        f"the render of {args.spp - 1} spp. Start-up and scene loading (the last column) are a share of the full "
+        "run's process.",
         "",
         "| scene | " + " | ".join(short[s] for s in stages) + " | start-up and loading (of the process) |",
         "|---|" + "---|" * (len(stages) + 1),
