@@ -187,7 +187,7 @@ void plastic_packet_params(const PlasticBase& base, const GGXT<float>* d, std::v
     for (int c = 0; c < 3; ++c) q[1 + c] = b.scale[c], q[4 + c] = b.ks[c];
     q[7] = b.ks_avg, q[8] = b.kd_avg;
     q[9] = d ? d->ax : 0.f, q[10] = d ? (d->separable ? -d->ay : d->ay) : 0.f;
-    q[11] = coat;
+    q[kPlasticCoatParam] = coat;
 }
 
 std::string PlasticBase::params() const {

@@ -405,6 +405,8 @@ private:
 /// there already). plastic_lanes reads them back; the GGX rough form covers both plastics, as a
 /// lane whose α is effectively smooth is the smooth plastic.
 constexpr int kPlasticParams = 12;
+/// Where among them PlasticBaseT::coat is (the rough coat table's offset, or kSumCoat/kSmoothCoat).
+constexpr int kPlasticCoatParam = 11;
 /// d: the rough coat's αx, αy and shadowing (GGXT or BeckmannT alike), or null for the smooth coat.
 /// coat_offset: where the rough coat's table is already among the tables, its offset (tables is then
 /// not read, and may be null).
@@ -423,7 +425,7 @@ inline RoughPlasticT<F, DistT<F>> plastic_lanes(const MaskT<F>& where, const Loa
                       RGB<F>(load(4), load(5), load(6)),
                       load(7),
                       load(8),
-                      lane::select(where, load(11), F(PlasticBaseT<F>::kSumCoat)),
+                      lane::select(where, load(kPlasticCoatParam), F(PlasticBaseT<F>::kSumCoat)),
                       tables};
     // (A distribution's α is at least kMinAlpha, so the sign is that of a non-zero number.)
     return {b, DistT<F>{lane::select(smooth, F(1.f), ax), lane::select(smooth, F(1.f), ay), ay_signed < F(0.f)}, smooth};

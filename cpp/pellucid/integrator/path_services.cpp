@@ -383,7 +383,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
             int32_t kind = packet_form_of(b, q, nullptr);
             if (kind == kBSDFLane && packet_plastic(b, &kind, q, &ps.coat_tables)) {
                 ps.textured_coat[m] = plastic_coat_table(b);
-                ps.textured_coat_offset[m] = ps.textured_coat[m] ? q[11] : 0.f;
+                ps.textured_coat_offset[m] = ps.textured_coat[m] ? q[kPlasticCoatParam] : 0.f;
             }
             ps.textured_packet[m] = kind != kBSDFLane;
             continue;

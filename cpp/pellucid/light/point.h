@@ -37,7 +37,6 @@
 #include <cmath>
 #include <optional>
 #include <string>
-#include <type_traits>
 
 #include "pellucid/light/light_types.h"
 #include "pellucid/math/constants.h"

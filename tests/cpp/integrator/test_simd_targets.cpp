@@ -359,11 +359,11 @@ TEST(SimdTargetRender, TexturedMaterialsTakeTheirModelsPacketForm) {
         const BSDF b = bump->bsdf(si);
         float q[kPacketParams];
         ASSERT_EQ(path_services::packet_form(pb, ball, b, q), kPacketPlastic);
-        EXPECT_EQ(q[11], pb.textured_coat_offset[ball]);
+        EXPECT_EQ(q[kPlasticCoatParam], pb.textured_coat_offset[ball]);
         const RoughCoatTable* t = std::get<RoughPlastic<GGX>>(b.bxdf()).base().coat_table();
         ASSERT_NE(t, nullptr);
         EXPECT_EQ(t, pb.textured_coat[ball]);
-        EXPECT_TRUE(std::equal(t->values(), t->values() + kCoatTableSize, pb.coat_tables.data() + size_t(q[11])));
+        EXPECT_TRUE(std::equal(t->values(), t->values() + kCoatTableSize, pb.coat_tables.data() + size_t(q[kPlasticCoatParam])));
         diffuse.insert(q[1]);
     }
     EXPECT_GT(diffuse.size(), 4u);  // (the texture varies over the ball)
