@@ -303,9 +303,36 @@ namespace {
 /// the others, and lanes past n, hold a well-formed empty ray whatever the caller left there (NaN
 /// included: Embree's 16-wide call on an AVX2 build, done as two 8-wide halves, asserts that every
 /// ray it carries is valid). mask[i] = −1 for a lane to trace, else 0.
+///
+/// A full packet (n = K, every kernel's packets but the 4-lane one) is filled four lanes at a time
+/// in vectors of the baseline instruction set (GCC/Clang vector extensions: SSE2, NEON): each field
+/// a select between the caller's value and the empty ray's by the lane's mask, with no branch and
+/// no copy of run-time length. (Scalar loops over the lanes, which the compiler left unvectorised,
+/// cost more than the copies and fix-ups below.)
 template <int K, class RayK>
 void fill_lanes(RayK& r, int* mask, int n, const float* const soa[7], const bool* valid) {
     float* dst[7] = {r.org_x, r.org_y, r.org_z, r.dir_x, r.dir_y, r.dir_z, r.tfar};
+    if (n == K) {
+        using V = int32_t __attribute__((vector_size(16)));
+        static_assert(K % 4 == 0, "packets of whole vectors");
+        const V neg_inf = V{} + int32_t(0xff800000u);  // −∞: the empty ray's tfar
+        for (int j = 0; j < K; j += 4) {
+            const V m = -V{valid[j], valid[j + 1], valid[j + 2], valid[j + 3]};
+            std::memcpy(mask + j, &m, sizeof m);
+            for (int k = 0; k < 7; ++k) {
+                V v;
+                std::memcpy(&v, soa[k] + j, sizeof v);
+                v = (v & m) | (k == 6 ? neg_inf & ~m : V{});
+                std::memcpy(dst[k] + j, &v, sizeof v);
+            }
+            const V zero{}, ones = ~V{};
+            std::memcpy(r.tnear + j, &zero, sizeof zero);
+            std::memcpy(r.mask + j, &ones, sizeof ones);
+            std::memcpy(r.flags + j, &zero, sizeof zero);
+            std::memcpy(r.time + j, &zero, sizeof zero);
+        }
+        return;
+    }
     for (int k = 0; k < 7; ++k) std::memcpy(dst[k], soa[k], sizeof(float) * size_t(n));
     for (int i = 0; i < K; ++i) {
         mask[i] = i < n && valid[i] ? -1 : 0;
@@ -320,26 +347,30 @@ void fill_lanes(RayK& r, int* mask, int n, const float* const soa[7], const bool
         dst[6][i] = -std::numeric_limits<float>::infinity();
     }
 }
+/// The first n lanes of a packet's field into out (a copy of fixed length for a full packet).
+template <int K, class T>
+void copy_lanes(T* out, const T* field, int n) {
+    if (n == K) std::memcpy(out, field, sizeof(T) * size_t(K));
+    else std::memcpy(out, field, sizeof(T) * size_t(n));
+}
 /// intersect_lanes on a K-wide packet (n ≤ K).
 template <int K, class RayHitK>
 void intersect_k(RTCScene scene, int n, const float* const soa[7], const bool* valid, HitLanes& out) {
     alignas(64) RayHitK rh;
     alignas(64) int mask[K];
     fill_lanes<K>(rh.ray, mask, n, soa, valid);
-    for (int i = 0; i < K; ++i) {
-        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-    }
+    static_assert(RTC_INVALID_GEOMETRY_ID == ~0u, "a miss is geom_id ~0u: every byte 0xff");
+    std::memset(rh.hit.geomID, 0xff, sizeof rh.hit.geomID);
+    std::memset(rh.hit.instID[0], 0xff, sizeof rh.hit.instID[0]);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     if constexpr (K == 16) rtcIntersect16(mask, scene, &ctx, &rh);
     else rtcIntersect8(mask, scene, &ctx, &rh);
-    static_assert(RTC_INVALID_GEOMETRY_ID == ~0u, "a miss is geom_id ~0u");
-    std::memcpy(out.t, rh.ray.tfar, sizeof(float) * size_t(n));
-    std::memcpy(out.geom_id, rh.hit.geomID, sizeof(uint32_t) * size_t(n));
-    std::memcpy(out.prim_id, rh.hit.primID, sizeof(uint32_t) * size_t(n));
-    std::memcpy(out.u, rh.hit.u, sizeof(float) * size_t(n));
-    std::memcpy(out.v, rh.hit.v, sizeof(float) * size_t(n));
+    copy_lanes<K>(out.t, rh.ray.tfar, n);
+    copy_lanes<K>(out.geom_id, rh.hit.geomID, n);
+    copy_lanes<K>(out.prim_id, rh.hit.primID, n);
+    copy_lanes<K>(out.u, rh.hit.u, n);
+    copy_lanes<K>(out.v, rh.hit.v, n);
 }
 /// occluded_lanes on a K-wide packet (n ≤ K).
 template <int K, class RayK>
@@ -351,6 +382,10 @@ void occluded_k(RTCScene scene, int n, const float* const soa[7], const bool* va
     rtcInitIntersectContext(&ctx);
     if constexpr (K == 16) rtcOccluded16(mask, scene, &ctx, &r);
     else rtcOccluded8(mask, scene, &ctx, &r);
+    if (n == K) {  // (a loop of fixed length without branches, which the compiler vectorises)
+        for (int i = 0; i < K; ++i) occluded[i] = (mask[i] != 0) & (r.tfar[i] < 0.f);
+        return;
+    }
     for (int i = 0; i < n; ++i) occluded[i] = mask[i] != 0 && r.tfar[i] < 0.f;
 }
 }  // namespace
