@@ -106,6 +106,19 @@ void rows_by_lane(const float* table, int stride, const IntT<F>& row, const Mask
     }
 }
 
+/// The lanes i < W where b[i], as the bits of a word (lane i at bit i). The per-lane loops over a
+/// subset of the lanes walk its set bits (`for (m = lane_bits(b); m; m &= m - 1)`, lane
+/// lowest_lane(m)) instead of testing every lane: which lanes a step takes changes from packet to
+/// packet, and a test per lane mispredicts where a walk over the bits does not.
+template <int W>
+inline uint32_t lane_bits(const bool* b) {
+    static_assert(W <= 32, "lanes fit a word");
+    uint32_t m = 0;
+    for (int i = 0; i < W; ++i) m |= uint32_t(b[i]) << i;
+    return m;
+}
+inline int lowest_lane(uint32_t m) { return __builtin_ctz(m); }
+
 template <class F>
 uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& film) {
     constexpr int W = kLaneWidth<F>;
@@ -278,8 +291,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             int64_t next_l = next;
             int next_s_l = next_s, next_x_l = next_x, next_y_l = next_y;
             Sampler::PixelSeed seed_l = pixel_seed;
-            for (int i = 0; i < W; ++i) {
-                if (!go[i]) continue;
+            for (uint32_t m = lane_bits<W>(go); m; m &= m - 1) {
+                const int i = lowest_lane(m);
                 if (next_l >= n_paths) {
                     active[i] = false;
                     continue;
@@ -325,8 +338,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             alignas(64) uint64_t state[W], inc[W];
             alignas(64) float fx[W], fy[W];
             path_services::start_independent_samples<W>(stream, sample_of, x0, y0, state, inc, fx, fy);
-            for (int i = 0; i < W; ++i) {
-                if (!started[i]) continue;
+            for (uint32_t m = lane_bits<W>(started); m; m &= m - 1) {
+                const int i = lowest_lane(m);
                 sampler[i] = Sampler::independent_after_pixel(PCG32::from_state(state[i], inc[i]),
                                                               Sampler::PixelSeed{stream[i], 0}, sample_of[i]);
                 FilmSample& d = done[size_t(path_of[i])];
@@ -401,8 +414,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             const RGB<F> L0(LD(a.Lr), LD(a.Lg), LD(a.Lb));
             const RGB<F> L = lane::select(esc, L0 + beta * Le * F(1.f), L0);
             ST(a.Lr, L.r), ST(a.Lg, L.g), ST(a.Lb, L.b);
-            for (int i = 0; i < W; ++i)
-                if (esc_b[i]) done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
+            for (uint32_t m = lane_bits<W>(esc_b); m; m &= m - 1) {
+                const int i = lowest_lane(m);
+                done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
+            }
             start_lanes(esc_b);
         };
         {
@@ -659,8 +674,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     for (int c = 0; c < 3; ++c) ST(hm_w[c], h.weight[c]), ST(hm_e[c], h.emitted[c]);
                 }
             }
-            for (int i = 0; i < W; ++i) {
-                if (!active[i] || vl[i]) continue;  // (the table lanes below, as packets)
+            for (uint32_t m = lane_bits<W>(active) & ~lane_bits<W>(vl); m; m &= m - 1) {
+                const int i = lowest_lane(m);  // (not the table lanes: below, as packets)
                 lane_ray(i);
                 const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]), Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
                 if (pending_exit[i]) {
@@ -907,8 +922,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             }
 
             // One lane at a time again: lights without a table, and the BSDF lanes.
-            for (int i = 0; i < W; ++i) {
-                if (!a.goes_on[i]) continue;
+            for (uint32_t m = lane_bits<W>(a.goes_on); m; m &= m - 1) {
+                const int i = lowest_lane(m);
                 SurfaceInteraction& h = si[i];
                 if (a.nee[i] && ps.emitters.empty() && !a.plight[i]) {
                     if (!full[i]) {  // what light sampling reads of the vertex
@@ -1288,9 +1303,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             // Finished paths hand their estimate over; their lanes start the next ones.
             {
                 alignas(64) bool ended[W];
-                for (int i = 0; i < W; ++i) {
-                    ended[i] = active[i] && !a.alive[i];
-                    if (ended[i]) done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
+                for (int i = 0; i < W; ++i) ended[i] = active[i] && !a.alive[i];
+                for (uint32_t m = lane_bits<W>(ended); m; m &= m - 1) {
+                    const int i = lowest_lane(m);
+                    done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
                 }
                 start_lanes(ended);
             }
