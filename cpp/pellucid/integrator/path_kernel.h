@@ -429,8 +429,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         for (;;) {
             bool any = false;
             for (int i = 0; i < W; ++i) {
-                any = any || active[i];
-                a.traced[i] = active[i] && !pending_exit[i];  // idle lanes hold no ray
+                any |= active[i];  // (bitwise: no branch a lane)
+                a.traced[i] = active[i] & !pending_exit[i];  // idle lanes hold no ray
             }
             if (!any) break;
             const float* const ray_soa[7] = {a.ray_soa[0], a.ray_soa[1], a.ray_soa[2], a.ray_soa[3],
@@ -471,12 +471,12 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 alignas(64) bool esc_b[W];
                 int n_esc = 0;
                 for (int i = 0; i < W; ++i) {
-                    esc_b[i] = active[i] && !hit[i];
+                    esc_b[i] = active[i] & !hit[i];
                     n_esc += esc_b[i];
                 }
                 if (n_esc >= kRestartMinLanes) {
                     end_escaped(esc_b);
-                    for (int i = 0; i < W; ++i) esc_b[i] = esc_b[i] && active[i];  // the lanes that started a path
+                    for (int i = 0; i < W; ++i) esc_b[i] = esc_b[i] & active[i];  // the lanes that started a path
                     camera_rays();
                     HitLanes hl2;
                     bool hit2[W];
@@ -1276,7 +1276,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
 
             // The shadow rays NEE left, as one packet.
             bool any_shadow = false;
-            for (int i = 0; i < W; ++i) any_shadow = any_shadow || a.has_shadow[i];
+            for (int i = 0; i < W; ++i) any_shadow |= a.has_shadow[i];
             if (any_shadow && ps.media) {
                 // Through media and null boundaries: each shadow ray carries a transmittance.
                 for (int i = 0; i < W; ++i) {
@@ -1303,7 +1303,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             // Finished paths hand their estimate over; their lanes start the next ones.
             {
                 alignas(64) bool ended[W];
-                for (int i = 0; i < W; ++i) ended[i] = active[i] && !a.alive[i];
+                for (int i = 0; i < W; ++i) ended[i] = active[i] & !a.alive[i];
                 for (uint32_t m = lane_bits<W>(ended); m; m &= m - 1) {
                     const int i = lowest_lane(m);
                     done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);

@@ -444,7 +444,7 @@ void trace_lanes(const Scene& scene, int n, const float* const soa[7], const boo
     } else {
         scene.accel.intersect_lanes(n, soa, valid, h);
     }
-    for (int i = 0; i < n; ++i) hit[i] = valid[i] && h.hit(i);
+    for (int i = 0; i < n; ++i) hit[i] = valid[i] & h.hit(i);  // (bitwise: no branch a lane)
 }
 
 void occluded_lanes(const Scene& scene, int n, const float* const soa[7], const bool* valid, bool* blocked) {
