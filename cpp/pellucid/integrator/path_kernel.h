@@ -179,9 +179,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     // bounce carries the hit's footprint on to the next hit as ray differentials,
     // Scene::specular_differentials).
     const bool vertex_lanes = !(ps.media || ps.subsurface);
-    // The fewest escaped lanes a vertex restarts before its packet pass: 6 of 16 (measured on the
+    // The fewest escaped lanes a vertex restarts before its packet pass: 4 of 16 (measured on the
     // suite, bench/README.md), every escape for one lane.
-    constexpr int kRestartMinLanes = std::max(1, 3 * W / 8);
+    constexpr int kRestartMinLanes = std::max(1, W / 4);
     HitVertexInputs<W> hv{};
     struct alignas(64) Arrays {
         float Lr[W], Lg[W], Lb[W], br[W], bg[W], bb[W];
