@@ -389,16 +389,14 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         // their lanes start the next paths.
         auto end_escaped = [&](const bool* esc_b) {
             const M esc = LM(esc_b);
-            alignas(64) float e[3][W];
-            for (int i = 0; i < W; ++i) {
-                e[0][i] = esc_b[i] ? a.ray_soa[3][i] : 0.f, e[1][i] = esc_b[i] ? a.ray_soa[4][i] : 0.f;
-                e[2][i] = esc_b[i] ? a.ray_soa[5][i] : 1.f;
-            }
             RGB<F> Le(F(0.f));
             if (!ps.lights.infinite.empty()) {
-                Le = escaped_radiance<F>(ps.lights, V3<F>(LD(e[0]), LD(e[1]), LD(e[2])), ps.use_mis, ps.use_nee,
-                                         LM(a.specular), LD(a.prev_pdf));
-            } else {
+                // (The other lanes look along +z: a direction the lights take without a NaN.)
+                const V3<F> d = lane::select(esc, V3<F>(LD(a.ray_soa[3]), LD(a.ray_soa[4]), LD(a.ray_soa[5])),
+                                             V3<F>(F(0.f), F(0.f), F(1.f)));
+                Le = escaped_radiance<F>(ps.lights, d, ps.use_mis, ps.use_nee, LM(a.specular), LD(a.prev_pdf));
+            } else if (!scene.infinite_lights.empty()) {  // (without lights at infinity, Le is 0)
+                alignas(64) float e[3][W];
                 for (int i = 0; i < W; ++i) {
                     Spectrum l(0.f);
                     if (esc_b[i]) {
