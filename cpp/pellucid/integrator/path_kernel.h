@@ -638,10 +638,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             alignas(64) bool hm_scat[W];
             if (ps.media && ps.any_homogeneous) {
                 bool any_hm = false;
-                for (int i = 0; i < W; ++i) {
-                    hm[i] = active[i] && !vl[i] && !pending_exit[i] && medium[i] >= 0 &&
-                            ps.homogeneous_media[size_t(medium[i])] != 0;
-                    any_hm = any_hm || hm[i];
+                for (int i = 0; i < W; ++i) {  // (no branch a lane: selects and bitwise operators)
+                    const bool in = active[i] & !vl[i] & !pending_exit[i] & (medium[i] >= 0);
+                    hm[i] = in & (ps.homogeneous_media[size_t(in ? medium[i] : 0)] != 0);
+                    any_hm |= hm[i];
                 }
                 if (any_hm) {
                     alignas(64) float u_c[W], u_t[W], tmax[W];
@@ -1250,8 +1250,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     ST(a.ray_soa[5], lane::select(next, nw.z, LD(a.ray_soa[5])));
                     ST(a.ray_soa[6], lane::select(next, F(kInfinity), LD(a.ray_soa[6])));
                 }
-                for (int i = 0; i < W && (ps.media || ps.subsurface || scene.needs_footprints); ++i) {
-                    if (!a.alive[i] || a.crossing[i]) continue;
+                const uint32_t goes = (ps.media || ps.subsurface || scene.needs_footprints)
+                                          ? lane_bits<W>(a.alive) & ~lane_bits<W>(a.crossing)
+                                          : 0u;
+                for (uint32_t m = goes; m; m &= m - 1) {
+                    const int i = lowest_lane(m);
                     if (a.to_exit[i]) {  // no ray: the next vertex is the exit point
                         pending_exit[i] = true;
                         continue;
@@ -1277,8 +1280,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             for (int i = 0; i < W; ++i) any_shadow |= a.has_shadow[i];
             if (any_shadow && ps.media) {
                 // Through media and null boundaries: each shadow ray carries a transmittance.
-                for (int i = 0; i < W; ++i) {
-                    if (!a.has_shadow[i]) continue;
+                for (uint32_t sb = lane_bits<W>(a.has_shadow); sb; sb &= sb - 1) {
+                    const int i = lowest_lane(sb);
                     const Ray sray{Vec3f(a.sh[0][i], a.sh[1][i], a.sh[2][i]), Vec3f(a.sh[3][i], a.sh[4][i], a.sh[5][i]),
                                    a.sh[6][i]};
                     const int32_t m = a.in_medium[i] ? medium[i] : path_services::medium_after(ps, si[i], sray.d, medium[i]);
