@@ -372,8 +372,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 ST(a.ray_soa[6], lane::select(cam, F(kInfinity), LD(a.ray_soa[6])));
             }
             if (scene.needs_footprints) {
-                for (int i = 0; i < W; ++i) {
-                    if (!a.cam[i]) continue;
+                for (uint32_t m = lane_bits<W>(a.cam); m; m &= m - 1) {
+                    const int i = lowest_lane(m);
                     RayDifferential& r = ray[i];
                     r.has_differentials = true;
                     r.rx_o = r.ry_o = o;
@@ -849,8 +849,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 } else {
                     alignas(64) bool g[W];
                     SM(g, goes);
-                    for (int i = 0; i < W; ++i)
-                        if (g[i]) draw_randoms(i, int(a.depth[i]));
+                    for (uint32_t m = lane_bits<W>(g); m; m &= m - 1) draw_randoms(lowest_lane(m), int(a.depth[lowest_lane(m)]));
                 }
             }
             if (ps.sampler == SamplerType::Independent) draw_independent();
