@@ -107,17 +107,23 @@ void rows_by_lane(const float* table, int stride, const IntT<F>& row, const Mask
 }
 
 /// The lanes i < W where b[i], as the bits of a word (lane i at bit i). The per-lane loops over a
-/// subset of the lanes walk its set bits (`for (m = lane_bits(b); m; m &= m - 1)`, lane
-/// lowest_lane(m)) instead of testing every lane: which lanes a step takes changes from packet to
+/// subset of the lanes walk its set bits (`for (m = lane_bits<F>(b); m; m &= m - 1)`, lane
+/// lowest_lane<F>(m)) instead of testing every lane: which lanes a step takes changes from packet to
 /// packet, and a test per lane mispredicts where a walk over the bits does not.
-template <int W>
+/// (Templated on the lane type F, as every helper of the kernel is: one compiled for one instruction set
+/// must not stand in for another's at link time.)
+template <class F>
 inline uint32_t lane_bits(const bool* b) {
+    constexpr int W = kLaneWidth<F>;
     static_assert(W <= 32, "lanes fit a word");
     uint32_t m = 0;
     for (int i = 0; i < W; ++i) m |= uint32_t(b[i]) << i;
     return m;
 }
-inline int lowest_lane(uint32_t m) { return __builtin_ctz(m); }
+template <class F>
+inline int lowest_lane(uint32_t m) {
+    return __builtin_ctz(m);
+}
 
 template <class F>
 uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& film) {
@@ -291,8 +297,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             int64_t next_l = next;
             int next_s_l = next_s, next_x_l = next_x, next_y_l = next_y;
             Sampler::PixelSeed seed_l = pixel_seed;
-            for (uint32_t m = lane_bits<W>(go); m; m &= m - 1) {
-                const int i = lowest_lane(m);
+            for (uint32_t m = lane_bits<F>(go); m; m &= m - 1) {
+                const int i = lowest_lane<F>(m);
                 if (next_l >= n_paths) {
                     active[i] = false;
                     continue;
@@ -338,8 +344,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             alignas(64) uint64_t state[W], inc[W];
             alignas(64) float fx[W], fy[W];
             path_services::start_independent_samples<W>(stream, sample_of, x0, y0, state, inc, fx, fy);
-            for (uint32_t m = lane_bits<W>(started); m; m &= m - 1) {
-                const int i = lowest_lane(m);
+            for (uint32_t m = lane_bits<F>(started); m; m &= m - 1) {
+                const int i = lowest_lane<F>(m);
                 sampler[i] = Sampler::independent_after_pixel(PCG32::from_state(state[i], inc[i]),
                                                               Sampler::PixelSeed{stream[i], 0}, sample_of[i]);
                 FilmSample& d = done[size_t(path_of[i])];
@@ -372,8 +378,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 ST(a.ray_soa[6], lane::select(cam, F(kInfinity), LD(a.ray_soa[6])));
             }
             if (scene.needs_footprints) {
-                for (uint32_t m = lane_bits<W>(a.cam); m; m &= m - 1) {
-                    const int i = lowest_lane(m);
+                for (uint32_t m = lane_bits<F>(a.cam); m; m &= m - 1) {
+                    const int i = lowest_lane<F>(m);
                     RayDifferential& r = ray[i];
                     r.has_differentials = true;
                     r.rx_o = r.ry_o = o;
@@ -412,8 +418,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             const RGB<F> L0(LD(a.Lr), LD(a.Lg), LD(a.Lb));
             const RGB<F> L = lane::select(esc, L0 + beta * Le * F(1.f), L0);
             ST(a.Lr, L.r), ST(a.Lg, L.g), ST(a.Lb, L.b);
-            for (uint32_t m = lane_bits<W>(esc_b); m; m &= m - 1) {
-                const int i = lowest_lane(m);
+            for (uint32_t m = lane_bits<F>(esc_b); m; m &= m - 1) {
+                const int i = lowest_lane<F>(m);
                 done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
             }
             start_lanes(esc_b);
@@ -672,8 +678,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     for (int c = 0; c < 3; ++c) ST(hm_w[c], h.weight[c]), ST(hm_e[c], h.emitted[c]);
                 }
             }
-            for (uint32_t m = lane_bits<W>(active) & ~lane_bits<W>(vl); m; m &= m - 1) {
-                const int i = lowest_lane(m);  // (not the table lanes: below, as packets)
+            for (uint32_t m = lane_bits<F>(active) & ~lane_bits<F>(vl); m; m &= m - 1) {
+                const int i = lowest_lane<F>(m);  // (not the table lanes: below, as packets)
                 lane_ray(i);
                 const LightSampleContext prev{Vec3f(a.ppx[i], a.ppy[i], a.ppz[i]), Vec3f(a.pnx[i], a.pny[i], a.pnz[i])};
                 if (pending_exit[i]) {
@@ -849,7 +855,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 } else {
                     alignas(64) bool g[W];
                     SM(g, goes);
-                    for (uint32_t m = lane_bits<W>(g); m; m &= m - 1) draw_randoms(lowest_lane(m), int(a.depth[lowest_lane(m)]));
+                    for (uint32_t m = lane_bits<F>(g); m; m &= m - 1) draw_randoms(lowest_lane<F>(m), int(a.depth[lowest_lane<F>(m)]));
                 }
             }
             if (ps.sampler == SamplerType::Independent) draw_independent();
@@ -919,8 +925,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             }
 
             // One lane at a time again: lights without a table, and the BSDF lanes.
-            for (uint32_t m = lane_bits<W>(a.goes_on); m; m &= m - 1) {
-                const int i = lowest_lane(m);
+            for (uint32_t m = lane_bits<F>(a.goes_on); m; m &= m - 1) {
+                const int i = lowest_lane<F>(m);
                 SurfaceInteraction& h = si[i];
                 if (a.nee[i] && ps.emitters.empty() && !a.plight[i]) {
                     if (!full[i]) {  // what light sampling reads of the vertex
@@ -1250,10 +1256,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     ST(a.ray_soa[6], lane::select(next, F(kInfinity), LD(a.ray_soa[6])));
                 }
                 const uint32_t goes = (ps.media || ps.subsurface || scene.needs_footprints)
-                                          ? lane_bits<W>(a.alive) & ~lane_bits<W>(a.crossing)
+                                          ? lane_bits<F>(a.alive) & ~lane_bits<F>(a.crossing)
                                           : 0u;
                 for (uint32_t m = goes; m; m &= m - 1) {
-                    const int i = lowest_lane(m);
+                    const int i = lowest_lane<F>(m);
                     if (a.to_exit[i]) {  // no ray: the next vertex is the exit point
                         pending_exit[i] = true;
                         continue;
@@ -1279,8 +1285,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             for (int i = 0; i < W; ++i) any_shadow |= a.has_shadow[i];
             if (any_shadow && ps.media) {
                 // Through media and null boundaries: each shadow ray carries a transmittance.
-                for (uint32_t sb = lane_bits<W>(a.has_shadow); sb; sb &= sb - 1) {
-                    const int i = lowest_lane(sb);
+                for (uint32_t sb = lane_bits<F>(a.has_shadow); sb; sb &= sb - 1) {
+                    const int i = lowest_lane<F>(sb);
                     const Ray sray{Vec3f(a.sh[0][i], a.sh[1][i], a.sh[2][i]), Vec3f(a.sh[3][i], a.sh[4][i], a.sh[5][i]),
                                    a.sh[6][i]};
                     const int32_t m = a.in_medium[i] ? medium[i] : path_services::medium_after(ps, si[i], sray.d, medium[i]);
@@ -1304,8 +1310,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             {
                 alignas(64) bool ended[W];
                 for (int i = 0; i < W; ++i) ended[i] = active[i] & !a.alive[i];
-                for (uint32_t m = lane_bits<W>(ended); m; m &= m - 1) {
-                    const int i = lowest_lane(m);
+                for (uint32_t m = lane_bits<F>(ended); m; m &= m - 1) {
+                    const int i = lowest_lane<F>(m);
                     done[size_t(path_of[i])].L = Spectrum(a.Lr[i], a.Lg[i], a.Lb[i]);
                 }
                 start_lanes(ended);
