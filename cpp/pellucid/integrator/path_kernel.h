@@ -855,7 +855,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 } else {
                     alignas(64) bool g[W];
                     SM(g, goes);
-                    for (uint32_t m = lane_bits<F>(g); m; m &= m - 1) draw_randoms(lowest_lane<F>(m), int(a.depth[lowest_lane<F>(m)]));
+                    for (uint32_t m = lane_bits<F>(g); m; m &= m - 1) {
+                        const int i = lowest_lane<F>(m);
+                        draw_randoms(i, int(a.depth[i]));
+                    }
                 }
             }
             if (ps.sampler == SamplerType::Independent) draw_independent();
