@@ -46,6 +46,7 @@
 #include "pellucid/bxdf/plastic.h"
 #include "pellucid/bxdf/principled_bsdf.h"
 #include "pellucid/integrator/path_services.h"
+#include "pellucid/material/textured.h"
 #include "pellucid/math/frame.h"
 #include "pellucid/sampling/mis.h"
 #include "pellucid/scene/hit_packets.h"
@@ -201,6 +202,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         float sx[W], sy[W], sz[W], tx[W], ty[W], tz[W], nx[W], ny[W], nz[W];
         float q[kPacketParams][W];  // the packet form's parameters (PathSetup::packet_params)
         float kind[W];              // PacketKind of the lane's material
+        // A material of PathSetup::tex_lanes: its hit's uv, ∂p/∂u and ∂p/∂v (the rest of its record
+        // is the vertex's), its textures evaluated in the packet pass.
+        bool tl[W];
+        float tu[W], tv[W], dux[W], duy[W], duz[W], dvx[W], dvy[W], dvz[W];
         bool fast[W], goes_on[W], nee[W];
         bool esc[W];                   // the ray escaped: the lights at infinity, as a packet
         float edx[W], edy[W], edz[W];  // its direction
@@ -630,9 +635,101 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 }
                 for (int i = 0; i < W; ++i) sampler[i].stream().set_state(st[i]);
             };
+            // The lanes `goes` go on from their hit, those of `nee` with next-event estimation: their
+            // numbers for this vertex are due (as draw_randoms gives them, lane by lane).
+            auto go_on = [&](const M& goes, const M& nee) {
+                using I = IntT<F>;
+                SM(a.goes_on, goes || LM(a.goes_on));
+                SM(a.nee, nee || LM(a.nee));
+                if (ps.sampler == SamplerType::Independent) {
+                    const auto goes_i = lane::int_mask(goes);
+                    lane::store(a.draw0, lane::select(goes_i, lane::select(lane::int_mask(nee), I(0), I(3)),
+                                                      lane::load_int_as<I>(a.draw0)));
+                    lane::store(a.draw1, lane::select(goes_i, lane::select(lane::int_mask(LD(a.depth) >= F(float(ps.rr_depth))), I(7), I(6)),
+                                                      lane::load_int_as<I>(a.draw1)));
+                } else {
+                    alignas(64) bool g[W];
+                    SM(g, goes);
+                    for (uint32_t m = lane_bits<F>(g); m; m &= m - 1) {
+                        const int i = lowest_lane<F>(m);
+                        draw_randoms(i, int(a.depth[i]));
+                    }
+                }
+            };
+            // The lanes `in` of material t of PathSetup::tex_lanes (their vertex, uv and tangents in
+            // the arrays): what Scene::textured_bsdf builds at each hit, as packets, bit for bit: the
+            // reflectance as TexEval gives it (texture_lanes.h, checkerboard_square), the bump-mapped
+            // normal of BumpModel::Mitsuba from the bilinear luminance gradient (textured.cpp,
+            // texture.cpp), the invalid normals mirrored, the frame and the softened terminator;
+            // the packet Lambertian then shades them.
+            auto shade_tex_lanes = [&](const PathSetup::TexLaneMaterial& t, const M& in) {
+                using TL = PathSetup::TexLaneMaterial;
+                const F u = LD(a.tu), v = LD(a.tv);
+                // (s, t) = to_uv(u, v), as UVTransform::point.
+                auto st = [&](const float* m, F* s, F* tt) {
+                    *s = (F(m[0]) * u + F(m[1]) * v) + F(m[2]);
+                    *tt = (F(m[3]) * u + F(m[4]) * v) + F(m[5]);
+                };
+                RGB<F> q(F(t.albedo[0][0]), F(t.albedo[0][1]), F(t.albedo[0][2]));
+                if (t.reflectance == TL::kImage) {
+                    F s, tt;
+                    st(t.to_uv, &s, &tt);
+                    lane_bilinear<F>(t.image, s, tt, &q);
+                    auto clamp_t = [&](const F& x) {  // (clamp: v < lo ? lo : (v > hi ? hi : v))
+                        return lane::select(x < F(t.lo), F(t.lo), lane::select(x > F(t.hi), F(t.hi), x));
+                    };
+                    q = RGB<F>(clamp_t(q.r), clamp_t(q.g), clamp_t(q.b));
+                } else if (t.reflectance == TL::kChecker) {
+                    // The square's colour (w is 0 or 1: one colour's albedo exactly), as the checker
+                    // materials' (PathSetup::checker_row).
+                    const F uv_map[6] = {F(t.to_uv[0]), F(t.to_uv[1]), F(t.to_uv[2]), F(t.to_uv[3]), F(t.to_uv[4]), F(t.to_uv[5])};
+                    const F w = checkerboard_square<F>(uv_map, u, v), w0 = F(1.f) - w;
+                    q = RGB<F>(F(t.albedo[0][0]) * w0 + F(t.albedo[1][0]) * w, F(t.albedo[0][1]) * w0 + F(t.albedo[1][1]) * w,
+                               F(t.albedo[0][2]) * w0 + F(t.albedo[1][2]) * w);
+                }
+                ST(a.kind, lane::select(in, F(float(kPacketLambertian)), LD(a.kind)));
+                ST(a.q[0], lane::select(in, q.r, LD(a.q[0])));
+                ST(a.q[1], lane::select(in, q.g, LD(a.q[1])));
+                ST(a.q[2], lane::select(in, q.b, LD(a.q[2])));
+                SM(a.fast, in || LM(a.fast));
+                if (t.bump) {
+                    // mitsuba_height_gradient: the luminance of the bilinear gradient through to_uv
+                    // (∂f/∂u = a00·∂f/∂s + a10·∂f/∂t, ∂f/∂v = a01·∂f/∂s + a11·∂f/∂t); 0 for a constant.
+                    F gu(0.f), gv(0.f);
+                    if (t.bump_image) {
+                        F s, tt;
+                        st(t.height_uv, &s, &tt);
+                        RGB<F> h, ds, dt;
+                        lane_bilinear<F>(t.height, s, tt, &h, &ds, &dt);
+                        const float* m = t.height_uv;
+                        const RGB<F> du = ds * F(m[0]) + dt * F(m[3]), dv = ds * F(m[1]) + dt * F(m[4]);
+                        gu = F(0.2126f) * du.r + F(0.7152f) * du.g + F(0.0722f) * du.b;  // (Spectrum::luminance)
+                        gv = F(0.2126f) * dv.r + F(0.7152f) * dv.g + F(0.0722f) * dv.b;
+                    }
+                    const FrameT<F> shading(V3<F>(LD(a.sx), LD(a.sy), LD(a.sz)), V3<F>(LD(a.tx), LD(a.ty), LD(a.tz)),
+                                            V3<F>(LD(a.nx), LD(a.ny), LD(a.nz)));
+                    const V3<F> dpdu(LD(a.dux), LD(a.duy), LD(a.duz)), dpdv(LD(a.dvx), LD(a.dvy), LD(a.dvz));
+                    const V3<F> ng(LD(a.ngx), LD(a.ngy), LD(a.ngz)), wo(LD(a.wox), LD(a.woy), LD(a.woz));
+                    V3<F> n = bump_normal_mitsuba_lanes<F>(dpdu, dpdv, ng, shading.n, F(t.bump_scale), gu, gv);
+                    if (t.mirror) n = mirror_invalid_normal<F>(shading, wo, n);
+                    const FrameT<F> f = FrameT<F>::from_xz(shading.s, n);
+                    auto put = [&](float* p, const F& x) { ST(p, lane::select(in, x, LD(p))); };
+                    put(a.sx, f.s.x), put(a.sy, f.s.y), put(a.sz, f.s.z);
+                    put(a.tx, f.t.x), put(a.ty, f.t.y), put(a.tz, f.t.z);
+                    put(a.nx, f.n.x), put(a.ny, f.n.y), put(a.nz, f.n.z);
+                    if (t.soften) {  // (about the unperturbed shading normal, BSDF::soften_terminator)
+                        SM(a.soft, in || LM(a.soft));
+                        SM(a.est, lane::select(in, M(t.estevez), LM(a.est)));
+                        put(a.n0x, shading.n.x), put(a.n0y, shading.n.y), put(a.n0z, shading.n.z);
+                    }
+                }
+                // Lambertian::flags: none for a black albedo (the path ends), else diffuse.
+                const M goes = in && !is_black(q);
+                go_on(goes, goes && M(ps.use_nee));
+            };
             // One lane at a time: what has no packet form yet.
             for (bool* f : {a.fast, a.goes_on, a.nee, a.nee_ok, a.s_ok, a.delta, a.plight, a.in_medium, a.crossing, a.at_exit,
-                            a.to_exit, a.esc, a.soft})
+                            a.to_exit, a.esc, a.soft, a.tl})
                 SM(f, M(false));
             for (float* f : {a.Ler, a.Leg, a.Leb, a.le_pdf, a.kind}) ST(f, F(0.f));
             lane::store(a.draw0, IntT<F>(0)), lane::store(a.draw1, IntT<F>(0));
@@ -780,6 +877,13 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     flags = BxDFFlags(ps.packet_flags[mat_of[i]]);
                     // Delta bounces carry ray differentials on from the hit's footprint.
                     if (scene.needs_footprints && full[i]) path_services::footprint(ps, si[i], ray[i]);
+                } else if (ps.tex_lane[mat_of[i]] >= 0) {
+                    // Its textures and parameters below, for all such lanes at once (shade_tex_lanes).
+                    a.tl[i] = true;
+                    a.tu[i] = h.uv.x, a.tv[i] = h.uv.y;
+                    a.dux[i] = h.dpdu.x, a.duy[i] = h.dpdu.y, a.duz[i] = h.dpdu.z;
+                    a.dvx[i] = h.dpdv.x, a.dvy[i] = h.dpdv.y, a.dvz[i] = h.dpdv.z;
+                    continue;
                 } else {
                     flags = path_services::bsdf_begin(ps, si[i], ray[i], &bsdf(i));
                     // A textured (or bump- or normal-mapped) material whose BSDF here has a packet
@@ -844,21 +948,18 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const M goes = fast && lane::float_mask(flags != I(0));
                 const M nee = goes && M(ps.use_nee) &&
                               lane::float_mask((flags & I(int32_t(BxDFFlags::Diffuse | BxDFFlags::Glossy))) != I(0));
-                SM(a.goes_on, goes || LM(a.goes_on));
-                SM(a.nee, nee || LM(a.nee));
-                if (ps.sampler == SamplerType::Independent) {
-                    const auto goes_i = lane::int_mask(goes);
-                    lane::store(a.draw0, lane::select(goes_i, lane::select(lane::int_mask(nee), I(0), I(3)),
-                                                      lane::load_int_as<I>(a.draw0)));
-                    lane::store(a.draw1, lane::select(goes_i, lane::select(lane::int_mask(depth >= F(float(ps.rr_depth))), I(7), I(6)),
-                                                      lane::load_int_as<I>(a.draw1)));
-                } else {
-                    alignas(64) bool g[W];
-                    SM(g, goes);
-                    for (uint32_t m = lane_bits<F>(g); m; m &= m - 1) {
-                        const int i = lowest_lane<F>(m);
-                        draw_randoms(i, int(a.depth[i]));
-                    }
+                go_on(goes, nee);
+            }
+            if (!ps.tex_lanes.empty()) {
+                // The lanes of PathSetup::tex_lanes' materials, one material at a time: its
+                // textures, bump map and parameters as packets, the packet Lambertian's lanes.
+                alignas(64) bool tl[W];
+                for (int i = 0; i < W; ++i) tl[i] = a.tl[i];
+                for (uint32_t m = lane_bits<F>(tl); m; m = lane_bits<F>(tl)) {
+                    const uint32_t mat = mat_of[lowest_lane<F>(m)];
+                    alignas(64) bool in[W];
+                    for (int i = 0; i < W; ++i) in[i] = tl[i] & (mat_of[i] == mat), tl[i] = tl[i] & !in[i];
+                    shade_tex_lanes(ps.tex_lanes[size_t(ps.tex_lane[mat])], LM(in));
                 }
             }
             if (ps.sampler == SamplerType::Independent) draw_independent();

@@ -348,6 +348,71 @@ bool checker_material(const Scene& scene, size_t m, PathSetup* ps) {
     ps->checker_table.insert(ps->checker_table.end(), row, row + PathSetup::kCheckerStride);
     return true;
 }
+
+// An image texture as the packet pass looks it up (PathSetup::tex_lane): kept in memory, with the
+// Repeat wrap and indices within an int32. True: *out is it.
+bool lane_image(const ImageTexture& t, LaneImage* out) {
+    const ImageTextureHandle& h = t.handle;
+    const int n = h.channels >= 3 ? 3 : 1;
+    if (!h.texels || t.wrap != TextureWrap::Repeat || h.width <= 0 || h.height <= 0 ||
+        size_t(h.width) * size_t(h.height) * size_t(n) >= (size_t(1) << 31))
+        return false;
+    *out = LaneImage{h.texels, h.width, h.height, n};
+    return true;
+}
+void put_uv(const UVTransform& a, float* uv) {
+    const float v[6] = {a.a00, a.a01, a.b0, a.a10, a.a11, a.b1};
+    std::copy(v, v + 6, uv);
+}
+
+// PathSetup::tex_lane: material m (a two-sided Lambertian built at each hit, whose BxDF has the
+// packet Lambertian as its form) as the packet pass evaluates it, if it can. True: it joins
+// tex_lanes.
+bool tex_lane_material(const Scene& scene, size_t m, PathSetup* ps) {
+    const MaterialTextures& mt = scene.material_textures[m];
+    const auto* lp = std::get_if<LambertianParams>(&scene.materials[m]);
+    if (!lp || scene.needs_footprints || mt.normal_map >= 0 || mt.count != (lp->reflectance.textured() ? 1 : 0)) return false;
+    PathSetup::TexLaneMaterial t;
+    if (!lp->reflectance.textured()) {
+        float q[kPacketParams];
+        if (packet_form_of(scene.material_bxdfs[m], q, nullptr) != kPacketLambertian) return false;
+        std::copy(q, q + 3, t.albedo[0]);
+    } else {
+        const Texture& tex = scene.textures[size_t(lp->reflectance.texture)];
+        t.lo = lp->reflectance.lo, t.hi = lp->reflectance.hi;
+        if (const auto* im = std::get_if<ImageTexture>(&tex)) {
+            if (im->filter != TextureFilter::Bilinear || !lane_image(*im, &t.image)) return false;
+            t.reflectance = PathSetup::TexLaneMaterial::kImage;
+            put_uv(im->to_uv, t.to_uv);
+        } else if (const auto* cb = std::get_if<CheckerboardTexture>(&tex); cb && !cb->filtered) {
+            t.reflectance = PathSetup::TexLaneMaterial::kChecker;
+            for (int c = 0; c < 3; ++c)  // (make_bxdf's Lambertian of each colour, clamped as TexEval)
+                t.albedo[0][c] = clamp(cb->color0[c], t.lo, t.hi), t.albedo[1][c] = clamp(cb->color1[c], t.lo, t.hi);
+            put_uv(cb->to_uv, t.to_uv);
+        } else {
+            return false;
+        }
+    }
+    if (mt.bump >= 0) {
+        if (mt.bump_model != BumpModel::Mitsuba || mt.invalid_normals == InvalidNormals::Bend) return false;
+        const Texture& tex = scene.textures[size_t(mt.bump)];
+        if (const auto* im = std::get_if<ImageTexture>(&tex)) {
+            if (!lane_image(*im, &t.height)) return false;  // (the gradient reads the full image, whatever its filter)
+            t.bump_image = true;
+            put_uv(im->to_uv, t.height_uv);
+        } else if (!std::holds_alternative<ConstantTexture>(tex)) {
+            return false;
+        }
+        t.bump = true;
+        t.bump_scale = mt.bump_scale;
+        t.mirror = mt.invalid_normals == InvalidNormals::Mirror;
+        t.soften = mt.terminator_softening;
+        t.estevez = mt.terminator_model == TerminatorModel::Estevez;
+    }
+    ps->tex_lane[m] = int32_t(ps->tex_lanes.size());
+    ps->tex_lanes.push_back(t);
+    return true;
+}
 }  // namespace
 
 PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool use_nee, bool use_mis, SamplerType type) {
@@ -368,6 +433,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.textured_coat.assign(n, nullptr);
     ps.textured_coat_offset.assign(n, 0.f);
     ps.checker_row.assign(n, -1);
+    ps.tex_lane.assign(n, -1);
     for (size_t m = 0; m < n; ++m) {
         const MaterialTextures& mt = scene.material_textures[m];
         if (!mt.two_sided) continue;
@@ -386,6 +452,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
                 ps.textured_coat_offset[m] = ps.textured_coat[m] ? q[kPlasticCoatParam] : 0.f;
             }
             ps.textured_packet[m] = kind != kBSDFLane;
+            if (kind == kPacketLambertian) tex_lane_material(scene, m, &ps);
             continue;
         }
         ps.packet_kind[m] = packet_form_of(b, &ps.packet_params[kPacketParams * m], &ps.coat_tables);

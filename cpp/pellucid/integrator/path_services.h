@@ -18,6 +18,7 @@
 #include "pellucid/medium/medium.h"
 #include "pellucid/sampling/rng.h"
 #include "pellucid/sampling/sampler.h"
+#include "pellucid/texture/texture_lanes.h"
 
 namespace pellucid {
 class Scene;
@@ -91,6 +92,30 @@ struct PathSetup {
     /// coat_tables; null and 0 for the others (packet_form).
     std::vector<const RoughCoatTable*> textured_coat;
     std::vector<float> textured_coat_offset;
+    /// Per material: its entry in tex_lanes, or −1. A two-sided Lambertian built at each hit whose
+    /// textures the packet pass evaluates itself, from the hit's full record, for all its lanes at
+    /// once (texture/texture_lanes.h): its reflectance a constant, an image kept in memory looked up
+    /// bilinearly with the Repeat wrap, or a point-sampled checkerboard; without a normal map; its
+    /// bump map, if any, of BumpModel::Mitsuba from such an image or a constant, with
+    /// InvalidNormals::Mirror or Keep; in a scene that reads no pixel footprints. Its lanes get the
+    /// parameters, frame and softened terminator of the BSDF Scene::textured_bsdf builds there, bit
+    /// for bit; the other textured materials build their BSDF one lane at a time.
+    struct TexLaneMaterial {
+        enum Source : uint8_t { kConstant, kImage, kChecker };
+        Source reflectance = kConstant;
+        float albedo[2][3] = {};  ///< constant: albedo[0]; checker: color0's and color1's, clamped as TexEval
+        float lo = 0.f, hi = 1.f;  ///< an image's clamp (Tex::lo, hi)
+        LaneImage image;           ///< the reflectance image
+        float to_uv[6] = {1.f, 0.f, 0.f, 0.f, 1.f, 0.f};  ///< its (or the checkerboard's) to_uv: a00, a01, b0, a10, a11, b1
+        bool bump = false, bump_image = false;  ///< a bump map; from an image (else a constant: no gradient)
+        LaneImage height;
+        float height_uv[6] = {1.f, 0.f, 0.f, 0.f, 1.f, 0.f};
+        float bump_scale = 1.f;
+        bool mirror = false;                    ///< InvalidNormals::Mirror (else Keep)
+        bool soften = false, estevez = false;   ///< its terminator softened (MaterialTextures), and by which model
+    };
+    std::vector<int32_t> tex_lane;
+    std::vector<TexLaneMaterial> tex_lanes;
     /// The flat triangles whose hits the kernel records as packets (gathered by triangle; the
     /// others' lanes fetch one at a time, scene/hit_packets.h): tri_base[g] is mesh geometry g's
     /// first triangle in tri_table, or −1 (a sphere, interpolated normals, an emitter, more than

@@ -81,17 +81,7 @@ Normal3f bump_normal(const TextureList& textures, uint32_t height, float scale, 
 }
 
 Normal3f bump_normal_mitsuba(const SurfaceInteraction& si, const Normal3f& n, float scale, const Vec2f& grad) {
-    // Mitsuba 3's bumpmap: the tangents are first projected onto the plane of n (they need not be
-    // tangent to it: a mesh's interpolated normal), then tilted by the scaled height gradient:
-    //   ∂p'/∂u = ∂p/∂u − n(n·∂p/∂u) + g_u·n,   n' = normalize(∂p'/∂u × ∂p'/∂v).
-    // There is no B·∂n/∂u term, so a constant height changes nothing.
-    Vec3f tu = si.dpdu + n * (scale * grad.x - dot(n, si.dpdu));
-    Vec3f tv = si.dpdv + n * (scale * grad.y - dot(n, si.dpdv));
-    Vec3f np = cross(tu, tv);
-    float len = length(np);
-    if (!(len > 0.f) || !std::isfinite(len)) return n;
-    np /= len;
-    return dot(np, si.ng) < 0.f ? -np : np;  // the side of the geometric normal
+    return bump_normal_mitsuba_lanes<float>(si.dpdu, si.dpdv, si.ng, n, scale, grad.x, grad.y);
 }
 
 namespace {
@@ -150,12 +140,7 @@ Frame perturbed_shading_frame(const MaterialTextures& mt, const TextureList& tex
             if (len > 0.f) n = fixed / len;
         }
     } else if (mt.invalid_normals == InvalidNormals::Mirror) {
-        // Schüssler et al. 2017 (§ "flipping" of invalid normals), as Mitsuba 3 does it: where the
-        // viewer is on different sides of n and of the unperturbed normal, negate n's tangential
-        // part in the unperturbed shading frame. That puts the viewer above n: with n0 the
-        // unperturbed normal, wo·n' = 2(wo·n0)(n·n0) − wo·n, which has the sign of wo·n0.
-        Vec3f nl = si.shading.to_local(n), wl = si.shading.to_local(si.wo);
-        if (wl.z * dot(wl, nl) <= 0.f) n = si.shading.to_world(Vec3f(-nl.x, -nl.y, nl.z));
+        n = mirror_invalid_normal<float>(si.shading, si.wo, n);
     }
     return mitsuba ? Frame::from_xz(si.shading.s, n) : Frame::from_xz(si.dpdu, n);
 }

@@ -84,6 +84,36 @@ Normal3f bump_normal(const TextureList& textures, uint32_t height, float scale, 
 /// product on the side of si.ng. `grad` is g/scale; exposed for the frame tests.
 Normal3f bump_normal_mitsuba(const SurfaceInteraction& si, const Normal3f& n, float scale, const Vec2f& grad);
 
+/// bump_normal_mitsuba over a lane type F (its float instantiation is that function's arithmetic):
+/// the hit's ∂p/∂u, ∂p/∂v and geometric normal ng, the normal n, and the gradient (gu, gv) before
+/// `scale`. Where the cross product has no finite, non-zero length, n itself.
+template <class F>
+inline V3<F> bump_normal_mitsuba_lanes(const V3<F>& dpdu, const V3<F>& dpdv, const V3<F>& ng, const V3<F>& n,
+                                       const F& scale, const F& gu, const F& gv) {
+    // Mitsuba 3's bumpmap: the tangents are first projected onto the plane of n (they need not be
+    // tangent to it: a mesh's interpolated normal), then tilted by the scaled height gradient:
+    //   ∂p'/∂u = ∂p/∂u − n(n·∂p/∂u) + g_u·n,   n' = normalize(∂p'/∂u × ∂p'/∂v).
+    // There is no B·∂n/∂u term, so a constant height changes nothing.
+    const V3<F> tu = dpdu + n * (scale * gu - dot(n, dpdu));
+    const V3<F> tv = dpdv + n * (scale * gv - dot(n, dpdv));
+    const V3<F> np = cross(tu, tv);
+    const F len = length(np);
+    const auto ok = (len > F(0.f)) && (len < F(kInfinity));
+    const V3<F> unit = np / lane::select(ok, len, F(1.f));
+    return lane::select(ok, lane::select(dot(unit, ng) < F(0.f), -unit, unit), n);  // the side of ng
+}
+
+/// InvalidNormals::Mirror over a lane type F: where the viewer wo is on different sides of n and of
+/// the unperturbed shading frame's normal, n's tangential part in that frame negated.
+template <class F>
+inline V3<F> mirror_invalid_normal(const FrameT<F>& shading, const V3<F>& wo, const V3<F>& n) {
+    // Schüssler et al. 2017 (§ "flipping" of invalid normals), as Mitsuba 3 does it: with n0 the
+    // unperturbed normal, wo·n' = 2(wo·n0)(n·n0) − wo·n, which has the sign of wo·n0.
+    const V3<F> nl = shading.to_local(n), wl = shading.to_local(wo);
+    const V3<F> flipped = shading.to_world(V3<F>(lane::neg(nl.x), lane::neg(nl.y), nl.z));
+    return lane::select(wl.z * dot(wl, nl) <= F(0.f), flipped, n);
+}
+
 /// The finite-difference steps bump mapping uses: half the pixel footprint in u and v
 /// (½(|∂u/∂x| + |∂u/∂y|)), and 5e-4 (in uv units) where the hit has no footprint.
 Vec2f bump_steps(const TextureEvalContext& ctx);

@@ -67,6 +67,8 @@ inline float atan2(float y, float x) { return std::atan2(y, x); }
 inline float pow(float x, float y) { return std::pow(x, y); }
 inline float floor(float x) { return std::floor(x); }
 inline float to_float(int32_t i) { return float(i); }
+/// x rounded toward zero (x within the int range).
+inline int32_t to_int(float x) { return int32_t(x); }
 /// The bits of x as an integer, and back (for ulp steps).
 inline int32_t as_int(float x) {
     int32_t i;

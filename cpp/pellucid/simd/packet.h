@@ -93,6 +93,8 @@ inline FP<A> floor(const FP<A>& x) { return xsimd::floor(x); }
 template <class A>
 inline FP<A> to_float(const IP<A>& i) { return xsimd::to_float(i); }
 template <class A>
+inline IP<A> to_int(const FP<A>& x) { return xsimd::to_int(x); }
+template <class A>
 inline IP<A> as_int(const FP<A>& x) { return xsimd::bitwise_cast<IP<A>>(x); }
 template <class A>
 inline FP<A> as_float(const IP<A>& i) { return xsimd::bitwise_cast<FP<A>>(i); }

@@ -20,6 +20,7 @@
 #include <mutex>
 #include <vector>
 
+#include "pellucid/texture/texture_lanes.h"
 #include "pellucid/util/error.h"
 #include "pellucid/util/limits.h"
 
@@ -458,17 +459,13 @@ Spectrum memory_bilinear(const ImageTextureHandle& h, TextureWrap wrap, float s,
                          Spectrum* dvalue_dt) {
     Quad<N> q;
     gather_quad<N>(h, wrap, s, t, q);
-    const float sf = q.sf, tf = q.tf, s1 = 1.f - sf, t1 = 1.f - tf;
     float r[3] = {0.f, 0.f, 0.f};
-    for (int c = 0; c < N; ++c)
-        r[c] = t1 * (q.v[0][0][c] * s1 + q.v[0][1][c] * sf) + tf * (q.v[1][0][c] * s1 + q.v[1][1][c] * sf);
+    for (int c = 0; c < N; ++c) r[c] = bilinear_mix<float>(q.v[0][0][c], q.v[0][1][c], q.v[1][0][c], q.v[1][1][c], q.sf, q.tf);
     if (dvalue_ds) {
         float ds[3] = {0.f, 0.f, 0.f}, dt[3] = {0.f, 0.f, 0.f};
-        const float w = float(h.width), hh = float(h.height);
-        for (int c = 0; c < N; ++c) {
-            ds[c] = w * ((q.v[0][1][c] - q.v[0][0][c]) * t1 + (q.v[1][1][c] - q.v[1][0][c]) * tf);
-            dt[c] = hh * ((q.v[1][0][c] - q.v[0][0][c]) * s1 + (q.v[1][1][c] - q.v[0][1][c]) * sf);
-        }
+        for (int c = 0; c < N; ++c)
+            bilinear_derivatives<float>(q.v[0][0][c], q.v[0][1][c], q.v[1][0][c], q.v[1][1][c], q.sf, q.tf, float(h.width),
+                                        float(h.height), &ds[c], &dt[c]);
         *dvalue_ds = to_spectrum(ds, N);
         *dvalue_dt = to_spectrum(dt, N);
     }
