@@ -154,10 +154,7 @@ PlasticBase::PlasticBase(float eta, const Spectrum& kd, const Spectrum& ks, Plas
     }
     m_rbar = m_coat ? m_coat->internal_reflectance()
                     : 1.f - (1.f - fresnel_average(m_eta, fresnel_avg)) / (m_eta * m_eta);
-    for (int c = 0; c < 3; ++c) {
-        float bounce = m_variant == PlasticVariant::Coupled ? m_kd[c] * m_rbar : m_rbar;
-        m_lanes.scale[c] = m_kd[c] / (m_eta * m_eta * std::max(1e-6f, 1.f - bounce));
-    }
+    for (int c = 0; c < 3; ++c) m_lanes.scale[c] = plastic_diffuse_scale<float>(m_kd[c], m_eta, m_rbar, m_variant);
 }
 
 float PlasticBase::transmittance(float mu) const {

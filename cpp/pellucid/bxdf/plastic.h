@@ -79,6 +79,17 @@ std::string to_string(PlasticVariant v);
 enum class CoatTransmittance { Smooth, Rough };
 std::string to_string(CoatTransmittance c);
 
+/// The diffuse base's scale of one channel of Kd (PlasticBaseT::scale): Kd / (η² (1 − bounce)),
+/// bounce = Kd·R̄ (coupled) or R̄ (linear), the denominator at least 1e-6·η²; Kd itself for the sum
+/// variant. Over a lane type F: PlasticBase computes it for its constants, the path tracer's packet
+/// pass for a texture's value at each lane (PathSetup::tex_lanes).
+template <class F>
+inline F plastic_diffuse_scale(const F& kd, float eta, float rbar, PlasticVariant variant) {
+    if (variant == PlasticVariant::Sum) return kd;
+    const F bounce = variant == PlasticVariant::Coupled ? kd * F(rbar) : F(rbar);
+    return kd / (F(eta) * F(eta) * lane::max(F(1e-6f), F(1.f) - bounce));
+}
+
 /// Entries of a rough coat's transmittance table (RoughCoatTable).
 constexpr int kCoatTableSize = 64;
 
@@ -471,6 +482,7 @@ public:
     std::string params() const;
     /// The packet forms' parameters (the table at offset 0 of its own values).
     const PlasticBaseT<float>& lanes() const { return m_lanes; }
+    PlasticVariant variant() const { return m_variant; }
 
 private:
     float m_eta;

@@ -658,10 +658,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             };
             // The lanes `in` of material t of PathSetup::tex_lanes (their vertex, uv and tangents in
             // the arrays): what Scene::textured_bsdf builds at each hit, as packets, bit for bit: the
-            // reflectance as TexEval gives it (texture_lanes.h, checkerboard_square), the bump-mapped
+            // Lambertian's reflectance or the plastic's Kd as TexEval gives it (texture_lanes.h,
+            // checkerboard_square) and the parameters from it, the bump-mapped
             // normal of BumpModel::Mitsuba from the bilinear luminance gradient (textured.cpp,
             // texture.cpp), the invalid normals mirrored, the frame and the softened terminator;
-            // the packet Lambertian then shades them.
+            // their packet form then shades them.
             auto shade_tex_lanes = [&](const PathSetup::TexLaneMaterial& t, const M& in) {
                 using TL = PathSetup::TexLaneMaterial;
                 const F u = LD(a.tu), v = LD(a.tv);
@@ -687,11 +688,22 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     q = RGB<F>(F(t.albedo[0][0]) * w0 + F(t.albedo[1][0]) * w, F(t.albedo[0][1]) * w0 + F(t.albedo[1][1]) * w,
                                F(t.albedo[0][2]) * w0 + F(t.albedo[1][2]) * w);
                 }
-                ST(a.kind, lane::select(in, F(float(kPacketLambertian)), LD(a.kind)));
-                ST(a.q[0], lane::select(in, q.r, LD(a.q[0])));
-                ST(a.q[1], lane::select(in, q.g, LD(a.q[1])));
-                ST(a.q[2], lane::select(in, q.b, LD(a.q[2])));
+                auto put = [&](float* p, const F& x) { ST(p, lane::select(in, x, LD(p))); };
+                put(a.kind, F(float(t.kind)));
                 SM(a.fast, in || LM(a.fast));
+                M goes = in;
+                if (t.kind == kPacketLambertian) {
+                    put(a.q[0], q.r), put(a.q[1], q.g), put(a.q[2], q.b);
+                    goes = in && !is_black(q);  // (Lambertian::flags: none for a black albedo, the path ends)
+                } else {
+                    // A rough plastic: the material's parameters with Kd's (PlasticBase, plastic_packet_params).
+                    for (int k = 0; k < kPlasticParams; ++k) {
+                        F x(t.q[k]);
+                        if (k >= 1 && k <= 3) x = plastic_diffuse_scale<F>(k == 1 ? q.r : k == 2 ? q.g : q.b, t.eta, t.rbar, t.variant);
+                        if (k == 8) x = (q.r + q.g + q.b) * F(1.f / 3.f);  // (Spectrum::average)
+                        put(a.q[k], x);
+                    }
+                }
                 if (t.bump) {
                     // mitsuba_height_gradient: the luminance of the bilinear gradient through to_uv
                     // (∂f/∂u = a00·∂f/∂s + a10·∂f/∂t, ∂f/∂v = a01·∂f/∂s + a11·∂f/∂t); 0 for a constant.
@@ -713,7 +725,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     V3<F> n = bump_normal_mitsuba_lanes<F>(dpdu, dpdv, ng, shading.n, F(t.bump_scale), gu, gv);
                     if (t.mirror) n = mirror_invalid_normal<F>(shading, wo, n);
                     const FrameT<F> f = FrameT<F>::from_xz(shading.s, n);
-                    auto put = [&](float* p, const F& x) { ST(p, lane::select(in, x, LD(p))); };
                     put(a.sx, f.s.x), put(a.sy, f.s.y), put(a.sz, f.s.z);
                     put(a.tx, f.t.x), put(a.ty, f.t.y), put(a.tz, f.t.z);
                     put(a.nx, f.n.x), put(a.ny, f.n.y), put(a.nz, f.n.z);
@@ -723,9 +734,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         put(a.n0x, shading.n.x), put(a.n0y, shading.n.y), put(a.n0z, shading.n.z);
                     }
                 }
-                // Lambertian::flags: none for a black albedo (the path ends), else diffuse.
-                const M goes = in && !is_black(q);
-                go_on(goes, goes && M(ps.use_nee));
+                go_on(goes, goes && M(ps.use_nee));  // (diffuse or glossy: with NEE)
             };
             // One lane at a time: what has no packet form yet.
             for (bool* f : {a.fast, a.goes_on, a.nee, a.nee_ok, a.s_ok, a.delta, a.plight, a.in_medium, a.crossing, a.at_exit,
@@ -952,7 +961,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             }
             if (!ps.tex_lanes.empty()) {
                 // The lanes of PathSetup::tex_lanes' materials, one material at a time: its
-                // textures, bump map and parameters as packets, the packet Lambertian's lanes.
+                // textures, bump map and parameters as packets, then their packet form.
                 alignas(64) bool tl[W];
                 for (int i = 0; i < W; ++i) tl[i] = a.tl[i];
                 for (uint32_t m = lane_bits<F>(tl); m; m = lane_bits<F>(tl)) {

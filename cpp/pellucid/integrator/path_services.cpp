@@ -365,21 +365,45 @@ void put_uv(const UVTransform& a, float* uv) {
     std::copy(v, v + 6, uv);
 }
 
-// PathSetup::tex_lane: material m (a two-sided Lambertian built at each hit, whose BxDF has the
-// packet Lambertian as its form) as the packet pass evaluates it, if it can. True: it joins
-// tex_lanes.
-bool tex_lane_material(const Scene& scene, size_t m, PathSetup* ps) {
+// The diffuse base of a rough plastic BxDF, or null.
+const PlasticBase* rough_plastic_base(const BxDF& b) {
+    if (const auto* r = std::get_if<RoughPlastic<GGX>>(&b)) return &r->base();
+    if (const auto* r = std::get_if<RoughPlastic<Beckmann>>(&b)) return &r->base();
+    return nullptr;
+}
+
+// PathSetup::tex_lane: material m (two-sided, built at each hit, whose BxDF has the packet form
+// `kind` with the parameters q, a rough plastic's coat table among the tables) as the packet pass
+// evaluates it, if it can. True: it joins tex_lanes.
+bool tex_lane_material(const Scene& scene, size_t m, int32_t kind, const float* q, PathSetup* ps) {
     const MaterialTextures& mt = scene.material_textures[m];
-    const auto* lp = std::get_if<LambertianParams>(&scene.materials[m]);
-    if (!lp || scene.needs_footprints || mt.normal_map >= 0 || mt.count != (lp->reflectance.textured() ? 1 : 0)) return false;
+    if (scene.needs_footprints || mt.normal_map >= 0) return false;
     PathSetup::TexLaneMaterial t;
-    if (!lp->reflectance.textured()) {
-        float q[kPacketParams];
-        if (packet_form_of(scene.material_bxdfs[m], q, nullptr) != kPacketLambertian) return false;
-        std::copy(q, q + 3, t.albedo[0]);
+    t.kind = kind;
+    const Tex<Spectrum>* refl = nullptr;  // the Lambertian's reflectance or the plastic's Kd
+    if (const auto* lp = std::get_if<LambertianParams>(&scene.materials[m]); lp && kind == kPacketLambertian) {
+        refl = &lp->reflectance;
+    } else if (const auto* rp = std::get_if<RoughPlasticParams>(&scene.materials[m]);
+               rp && (kind == kPacketPlastic || kind == kPacketPlasticBeckmann)) {
+        // Glossy at every hit (α and η are constant): its lanes go on, with NEE, whatever Kd is.
+        const BxDF& b = scene.material_bxdfs[m];
+        const PlasticBase* base = rough_plastic_base(b);
+        if (!base || !has_flag(flags(b), BxDFFlags::GlossyReflection) || rp->plastic.specular_reflectance.textured() ||
+            rp->plastic.int_ior.textured() || rp->plastic.ext_ior.textured())
+            return false;
+        refl = &rp->plastic.diffuse_reflectance;
+        std::copy(q, q + kPacketParams, t.q);
+        t.eta = base->eta(), t.rbar = base->internal_reflectance(), t.variant = base->variant();
     } else {
-        const Texture& tex = scene.textures[size_t(lp->reflectance.texture)];
-        t.lo = lp->reflectance.lo, t.hi = lp->reflectance.hi;
+        return false;
+    }
+    if (mt.count != (refl->textured() ? 1 : 0)) return false;
+    if (!refl->textured()) {
+        std::copy(q, q + 3, t.albedo[0]);  // (a Lambertian: its packet parameters are its albedo)
+        if (kind != kPacketLambertian) for (int c = 0; c < 3; ++c) t.albedo[0][c] = refl->value[c];
+    } else {
+        const Texture& tex = scene.textures[size_t(refl->texture)];
+        t.lo = refl->lo, t.hi = refl->hi;
         if (const auto* im = std::get_if<ImageTexture>(&tex)) {
             if (im->filter != TextureFilter::Bilinear || !lane_image(*im, &t.image)) return false;
             t.reflectance = PathSetup::TexLaneMaterial::kImage;
@@ -445,14 +469,14 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
             // Built at each hit (textures, a bump or normal map): the packet form of the model shades
             // it where its BSDF there has one (packet_form). A plastic's rough coat table is the
             // same at every hit (α and η are not textured): it joins the tables here.
-            float q[kPacketParams];
+            float q[kPacketParams] = {};
             int32_t kind = packet_form_of(b, q, nullptr);
             if (kind == kBSDFLane && packet_plastic(b, &kind, q, &ps.coat_tables)) {
                 ps.textured_coat[m] = plastic_coat_table(b);
                 ps.textured_coat_offset[m] = ps.textured_coat[m] ? q[kPlasticCoatParam] : 0.f;
             }
             ps.textured_packet[m] = kind != kBSDFLane;
-            if (kind == kPacketLambertian) tex_lane_material(scene, m, &ps);
+            if (kind != kBSDFLane) tex_lane_material(scene, m, kind, q, &ps);
             continue;
         }
         ps.packet_kind[m] = packet_form_of(b, &ps.packet_params[kPacketParams * m], &ps.coat_tables);

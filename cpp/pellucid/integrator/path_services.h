@@ -92,9 +92,10 @@ struct PathSetup {
     /// coat_tables; null and 0 for the others (packet_form).
     std::vector<const RoughCoatTable*> textured_coat;
     std::vector<float> textured_coat_offset;
-    /// Per material: its entry in tex_lanes, or −1. A two-sided Lambertian built at each hit whose
+    /// Per material: its entry in tex_lanes, or −1. A two-sided material built at each hit whose
     /// textures the packet pass evaluates itself, from the hit's full record, for all its lanes at
-    /// once (texture/texture_lanes.h): its reflectance a constant, an image kept in memory looked up
+    /// once (texture/texture_lanes.h): a Lambertian, or a rough plastic (GGX or Beckmann) with only
+    /// its diffuse reflectance textured; that texture a constant, an image kept in memory looked up
     /// bilinearly with the Repeat wrap, or a point-sampled checkerboard; without a normal map; its
     /// bump map, if any, of BumpModel::Mitsuba from such an image or a constant, with
     /// InvalidNormals::Mirror or Keep; in a scene that reads no pixel footprints. Its lanes get the
@@ -102,7 +103,13 @@ struct PathSetup {
     /// for bit; the other textured materials build their BSDF one lane at a time.
     struct TexLaneMaterial {
         enum Source : uint8_t { kConstant, kImage, kChecker };
-        Source reflectance = kConstant;
+        int32_t kind = kPacketLambertian;  ///< kPacketLambertian, kPacketPlastic or kPacketPlasticBeckmann
+        /// A plastic's packet parameters but for Kd's (plastic_packet_params), and its η, R̄ and
+        /// variant (plastic_diffuse_scale).
+        float q[kPacketParams] = {};
+        float eta = 1.f, rbar = 0.f;
+        PlasticVariant variant = PlasticVariant::Coupled;
+        Source reflectance = kConstant;  ///< the Lambertian's reflectance, or the plastic's Kd
         float albedo[2][3] = {};  ///< constant: albedo[0]; checker: color0's and color1's, clamped as TexEval
         float lo = 0.f, hi = 1.f;  ///< an image's clamp (Tex::lo, hi)
         LaneImage image;           ///< the reflectance image

@@ -449,9 +449,9 @@ TEST(SimdTargetRender, TexLanesEqualTheirBSDFLanes) {
     // packet pass evaluates: texture_lanes.h, bump_normal_mitsuba_lanes, mirror_invalid_normal) give
     // the image of the same scene with them built one lane at a time by Scene::textured_bsdf, bit
     // for bit, on the scalar target and the widest: textured_bump's floor (an image reflectance and
-    // height map, the invalid normals mirrored, Estevez's terminator) and panel (a point-sampled
-    // checkerboard with the height map), and a variant with the floor's normals kept and a constant
-    // panel colour. Both samplers: the independent one draws for all lanes at once, Sobol's lane by lane.
+    // height map, the invalid normals mirrored, Estevez's terminator), panel (a point-sampled
+    // checkerboard with the height map) and ball (a rough plastic with an image Kd and the height
+    // map), and a variant with the floor's normals kept and constant colours on the panel and ball. Both samplers: the independent one draws for all lanes at once, Sobol's lane by lane.
     for (int variant = 0; variant < 2; ++variant) {
         SceneDesc desc = read_json_file(std::string(PELLUCID_SOURCE_DIR) + "/bench/suite/textured_bump.json");
         Node film = *desc.root.find("film");
@@ -460,11 +460,13 @@ TEST(SimdTargetRender, TexLanesEqualTheirBSDFLanes) {
         desc.root.set("film", film);
         if (variant == 1) {
             Node mats = *desc.root.find("materials");
-            Node floor = *mats.find("floor"), panel = *mats.find("panel");
+            Node floor = *mats.find("floor"), panel = *mats.find("panel"), ball = *mats.find("ball");
             floor.set("invalid_normals", Node::string("keep"));
             panel.set("reflectance", Node::number(0.4));
+            ball.set("diffuse_reflectance", Node::number(0.3));
             mats.set("floor", floor);
             mats.set("panel", panel);
+            mats.set("ball", ball);
             desc.root.set("materials", mats);
         }
         auto scene = load_desc(desc);
@@ -472,7 +474,7 @@ TEST(SimdTargetRender, TexLanesEqualTheirBSDFLanes) {
         PathSetup without = with;
         int lanes = 0;
         for (auto& t : without.tex_lane) lanes += t >= 0, t = -1;
-        EXPECT_EQ(lanes, 2) << variant;  // (the rough plastic builds its BSDF one lane at a time)
+        EXPECT_EQ(lanes, 3) << variant;
         for (const char* sampler : {"independent", "sobol"}) {
             RenderOptions o;
             o.spp = 16;
