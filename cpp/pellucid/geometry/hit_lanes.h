@@ -97,6 +97,11 @@ struct SphereTangentsT {
     V3<F> local;  ///< the hit's direction from the centre in object space (unit)
 };
 
+/// A sphere hit's uv from its `local` direction (SphereTangentsT): (φ/2π, θ/π), φ = atan2(y, x) in
+/// [0, 2π), θ = acos z (libm's, one lane at a time; Scene::fill_hit and the path tracer's vertex
+/// lanes of textured materials).
+Vec2f sphere_uv(const Vec3f& local);
+
 /// A hit at distance t along (o, d) on the sphere of centre c and radius r whose object space
 /// maps to world by the orthogonal R (ShapeRecord::rotation), with the normal flipped where `flip`.
 /// The point is re-projected onto the surface (its remaining error is a few ulps of |p|, pbrt-v4

@@ -519,6 +519,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 vl_mat = lane::select(vl_i, vl_mat, I(0));
             }
             M svl_m(false);  // the sphere table's lanes
+            alignas(64) float sl[3][W];  // their hits' directions from the centre in object space (tex_lanes)
             F sph[15];       // their rows: centre, radius, rotation, flip, material (PathSetup::sphere_table)
             if (!ps.sphere_row.empty()) {
                 using I = IntT<F>;
@@ -571,6 +572,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 put(a.tx, v.shading.t.x), put(a.ty, v.shading.t.y), put(a.tz, v.shading.t.z);
                 put(a.nx, v.shading.n.x), put(a.ny, v.shading.n.y), put(a.nz, v.shading.n.z);
                 put(a.wox, lane::neg(d.x)), put(a.woy, lane::neg(d.y)), put(a.woz, lane::neg(d.z));
+                if (!ps.tex_lanes.empty()) {  // (for the lanes of tex_lanes' materials: fill_sphere's tangents, uv)
+                    put(a.dux, tangents.dpdu.x), put(a.duy, tangents.dpdu.y), put(a.duz, tangents.dpdu.z);
+                    put(a.dvx, tangents.dpdv.x), put(a.dvy, tangents.dpdv.y), put(a.dvz, tangents.dpdv.z);
+                    ST(sl[0], tangents.local.x), ST(sl[1], tangents.local.y), ST(sl[2], tangents.local.z);
+                }
             }
             if (lane::any(vl_m && !svl_m)) {
                 // The triangle table's lanes' vertices (flat_triangle_vertex, as fetch_hit_vertex's lanes).
@@ -933,25 +939,58 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const I qrow = vl_mat * I(kPacketParams);
                 for (int k = 0; k < ps.max_packet_count; ++k)
                     ST(a.q[k], lane::select(fast, lane::gather(ps.packet_params.data(), qrow + I(k)), LD(a.q[k])));
+                // The triangle-table lanes `on`'s rows of tri_uv, and their uv as fill_hit
+                // interpolates it.
+                auto table_uv = [&](const M& on, F* row, F* u, F* v) {
+                    const auto oi = lane::int_mask(on);
+                    const I geom = lane::select(oi, lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
+                    const I prim = lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.prim_id));
+                    const I tri = lane::select(oi, lane::gather(ps.tri_base.data(), geom) + prim, I(0));
+                    lane::gather_rows<PathSetup::kTriUVStride>(ps.tri_uv.data(), tri * I(PathSetup::kTriUVStride), row);
+                    const F b1 = LD(hl.u), b2 = LD(hl.v), b0 = F(1.f) - b1 - b2;
+                    *u = b0 * row[0] + b1 * row[2] + b2 * row[4];
+                    *v = b0 * row[1] + b1 * row[3] + b2 * row[5];
+                };
                 if (!ps.checker_table.empty()) {
                     // Checker materials (triangle-table lanes only): the parameters of the square
-                    // their hit's uv lies in, the uv interpolated as fill_hit interpolates it.
+                    // their hit's uv lies in.
                     const I crow = lane::gather(ps.checker_row.data(), vl_mat);
                     const M chk = fast && lane::float_mask(crow >= I(0));
                     if (lane::any(chk)) {
-                        const auto ci = lane::int_mask(chk);
-                        const I geom = lane::select(ci, lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
-                        const I prim = lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.prim_id));
-                        const I tri = lane::select(ci, lane::gather(ps.tri_base.data(), geom) + prim, I(0));
-                        F uv[PathSetup::kTriUVStride], c[PathSetup::kCheckerStride];
-                        lane::gather_rows<PathSetup::kTriUVStride>(ps.tri_uv.data(), tri * I(PathSetup::kTriUVStride), uv);
-                        lane::gather_rows<PathSetup::kCheckerStride>(ps.checker_table.data(),
-                                                                    lane::select(ci, crow, I(0)) * I(PathSetup::kCheckerStride), c);
-                        const F b1 = LD(hl.u), b2 = LD(hl.v), b0 = F(1.f) - b1 - b2;
-                        const F u = b0 * uv[0] + b1 * uv[2] + b2 * uv[4], v = b0 * uv[1] + b1 * uv[3] + b2 * uv[5];
+                        F uv[PathSetup::kTriUVStride], c[PathSetup::kCheckerStride], u, v;
+                        table_uv(chk, uv, &u, &v);
+                        lane::gather_rows<PathSetup::kCheckerStride>(
+                            ps.checker_table.data(), lane::select(lane::int_mask(chk), crow, I(0)) * I(PathSetup::kCheckerStride), c);
                         const F w = checkerboard_square<F>(c, u, v);
                         for (int k = 0; k < 3; ++k)
                             ST(a.q[k], lane::select(chk, c[6 + k] * (F(1.f) - w) + c[9 + k] * w, LD(a.q[k])));
+                    }
+                }
+                if (!ps.tex_lanes.empty()) {
+                    // Table lanes of PathSetup::tex_lanes' materials: their uv and tangents for
+                    // shade_tex_lanes below (a triangle's from tri_uv; a sphere's tangents are in
+                    // the arrays already, its uv one lane at a time, as fill_hit computes it).
+                    const M tx = fast && lane::float_mask(lane::gather(ps.tex_lane.data(), vl_mat) >= I(0));
+                    if (lane::any(tx)) {
+                        SM(a.tl, tx || LM(a.tl));
+                        lane::store(reinterpret_cast<int32_t*>(mat_of),
+                                    lane::select(lane::int_mask(tx), vl_mat, lane::load_int_as<I>(reinterpret_cast<const int32_t*>(mat_of))));
+                        const M ttx = tx && !svl_m;
+                        if (lane::any(ttx)) {
+                            F row[PathSetup::kTriUVStride], u, v;
+                            table_uv(ttx, row, &u, &v);
+                            auto put = [&](float* p, const F& x) { ST(p, lane::select(ttx, x, LD(p))); };
+                            put(a.tu, u), put(a.tv, v);
+                            put(a.dux, row[8]), put(a.duy, row[9]), put(a.duz, row[10]);
+                            put(a.dvx, row[11]), put(a.dvy, row[12]), put(a.dvz, row[13]);
+                        }
+                        alignas(64) bool stx[W];
+                        SM(stx, tx && svl_m);
+                        for (uint32_t m = lane_bits<F>(stx); m; m &= m - 1) {
+                            const int i = lowest_lane<F>(m);
+                            const Vec2f uv = sphere_uv(Vec3f(sl[0][i], sl[1][i], sl[2][i]));
+                            a.tu[i] = uv.x, a.tv[i] = uv.y;
+                        }
                     }
                 }
                 const M goes = fast && lane::float_mask(flags != I(0));

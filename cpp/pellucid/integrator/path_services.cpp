@@ -240,10 +240,12 @@ int32_t packet_form(const PathSetup& ps, uint32_t m, const BSDF& b, float* q) {
 
 namespace {
 // A material a vertex lane shades (the kernel's record_hit: a packet form, and no delta lobe
-// where the scene carries ray differentials), as the tables hold it: its index, else −1.
-// (Checker materials read their hit's uv: the sphere table has none, so they are not sphere lanes.)
+// where the scene carries ray differentials; or one of PathSetup::tex_lanes), as the tables hold
+// it: its index, else −1. (Checker materials read their hit's uv: the sphere table has none, so
+// they are not sphere lanes.)
 int32_t lane_material(const Scene& scene, const PathSetup& ps, uint32_t m, bool sphere = false) {
-    const bool lane = ps.packet_kind[m] != kBSDFLane && !(scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[m]))) &&
+    const bool form = ps.packet_kind[m] != kBSDFLane || ps.tex_lane[m] >= 0;
+    const bool lane = form && !(scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[m]))) &&
                       !(sphere && ps.checker_row[m] >= 0);
     return lane ? int32_t(m) : -1;
 }
@@ -284,7 +286,7 @@ void make_triangle_table(const Scene& scene, PathSetup* ps) {
         return;
     }
     ps->tri_table.assign(total * PathSetup::kTriStride, 0.f);
-    const bool uvs = !ps->checker_table.empty();
+    const bool uvs = !ps->checker_table.empty() || !ps->tex_lanes.empty();
     if (uvs) ps->tri_uv.assign(total * PathSetup::kTriUVStride, 0.f);
     size_t next = 0;
     for (size_t g = 0; g < scene.shapes.size(); ++g) {
@@ -311,6 +313,8 @@ void make_triangle_table(const Scene& scene, PathSetup* ps) {
                     const Vec2f c = mesh.uvs.empty() ? none[k] : mesh.uvs[mesh.indices[3 * t + size_t(k)]];
                     uv[2 * k] = c.x, uv[2 * k + 1] = c.y;
                 }
+                const Vec3f dp[2] = {f.dpdu, f.dpdv};
+                for (int k = 0; k < 2; ++k) uv[8 + 3 * k] = dp[k].x, uv[9 + 3 * k] = dp[k].y, uv[10 + 3 * k] = dp[k].z;
             }
         }
     }

@@ -98,7 +98,9 @@ struct PathSetup {
     /// its diffuse reflectance textured; that texture a constant, an image kept in memory looked up
     /// bilinearly with the Repeat wrap, or a point-sampled checkerboard; without a normal map; its
     /// bump map, if any, of BumpModel::Mitsuba from such an image or a constant, with
-    /// InvalidNormals::Mirror or Keep; in a scene that reads no pixel footprints. Its lanes get the
+    /// InvalidNormals::Mirror or Keep; in a scene that reads no pixel footprints. Its hits on the
+    /// shape tables are vertex lanes, their uv and tangents from tri_uv or the sphere's vertex (the
+    /// sphere's uv one lane at a time, sphere_uv); elsewhere they take full records. Its lanes get the
     /// parameters, frame and softened terminator of the BSDF Scene::textured_bsdf builds there, bit
     /// for bit; the other textured materials build their BSDF one lane at a time.
     struct TexLaneMaterial {
@@ -144,10 +146,11 @@ struct PathSetup {
     static constexpr int kCheckerStride = 16;
     std::vector<int32_t> checker_row;
     std::vector<float> checker_table;
-    /// With checker materials: the uvs of the triangle table's triangles as fill_hit interpolates
-    /// them (kTriUVStride floats per triangle: uv0, uv1, uv2; (0, 0), (1, 0), (1, 1) for a mesh
-    /// without uvs), else empty.
-    static constexpr int kTriUVStride = 8;
+    /// With checker materials or tex_lanes: the uvs of the triangle table's triangles as fill_hit
+    /// interpolates them, and their tangents (kTriUVStride floats per triangle: uv0, uv1, uv2, with
+    /// (0, 0), (1, 0), (1, 1) for a mesh without uvs; two unused; ∂p/∂u, ∂p/∂v as FlatTriangle has
+    /// them; two unused), else empty.
+    static constexpr int kTriUVStride = 16;
     std::vector<float> tri_uv;
     /// The spheres likewise (gathered by geometry): sphere_row[g] is sphere geometry g's row in
     /// sphere_table, or −1 (a mesh, an emitter, a scene with media or subsurface scattering). Each

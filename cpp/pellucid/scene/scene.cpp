@@ -55,6 +55,15 @@ void fill_triangle(const TriangleMesh& m, const RayHit& h, SurfaceInteraction& s
 }
 
 
+}  // namespace
+
+Vec2f sphere_uv(const Vec3f& l) {
+    float phi = std::atan2(l.y, l.x);
+    if (phi < 0.f) phi += 2.f * kPi;
+    return Vec2f(phi * kInv2Pi, safe_acos(l.z) * kInvPi);
+}
+
+namespace {
 /// A sphere's rotation as columns (hit_lanes.h).
 Mat3T<float> columns(const Mat3f& R) { return {R[0], R[1], R[2]}; }
 
@@ -69,13 +78,7 @@ void fill_sphere(const ShapeRecord& s, const Ray& ray, const RayHit& h, SurfaceI
     si.dpdu = tan.dpdu;
     si.dpdv = tan.dpdv;
     const Vec3f& l = tan.local;  // the hit in object space (unit length)
-    if (with_uv) {
-        float phi = std::atan2(l.y, l.x);
-        if (phi < 0.f) phi += 2.f * kPi;
-        si.uv = Vec2f(phi * kInv2Pi, safe_acos(l.z) * kInvPi);
-    } else {
-        si.uv = Vec2f(0.f);
-    }
+    si.uv = with_uv ? sphere_uv(l) : Vec2f(0.f);
     // n = (p − c)/r, so ∂n/∂u = (∂p/∂u)/r (negated with the normal when it is flipped).
     float sgn = s.flip_normals ? -1.f : 1.f;
     si.dndu = (sgn / s.radius) * si.dpdu;

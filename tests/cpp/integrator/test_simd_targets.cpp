@@ -470,25 +470,39 @@ TEST(SimdTargetRender, TexLanesEqualTheirBSDFLanes) {
             desc.root.set("materials", mats);
         }
         auto scene = load_desc(desc);
+        // With the shape tables (the floor's and panel's triangles and the ball are vertex lanes,
+        // their uv and tangents from tri_uv and sphere_vertex), without them (full records), and
+        // the materials built one lane at a time.
         const PathSetup with = make_path_setup(*scene, 8, 5, true, true, SamplerType::Independent);
-        PathSetup without = with;
+        PathSetup records = with;
+        records.tri_base.clear();
+        records.tri_table.clear();
+        records.sphere_row.clear();
+        records.sphere_table.clear();
+        PathSetup without = records;
         int lanes = 0;
         for (auto& t : without.tex_lane) lanes += t >= 0, t = -1;
         EXPECT_EQ(lanes, 3) << variant;
+        EXPECT_FALSE(with.tri_uv.empty());
+        EXPECT_FALSE(with.tri_base.empty());
+        EXPECT_FALSE(with.sphere_row.empty());
         for (const char* sampler : {"independent", "sobol"}) {
             RenderOptions o;
             o.spp = 16;
             o.seed = 5;
             o.sampler = sampler;
             const SamplerType type = std::string(sampler) == "sobol" ? SamplerType::Sobol : SamplerType::Independent;
-            PathSetup w = with, wo = without;
-            w.sampler = wo.sampler = type;
+            PathSetup w = with, r = records, wo = without;
+            w.sampler = r.sampler = wo.sampler = type;
             for (SimdTarget t : {SimdTarget::Scalar, available_simd_targets().back()}) {
                 const PathTileFn tile = path_tile_function(t);
-                const RenderResult a = render_loop(*scene, o, [&](const TileJob& j, Film& f) { return tile(w, j, f); });
                 const RenderResult b = render_loop(*scene, o, [&](const TileJob& j, Film& f) { return tile(wo, j, f); });
-                EXPECT_EQ(0u, differing(a.image, b.image)) << variant << " " << sampler << " " << to_string(t);
-                EXPECT_EQ(a.stats.samples, b.stats.samples);
+                for (const PathSetup* ps : {&w, &r}) {
+                    const RenderResult a = render_loop(*scene, o, [&](const TileJob& j, Film& f) { return tile(*ps, j, f); });
+                    EXPECT_EQ(0u, differing(a.image, b.image))
+                        << variant << " " << sampler << " " << to_string(t) << (ps == &w ? " tables" : " records");
+                    EXPECT_EQ(a.stats.samples, b.stats.samples);
+                }
             }
         }
     }
