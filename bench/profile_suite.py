@@ -43,7 +43,7 @@ STAGES: List[Tuple[str, str, str]] = [
     # Our spheres' intersection callbacks, which Embree's traversal calls (geometry/embree_scene.cpp).
     ("ray traversal (Embree)", r"", r"sphere_intersect|sphere_occluded|sphere_first_root"),
     ("textures", r"OpenImageIO|libOpenImageIO", r""),
-    ("textures", r"", r"(?i)texture|bump|perturbed_shading_frame|normal_map"),
+    ("textures", r"", r"(?i)texture|bump|perturbed_shading_frame|normal_map|lane_bilinear"),
     ("film", r"", r"Film::|film_add|FilmSample|filter_taps|gaussian_taps|accumulate_(avx2|any|baseline)"),
     ("camera rays, samplers", r"", r"path_services::start|Camera|Sampler|PCG32|sobol|sample_filter|truncated_gaussian|film_position|pixel_seed"),
     ("hit records", r"", r"fill_hit|fill_packet|fill_triangle|intersect_packet|occluded_packet|Interaction|compute_footprint|"

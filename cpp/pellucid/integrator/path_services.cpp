@@ -354,14 +354,29 @@ bool checker_material(const Scene& scene, size_t m, PathSetup* ps) {
 }
 
 // An image texture as the packet pass looks it up (PathSetup::tex_lane): kept in memory, with the
-// Repeat wrap and indices within an int32. True: *out is it.
-bool lane_image(const ImageTexture& t, LaneImage* out) {
+// Repeat wrap and indices within an int32; a grey one of three channels from a one-channel copy
+// (PathSetup::grey_images, shared by the materials that read it). True: *out is it.
+bool lane_image(const ImageTexture& t, LaneImage* out, PathSetup* ps) {
     const ImageTextureHandle& h = t.handle;
     const int n = h.channels >= 3 ? 3 : 1;
-    if (!h.texels || t.wrap != TextureWrap::Repeat || h.width <= 0 || h.height <= 0 ||
-        size_t(h.width) * size_t(h.height) * size_t(n) >= (size_t(1) << 31))
+    const size_t texels = size_t(h.width) * size_t(h.height);
+    if (!h.texels || t.wrap != TextureWrap::Repeat || h.width <= 0 || h.height <= 0 || texels * size_t(n) >= (size_t(1) << 31))
         return false;
     *out = LaneImage{h.texels, h.width, h.height, n};
+    if (n != 3) return true;
+    for (size_t i = 0; i < texels; ++i) {
+        const float* p = h.texels + 3 * i;
+        if (std::memcmp(p, p + 1, sizeof(float)) != 0 || std::memcmp(p, p + 2, sizeof(float)) != 0) return true;
+    }
+    for (const PathSetup::GreyImage& g : ps->grey_images)
+        if (g.source == h.texels) {
+            *out = LaneImage{g.texels->data(), h.width, h.height, 1};
+            return true;
+        }
+    auto grey = std::make_shared<std::vector<float>>(texels);
+    for (size_t i = 0; i < texels; ++i) (*grey)[i] = h.texels[3 * i];
+    *out = LaneImage{grey->data(), h.width, h.height, 1};
+    ps->grey_images.push_back({h.texels, std::move(grey)});
     return true;
 }
 void put_uv(const UVTransform& a, float* uv) {
@@ -409,7 +424,7 @@ bool tex_lane_material(const Scene& scene, size_t m, int32_t kind, const float* 
         const Texture& tex = scene.textures[size_t(refl->texture)];
         t.lo = refl->lo, t.hi = refl->hi;
         if (const auto* im = std::get_if<ImageTexture>(&tex)) {
-            if (im->filter != TextureFilter::Bilinear || !lane_image(*im, &t.image)) return false;
+            if (im->filter != TextureFilter::Bilinear || !lane_image(*im, &t.image, ps)) return false;
             t.reflectance = PathSetup::TexLaneMaterial::kImage;
             put_uv(im->to_uv, t.to_uv);
         } else if (const auto* cb = std::get_if<CheckerboardTexture>(&tex); cb && !cb->filtered) {
@@ -425,7 +440,7 @@ bool tex_lane_material(const Scene& scene, size_t m, int32_t kind, const float* 
         if (mt.bump_model != BumpModel::Mitsuba || mt.invalid_normals == InvalidNormals::Bend) return false;
         const Texture& tex = scene.textures[size_t(mt.bump)];
         if (const auto* im = std::get_if<ImageTexture>(&tex)) {
-            if (!lane_image(*im, &t.height)) return false;  // (the gradient reads the full image, whatever its filter)
+            if (!lane_image(*im, &t.height, ps)) return false;  // (the gradient reads the full image, whatever its filter)
             t.bump_image = true;
             put_uv(im->to_uv, t.height_uv);
         } else if (!std::holds_alternative<ConstantTexture>(tex)) {

@@ -6,6 +6,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "pellucid/bxdf/bsdf.h"
@@ -125,6 +126,14 @@ struct PathSetup {
     };
     std::vector<int32_t> tex_lane;
     std::vector<TexLaneMaterial> tex_lanes;
+    /// One-channel copies of the grey three-channel images tex_lanes read (every texel's three
+    /// floats equal: the lookups' three channels are then the one's, bit for bit, from a third of
+    /// the gathers and memory), which their LaneImages point into.
+    struct GreyImage {
+        const float* source;                               ///< the image's texels (ImageTextureHandle)
+        std::shared_ptr<const std::vector<float>> texels;  ///< its one channel
+    };
+    std::vector<GreyImage> grey_images;
     /// The flat triangles whose hits the kernel records as packets (gathered by triangle; the
     /// others' lanes fetch one at a time, scene/hit_packets.h): tri_base[g] is mesh geometry g's
     /// first triangle in tri_table, or −1 (a sphere, interpolated normals, an emitter, more than

@@ -486,6 +486,10 @@ TEST(SimdTargetRender, TexLanesEqualTheirBSDFLanes) {
         EXPECT_FALSE(with.tri_uv.empty());
         EXPECT_FALSE(with.tri_base.empty());
         EXPECT_FALSE(with.sphere_row.empty());
+        // The height map is grey: its lookups read a one-channel copy, one for the three materials.
+        ASSERT_EQ(with.grey_images.size(), 1u);
+        EXPECT_EQ(with.tex_lanes[0].height.texels, with.grey_images[0].texels->data());
+        EXPECT_EQ(with.tex_lanes[0].height.n, 1);
         for (const char* sampler : {"independent", "sobol"}) {
             RenderOptions o;
             o.spp = 16;
