@@ -937,16 +937,34 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 SM(a.fast, fast || LM(a.fast));
                 ST(a.kind, lane::select(fast, lane::to_float(kind), LD(a.kind)));
                 const I qrow = vl_mat * I(kPacketParams);
-                for (int k = 0; k < ps.max_packet_count; ++k)
-                    ST(a.q[k], lane::select(fast, lane::gather(ps.packet_params.data(), qrow + I(k)), LD(a.q[k])));
-                // The triangle-table lanes `on`'s rows of tri_uv, and their uv as fill_hit
-                // interpolates it.
-                auto table_uv = [&](const M& on, F* row, F* u, F* v) {
+                const int nq = ps.max_packet_count;
+                if (nq <= 4) {
+                    for (int k = 0; k < nq; ++k)
+                        ST(a.q[k], lane::select(fast, lane::gather(ps.packet_params.data(), qrow + I(k)), LD(a.q[k])));
+                } else {
+                    // Each lane's row read as a row (8, 16 or 16 + 8 floats) and transposed into
+                    // packets, not a gather per parameter (lane::gather_rows; the rows end in
+                    // PathSetup::kPacketParamsPad zeros).
+                    static_assert(kPacketParams <= 24 && PathSetup::kPacketParamsPad >= 24 - kPacketParams, "a row is read as 16 + 8 floats");
+                    F qv[24];
+                    if (nq <= 8) {
+                        lane::gather_rows<8>(ps.packet_params.data(), qrow, qv);
+                    } else {
+                        lane::gather_rows<16>(ps.packet_params.data(), qrow, qv);
+                        if (nq > 16) lane::gather_rows<8>(ps.packet_params.data(), qrow + I(16), qv + 16);
+                    }
+                    for (int k = 0; k < nq; ++k) ST(a.q[k], lane::select(fast, qv[k], LD(a.q[k])));
+                }
+                // The triangle-table lanes `on`'s rows of tri_uv (their first 8 floats, the uvs, or
+                // all 16 with the tangents), and their uv as fill_hit interpolates it.
+                auto table_uv = [&](const M& on, bool tangents, F* row, F* u, F* v) {
                     const auto oi = lane::int_mask(on);
                     const I geom = lane::select(oi, lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
                     const I prim = lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.prim_id));
                     const I tri = lane::select(oi, lane::gather(ps.tri_base.data(), geom) + prim, I(0));
-                    lane::gather_rows<PathSetup::kTriUVStride>(ps.tri_uv.data(), tri * I(PathSetup::kTriUVStride), row);
+                    static_assert(PathSetup::kTriUVStride == 16, "uvs in the first 8 floats, tangents in the next 8");
+                    if (tangents) lane::gather_rows<16>(ps.tri_uv.data(), tri * I(PathSetup::kTriUVStride), row);
+                    else lane::gather_rows<8>(ps.tri_uv.data(), tri * I(PathSetup::kTriUVStride), row);
                     const F b1 = LD(hl.u), b2 = LD(hl.v), b0 = F(1.f) - b1 - b2;
                     *u = b0 * row[0] + b1 * row[2] + b2 * row[4];
                     *v = b0 * row[1] + b1 * row[3] + b2 * row[5];
@@ -958,7 +976,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const M chk = fast && lane::float_mask(crow >= I(0));
                     if (lane::any(chk)) {
                         F uv[PathSetup::kTriUVStride], c[PathSetup::kCheckerStride], u, v;
-                        table_uv(chk, uv, &u, &v);
+                        table_uv(chk, false, uv, &u, &v);
                         lane::gather_rows<PathSetup::kCheckerStride>(
                             ps.checker_table.data(), lane::select(lane::int_mask(chk), crow, I(0)) * I(PathSetup::kCheckerStride), c);
                         const F w = checkerboard_square<F>(c, u, v);
@@ -978,7 +996,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         const M ttx = tx && !svl_m;
                         if (lane::any(ttx)) {
                             F row[PathSetup::kTriUVStride], u, v;
-                            table_uv(ttx, row, &u, &v);
+                            table_uv(ttx, true, row, &u, &v);
                             auto put = [&](float* p, const F& x) { ST(p, lane::select(ttx, x, LD(p))); };
                             put(a.tu, u), put(a.tv, v);
                             put(a.dux, row[8]), put(a.duy, row[9]), put(a.duz, row[10]);

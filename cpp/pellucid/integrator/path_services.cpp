@@ -470,7 +470,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.sampler = type;
     const size_t n = scene.material_bxdfs.size();
     ps.packet_kind.assign(n, kBSDFLane);
-    ps.packet_params.assign(kPacketParams * n, 0.f);
+    ps.packet_params.assign(kPacketParams * n + PathSetup::kPacketParamsPad, 0.f);
     ps.packet_flags.assign(n, 0u);
     ps.textured_packet.assign(n, 0);
     ps.textured_coat.assign(n, nullptr);

@@ -77,7 +77,9 @@ struct PathSetup {
     /// oren_nayar_packet_params; conductors: η, k, specular_reflectance,
     /// then for the rough ones (GGX, Beckmann) αx, αy and 1 for separable shadowing; plastics:
     /// plastic_packet_params; principled: principled_packet_params or, for the 2012 model,
-    /// principled2012_packet_params), and its BxDFFlags.
+    /// principled2012_packet_params), and its BxDFFlags. kPacketParamsPad zeros follow the last
+    /// material's, so that a row may be read as 16 + 8 floats (lane::gather_rows).
+    static constexpr int kPacketParamsPad = 8;
     std::vector<float> packet_params;
     /// Per material, how many of its kPacketParams its packet form reads (packet_param_count); a
     /// lane copies only those (the forms of other kinds ignore the lane's values: they select their
