@@ -461,7 +461,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     deferred[i] = true;
                     return;
                 }
-                if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane || ps.checker_row[mat_of[i]] >= 0 ||
+                if (!vertex_lanes || s.light >= 0 || ps.packet_kind[mat_of[i]] == kBSDFLane ||
                     (scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[mat_of[i]])))) {
                     scene.fill_hit(ray[i], h, si[i], scene.has_textures);
                     return;
@@ -687,8 +687,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     };
                     q = RGB<F>(clamp_t(q.r), clamp_t(q.g), clamp_t(q.b));
                 } else if (t.reflectance == TL::kChecker) {
-                    // The square's colour (w is 0 or 1: one colour's albedo exactly), as the checker
-                    // materials' (PathSetup::checker_row).
+                    // The colour of the square the hit lies in (w is 0 or 1: one colour's albedo
+                    // exactly, or NaN where the uv is not finite, as eval_texture's).
                     const F uv_map[6] = {F(t.to_uv[0]), F(t.to_uv[1]), F(t.to_uv[2]), F(t.to_uv[3]), F(t.to_uv[4]), F(t.to_uv[5])};
                     const F w = checkerboard_square<F>(uv_map, u, v), w0 = F(1.f) - w;
                     q = RGB<F>(F(t.albedo[0][0]) * w0 + F(t.albedo[1][0]) * w, F(t.albedo[0][1]) * w0 + F(t.albedo[1][1]) * w,
@@ -882,13 +882,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     a.kind[i] = float(kind);
                     const float* q = &ps.packet_params[kPacketParams * size_t(mat_of[i])];
                     for (int k = 0, n = ps.packet_count[mat_of[i]]; k < n; ++k) a.q[k][i] = q[k];
-                    if (const int32_t cr = ps.checker_row[mat_of[i]]; cr >= 0) {
-                        // A checker material: the parameters of its hit's square (a full record's uv;
-                        // w is 0 or 1, so the sum is one colour's parameters exactly, or NaN).
-                        const float* c = &ps.checker_table[size_t(cr) * PathSetup::kCheckerStride];
-                        const float w = checkerboard_square<float>(c, si[i].uv.x, si[i].uv.y);
-                        for (int k = 0; k < 3; ++k) a.q[k][i] = c[6 + k] * (1.f - w) + c[9 + k] * w;
-                    }
                     flags = BxDFFlags(ps.packet_flags[mat_of[i]]);
                     // Delta bounces carry ray differentials on from the hit's footprint.
                     if (scene.needs_footprints && full[i]) path_services::footprint(ps, si[i], ray[i]);
@@ -955,35 +948,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     }
                     for (int k = 0; k < nq; ++k) ST(a.q[k], lane::select(fast, qv[k], LD(a.q[k])));
                 }
-                // The triangle-table lanes `on`'s rows of tri_uv (their first 8 floats, the uvs, or
-                // all 16 with the tangents), and their uv as fill_hit interpolates it.
-                auto table_uv = [&](const M& on, bool tangents, F* row, F* u, F* v) {
-                    const auto oi = lane::int_mask(on);
-                    const I geom = lane::select(oi, lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
-                    const I prim = lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.prim_id));
-                    const I tri = lane::select(oi, lane::gather(ps.tri_base.data(), geom) + prim, I(0));
-                    static_assert(PathSetup::kTriUVStride == 16, "uvs in the first 8 floats, tangents in the next 8");
-                    if (tangents) lane::gather_rows<16>(ps.tri_uv.data(), tri * I(PathSetup::kTriUVStride), row);
-                    else lane::gather_rows<8>(ps.tri_uv.data(), tri * I(PathSetup::kTriUVStride), row);
-                    const F b1 = LD(hl.u), b2 = LD(hl.v), b0 = F(1.f) - b1 - b2;
-                    *u = b0 * row[0] + b1 * row[2] + b2 * row[4];
-                    *v = b0 * row[1] + b1 * row[3] + b2 * row[5];
-                };
-                if (!ps.checker_table.empty()) {
-                    // Checker materials (triangle-table lanes only): the parameters of the square
-                    // their hit's uv lies in.
-                    const I crow = lane::gather(ps.checker_row.data(), vl_mat);
-                    const M chk = fast && lane::float_mask(crow >= I(0));
-                    if (lane::any(chk)) {
-                        F uv[PathSetup::kTriUVStride], c[PathSetup::kCheckerStride], u, v;
-                        table_uv(chk, false, uv, &u, &v);
-                        lane::gather_rows<PathSetup::kCheckerStride>(
-                            ps.checker_table.data(), lane::select(lane::int_mask(chk), crow, I(0)) * I(PathSetup::kCheckerStride), c);
-                        const F w = checkerboard_square<F>(c, u, v);
-                        for (int k = 0; k < 3; ++k)
-                            ST(a.q[k], lane::select(chk, c[6 + k] * (F(1.f) - w) + c[9 + k] * w, LD(a.q[k])));
-                    }
-                }
                 if (!ps.tex_lanes.empty()) {
                     // Table lanes of PathSetup::tex_lanes' materials: their uv and tangents for
                     // shade_tex_lanes below (a triangle's from tri_uv; a sphere's tangents are in
@@ -995,12 +959,23 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                                     lane::select(lane::int_mask(tx), vl_mat, lane::load_int_as<I>(reinterpret_cast<const int32_t*>(mat_of))));
                         const M ttx = tx && !svl_m;
                         if (lane::any(ttx)) {
-                            F row[PathSetup::kTriUVStride], u, v;
-                            table_uv(ttx, true, row, &u, &v);
+                            // The triangle's row of tri_uv, and the uv as fill_hit interpolates it.
+                            const auto ti = lane::int_mask(ttx);
+                            const I geom = lane::select(ti, lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.geom_id)), I(0));
+                            const I prim = lane::load_int_as<I>(reinterpret_cast<const int32_t*>(hl.prim_id));
+                            const I tri = lane::select(ti, lane::gather(ps.tri_base.data(), geom) + prim, I(0));
+                            F row[PathSetup::kTriUVStride];
+                            static_assert(PathSetup::kTriUVStride == 16, "a triangle's uvs (8 floats) and tangents are one row");
+                            if (ps.tex_tangents) lane::gather_rows<16>(ps.tri_uv.data(), tri * I(PathSetup::kTriUVStride), row);
+                            else lane::gather_rows<8>(ps.tri_uv.data(), tri * I(PathSetup::kTriUVStride), row);
+                            const F b1 = LD(hl.u), b2 = LD(hl.v), b0 = F(1.f) - b1 - b2;
+                            const F u = b0 * row[0] + b1 * row[2] + b2 * row[4], v = b0 * row[1] + b1 * row[3] + b2 * row[5];
                             auto put = [&](float* p, const F& x) { ST(p, lane::select(ttx, x, LD(p))); };
                             put(a.tu, u), put(a.tv, v);
-                            put(a.dux, row[8]), put(a.duy, row[9]), put(a.duz, row[10]);
-                            put(a.dvx, row[11]), put(a.dvy, row[12]), put(a.dvz, row[13]);
+                            if (ps.tex_tangents) {
+                                put(a.dux, row[8]), put(a.duy, row[9]), put(a.duz, row[10]);
+                                put(a.dvx, row[11]), put(a.dvy, row[12]), put(a.dvz, row[13]);
+                            }
                         }
                         alignas(64) bool stx[W];
                         SM(stx, tx && svl_m);

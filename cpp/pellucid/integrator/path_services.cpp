@@ -241,12 +241,10 @@ int32_t packet_form(const PathSetup& ps, uint32_t m, const BSDF& b, float* q) {
 namespace {
 // A material a vertex lane shades (the kernel's record_hit: a packet form, and no delta lobe
 // where the scene carries ray differentials; or one of PathSetup::tex_lanes), as the tables hold
-// it: its index, else −1. (Checker materials read their hit's uv: the sphere table has none, so
-// they are not sphere lanes.)
-int32_t lane_material(const Scene& scene, const PathSetup& ps, uint32_t m, bool sphere = false) {
+// it: its index, else −1.
+int32_t lane_material(const Scene& scene, const PathSetup& ps, uint32_t m) {
     const bool form = ps.packet_kind[m] != kBSDFLane || ps.tex_lane[m] >= 0;
-    const bool lane = form && !(scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[m]))) &&
-                      !(sphere && ps.checker_row[m] >= 0);
+    const bool lane = form && !(scene.needs_footprints && is_specular(BxDFFlags(ps.packet_flags[m])));
     return lane ? int32_t(m) : -1;
 }
 
@@ -262,7 +260,7 @@ void make_sphere_table(const Scene& scene, PathSetup* ps) {
         float r[PathSetup::kSphereStride] = {s.center.x, s.center.y, s.center.z, s.radius};
         for (int c = 0; c < 9; ++c) r[4 + c] = s.rotation[c / 3][c % 3];
         r[13] = s.flip_normals ? 1.f : 0.f;
-        const int32_t id = lane_material(scene, *ps, s.material, true);
+        const int32_t id = lane_material(scene, *ps, s.material);
         std::memcpy(&r[14], &id, sizeof id);
         ps->sphere_table.insert(ps->sphere_table.end(), r, r + PathSetup::kSphereStride);
     }
@@ -286,7 +284,7 @@ void make_triangle_table(const Scene& scene, PathSetup* ps) {
         return;
     }
     ps->tri_table.assign(total * PathSetup::kTriStride, 0.f);
-    const bool uvs = !ps->checker_table.empty() || !ps->tex_lanes.empty();
+    const bool uvs = !ps->tex_lanes.empty();
     if (uvs) ps->tri_uv.assign(total * PathSetup::kTriUVStride, 0.f);
     size_t next = 0;
     for (size_t g = 0; g < scene.shapes.size(); ++g) {
@@ -318,39 +316,6 @@ void make_triangle_table(const Scene& scene, PathSetup* ps) {
             }
         }
     }
-}
-
-// A two-sided Lambertian whose only texture is a point-sampled checkerboard reflectance, without a
-// bump or normal map: the packet Lambertian shades it with its square's parameters
-// (PathSetup::checker_row), given as make_bxdf builds the Lambertian of each colour. True: m is one.
-bool checker_material(const Scene& scene, size_t m, PathSetup* ps) {
-    const MaterialTextures& mt = scene.material_textures[m];
-    const auto* lp = std::get_if<LambertianParams>(&scene.materials[m]);
-    if (!lp || mt.count != 1 || mt.perturbs_normal() || !lp->reflectance.textured()) return false;
-    const auto* cb = std::get_if<CheckerboardTexture>(&scene.textures[size_t(lp->reflectance.texture)]);
-    if (!cb || cb->filtered) return false;
-    float q[2][kPacketParams];
-    BxDFFlags f[2];
-    for (int c = 0; c < 2; ++c) {
-        Spectrum v = c == 0 ? cb->color0 : cb->color1;
-        for (int k = 0; k < 3; ++k) v[k] = clamp(v[k], lp->reflectance.lo, lp->reflectance.hi);  // as TexEval
-        LambertianParams p = *lp;
-        p.reflectance = Tex<Spectrum>(v);
-        const BxDF b = make_bxdf(p, TexEval{});
-        if (packet_form_of(b, q[c], nullptr) != kPacketLambertian) return false;
-        f[c] = flags(b);
-    }
-    if (f[0] != f[1]) return false;
-    static_assert(PathSetup::kCheckerStride >= 12, "to_uv and two colours' parameters");
-    ps->packet_kind[m] = kPacketLambertian;
-    ps->packet_flags[m] = uint32_t(f[0]);
-    std::copy(q[0], q[0] + kPacketParams, &ps->packet_params[kPacketParams * m]);
-    ps->checker_row[m] = int32_t(ps->checker_table.size() / PathSetup::kCheckerStride);
-    const UVTransform& a = cb->to_uv;
-    const float row[PathSetup::kCheckerStride] = {a.a00, a.a01, a.b0,    a.a10,   a.a11,   a.b1,    q[0][0], q[0][1],
-                                                  q[0][2], q[1][0], q[1][1], q[1][2], 0.f, 0.f, 0.f, 0.f};
-    ps->checker_table.insert(ps->checker_table.end(), row, row + PathSetup::kCheckerStride);
-    return true;
 }
 
 // An image texture as the packet pass looks it up (PathSetup::tex_lane): kept in memory, with the
@@ -452,6 +417,7 @@ bool tex_lane_material(const Scene& scene, size_t m, int32_t kind, const float* 
         t.soften = mt.terminator_softening;
         t.estevez = mt.terminator_model == TerminatorModel::Estevez;
     }
+    ps->tex_tangents = ps->tex_tangents || t.bump;
     ps->tex_lane[m] = int32_t(ps->tex_lanes.size());
     ps->tex_lanes.push_back(t);
     return true;
@@ -475,7 +441,6 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.textured_packet.assign(n, 0);
     ps.textured_coat.assign(n, nullptr);
     ps.textured_coat_offset.assign(n, 0.f);
-    ps.checker_row.assign(n, -1);
     ps.tex_lane.assign(n, -1);
     for (size_t m = 0; m < n; ++m) {
         const MaterialTextures& mt = scene.material_textures[m];
@@ -483,7 +448,6 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
         // A subsurface boundary's transmission goes through the probe (subsurface_entry).
         if (std::holds_alternative<SubsurfaceParams>(scene.materials[m])) continue;
         const BxDF& b = scene.material_bxdfs[m];
-        if (checker_material(scene, m, &ps)) continue;
         if (mt.has_textured_params() || mt.perturbs_normal()) {
             // Built at each hit (textures, a bump or normal map): the packet form of the model shades
             // it where its BSDF there has one (packet_form). A plastic's rough coat table is the

@@ -99,7 +99,8 @@ struct PathSetup {
     /// textures the packet pass evaluates itself, from the hit's full record, for all its lanes at
     /// once (texture/texture_lanes.h): a Lambertian, or a rough plastic (GGX or Beckmann) with only
     /// its diffuse reflectance textured; that texture a constant, an image kept in memory looked up
-    /// bilinearly with the Repeat wrap, or a point-sampled checkerboard; without a normal map; its
+    /// bilinearly with the Repeat wrap, or a point-sampled checkerboard (the colour of the hit's
+    /// square, checkerboard_square); without a normal map; its
     /// bump map, if any, of BumpModel::Mitsuba from such an image or a constant, with
     /// InvalidNormals::Mirror or Keep; in a scene that reads no pixel footprints. Its hits on the
     /// shape tables are vertex lanes, their uv and tangents from tri_uv or the sphere's vertex (the
@@ -128,6 +129,7 @@ struct PathSetup {
     };
     std::vector<int32_t> tex_lane;
     std::vector<TexLaneMaterial> tex_lanes;
+    bool tex_tangents = false;  ///< some of tex_lanes has a bump map (reads the hit's ∂p/∂u, ∂p/∂v)
     /// One-channel copies of the grey three-channel images tex_lanes read (every texel's three
     /// floats equal: the lookups' three channels are then the one's, bit for bit, from a third of
     /// the gathers and memory), which their LaneImages point into.
@@ -147,17 +149,7 @@ struct PathSetup {
     static constexpr size_t kMaxTriangleTable = size_t(1) << 20;
     std::vector<int32_t> tri_base;
     std::vector<float> tri_table;
-    /// Per material: its row of checker_table, or −1. A two-sided Lambertian whose one texture is a
-    /// point-sampled checkerboard reflectance (no bump or normal map) has the packet Lambertian as
-    /// its form, with the parameters of the square its hit lies in (checkerboard_square); its lanes
-    /// read the hit's uv (the triangle table's tri_uv, else a full hit record). A row is
-    /// kCheckerStride floats: the checkerboard's to_uv (a00, a01, b0, a10, a11, b1), then the packet
-    /// parameters of the Lambertian of color0 and of color1 (3 each; as make_bxdf builds them from
-    /// the colours clamped as TexEval clamps a texture value).
-    static constexpr int kCheckerStride = 16;
-    std::vector<int32_t> checker_row;
-    std::vector<float> checker_table;
-    /// With checker materials or tex_lanes: the uvs of the triangle table's triangles as fill_hit
+    /// With tex_lanes: the uvs of the triangle table's triangles as fill_hit
     /// interpolates them, and their tangents (kTriUVStride floats per triangle: uv0, uv1, uv2, with
     /// (0, 0), (1, 0), (1, 1) for a mesh without uvs; two unused; ∂p/∂u, ∂p/∂v as FlatTriangle has
     /// them; two unused), else empty.

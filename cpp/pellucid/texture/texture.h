@@ -73,7 +73,7 @@ struct CheckerboardTexture {
 /// x − ⌊x⌋ of a float is exact in float as in the double wave_coverage takes; eval_texture's
 /// coverage is then 0 or 1 and its value color0 or color1 exactly (and NaN where st is not finite).
 /// The packet path tracer shades a Lambertian with such a reflectance as its packet form with the
-/// parameters of that colour (PathSetup::checker_row).
+/// parameters of that colour (PathSetup::tex_lanes).
 template <class F>
 inline F checkerboard_square(const F* a, const F& u, const F& v) {
     const F s = (a[0] * u + a[1] * v) + a[2], t = (a[3] * u + a[4] * v) + a[5];

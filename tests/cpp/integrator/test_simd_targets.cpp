@@ -294,24 +294,26 @@ TEST(SimdTargetRender, ThinDielectricsAndOrenNayarArePacketForms) {
 }
 
 TEST(SimdTargetRender, TexturedMaterialsTakeTheirModelsPacketForm) {
-    // The suite's glass floor (a Lambertian whose one texture is a point-sampled checkerboard) is a
-    // checker material: the packet Lambertian with the parameters of its hit's square
-    // (PathSetup::checker_row, checkerboard_square), which are the parameters of the BSDF built at
-    // that hit. textured_bump's bump-mapped Lambertians are built at each hit and shaded by the
-    // packet Lambertian with that hit's texel (with their softened terminators), and its textured,
-    // bump-mapped rough plastic by the packet plastic with that hit's parameters and the material's
-    // rough coat table, which every hit's BSDF shares (PathSetup::textured_coat).
+    // The suite's glass floor (a Lambertian whose one texture is a point-sampled checkerboard) is one
+    // of PathSetup::tex_lanes: the packet Lambertian with the colour of its hit's square
+    // (checkerboard_square), which is the albedo of the BSDF built at that hit. textured_bump's
+    // bump-mapped Lambertians are built at each hit and shaded by the packet Lambertian with that
+    // hit's texel (with their softened terminators), and its textured, bump-mapped rough plastic by
+    // the packet plastic with that hit's parameters and the material's rough coat table, which every
+    // hit's BSDF shares (PathSetup::textured_coat).
     auto glass = load_scene("bench/suite/glass.json");
     const PathSetup ps = make_path_setup(*glass, 8, 5, true, true, SamplerType::Independent);
     const auto it = std::find(glass->material_names.begin(), glass->material_names.end(), "checker");
     ASSERT_NE(it, glass->material_names.end());
     const size_t checker = size_t(it - glass->material_names.begin());
-    EXPECT_EQ(ps.packet_kind[checker], kPacketLambertian);
-    EXPECT_FALSE(ps.textured_packet[checker]);
-    ASSERT_GE(ps.checker_row[checker], 0);
+    EXPECT_EQ(ps.packet_kind[checker], kBSDFLane);
+    EXPECT_TRUE(ps.textured_packet[checker]);
+    ASSERT_GE(ps.tex_lane[checker], 0);
     EXPECT_FALSE(ps.tri_uv.empty());
-    const float* row = &ps.checker_table[size_t(ps.checker_row[checker]) * PathSetup::kCheckerStride];
-    // Hits on the floor: the square's parameters are the BSDF's albedo there, and both colours occur.
+    const PathSetup::TexLaneMaterial& tm = ps.tex_lanes[size_t(ps.tex_lane[checker])];
+    ASSERT_EQ(tm.reflectance, PathSetup::TexLaneMaterial::kChecker);
+    EXPECT_FALSE(tm.bump);
+    // Hits on the floor: the square's colour is the BSDF's albedo there, and both colours occur.
     std::set<float> reds;
     for (int k = 0; k < 64; ++k) {
         const Ray r{glass->camera.origin(), glass->camera.direction<float>(4.f * float(k) + 2.f, 250.f), kInfinity};
@@ -322,29 +324,25 @@ TEST(SimdTargetRender, TexturedMaterialsTakeTheirModelsPacketForm) {
         float q[kPacketParams];
         ASSERT_EQ(path_services::packet_form(ps, uint32_t(checker), b, q), kPacketLambertian);
         const Spectrum albedo = std::get<Lambertian>(b.bxdf()).albedo();
-        const float w = checkerboard_square<float>(row, si.uv.x, si.uv.y);
+        const float w = checkerboard_square<float>(tm.to_uv, si.uv.x, si.uv.y);
         for (int c = 0; c < 3; ++c) {
             EXPECT_EQ(q[c], albedo[c]);
-            EXPECT_EQ(row[6 + c] * (1.f - w) + row[9 + c] * w, q[c]);
+            EXPECT_EQ(tm.albedo[0][c] * (1.f - w) + tm.albedo[1][c] * w, q[c]);
         }
         reds.insert(q[0]);
     }
     EXPECT_EQ(reds.size(), 2u);
     auto bump = load_scene("bench/suite/textured_bump.json");
     const PathSetup pb = make_path_setup(*bump, 8, 5, true, true, SamplerType::Independent);
-    int built = 0, checkers = 0;
+    int built = 0;
     for (size_t m = 0; m < bump->material_bxdfs.size(); ++m) {
         const bool lambertian = std::holds_alternative<Lambertian>(bump->material_bxdfs[m]);
-        if (pb.checker_row[m] >= 0) {
-            EXPECT_TRUE(lambertian) << bump->material_names[m];
-            ++checkers;
-            continue;
-        }
         EXPECT_TRUE(pb.textured_packet[m]) << bump->material_names[m];
+        EXPECT_GE(pb.tex_lane[m], 0) << bump->material_names[m];
         EXPECT_EQ(pb.textured_coat[m] != nullptr, !lambertian) << bump->material_names[m];
         built += pb.textured_packet[m];
     }
-    EXPECT_EQ(built + checkers, 3);
+    EXPECT_EQ(built, 3);
     // Hits on the plastic ball: the packet plastic, with the hit's diffuse texel and the offset of
     // the material's coat table, whose values are the hit's BSDF's table.
     const auto ball_it = std::find(bump->material_names.begin(), bump->material_names.end(), "ball");
@@ -517,8 +515,8 @@ TEST(SimdTargetRender, PacketFormsEqualBSDFLanes) {
     // lanes (packet kinds cleared, and with them the shape tables, whose lanes are packet-form
     // lanes) gives the same image bit for bit. A form that the packet pass handles differently
     // from its BSDF (a lobe NEE does not reach, another frame) shows here; the bit-identity of the
-    // targets cannot see it, as every target runs the same pass. (glass.json's floor is a checker
-    // material: PathSetup::checker_row.)
+    // targets cannot see it, as every target runs the same pass. (glass.json's floor is one of
+    // PathSetup::tex_lanes, which are built one lane at a time here too.)
     for (const char* file : {"bench/suite/principled.json", "bench/suite/cornell_spheres.json", "bench/suite/no_twin.json",
                              "bench/suite/env_spheres.json", "bench/suite/glass.json"}) {
         auto scene = load_scene(file, 40, 32);
@@ -527,6 +525,7 @@ TEST(SimdTargetRender, PacketFormsEqualBSDFLanes) {
         int forms = 0;
         for (auto& k : without.packet_kind) forms += k != kBSDFLane, k = kBSDFLane;
         for (auto& t : without.textured_packet) t = 0;
+        for (auto& t : without.tex_lane) t = -1;
         without.tri_base.clear();
         without.tri_table.clear();
         without.sphere_row.clear();
