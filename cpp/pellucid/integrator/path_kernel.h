@@ -45,6 +45,7 @@
 #include "pellucid/bxdf/oren_nayar.h"
 #include "pellucid/bxdf/plastic.h"
 #include "pellucid/bxdf/principled_bsdf.h"
+#include "pellucid/integrator/form_lanes.h"
 #include "pellucid/integrator/path_services.h"
 #include "pellucid/material/textured.h"
 #include "pellucid/math/frame.h"
@@ -1177,58 +1178,93 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                                                         RGB<F>(LD(a.q[3]), LD(a.q[4]), LD(a.q[5])),
                                                         RGB<F>(LD(a.q[6]), LD(a.q[7]), LD(a.q[8]))}
                                   : SmoothConductorT<F>{RGB<F>(F(0.f)), RGB<F>(F(0.f)), RGB<F>(F(0.f))};
-                const RoughConductorGGXT<F> rough{
-                    GGXT<F>{lane::select(is_rough, LD(a.q[9]), F(1.f)), lane::select(is_rough, LD(a.q[10]), F(1.f)),
-                            LD(a.q[11]) != F(0.f)},
-                    metal};
-                const RoughConductorBeckmannT<F> beckmann{
-                    BeckmannT<F>{lane::select(is_beckmann, LD(a.q[9]), F(1.f)), lane::select(is_beckmann, LD(a.q[10]), F(1.f)),
-                                 LD(a.q[11]) != F(0.f)},
-                    metal};
+                // The forms below, but for the Lambertian and the delta forms, are built on the lanes
+                // of a FormLanes c (X_on(c); run_form below), each from the packet parameters of
+                // the lanes c takes, read through c.in.
+#define PELLUCID_LANES_OF(c)                             \
+    using L = typename std::decay_t<decltype(c)>::L;     \
+    auto q = [&](int k) { return L(c.in(LD(a.q[k]))); }; \
+    (void)q
+                auto rough_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    const M& is = is_rough;
+                    return RoughConductorGGXT<L>{
+                        GGXT<L>{lane::select(c.in(is), q(9), L(1.f)), lane::select(c.in(is), q(10), L(1.f)), q(11) != L(0.f)},
+                        SmoothConductorT<L>{RGB<L>(q(0), q(1), q(2)), RGB<L>(q(3), q(4), q(5)), RGB<L>(q(6), q(7), q(8))}};
+                };
+                auto beckmann_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    const M& is = is_beckmann;
+                    return RoughConductorBeckmannT<L>{
+                        BeckmannT<L>{lane::select(c.in(is), q(9), L(1.f)), lane::select(c.in(is), q(10), L(1.f)), q(11) != L(0.f)},
+                        SmoothConductorT<L>{RGB<L>(q(0), q(1), q(2)), RGB<L>(q(3), q(4), q(5)), RGB<L>(q(6), q(7), q(8))}};
+                };
                 // The plastics (smooth, or rough over GGX or Beckmann; other lanes skip their lobes and tables).
                 const M is_plastic = fast && kind == F(float(kPacketPlastic));
-                const bool any_plastic = lane::any(is_plastic);
-                const RoughPlasticT<F, GGXT<F>> plastic = plastic_lanes<F>(
-                    is_plastic, [&](int k) { return any_plastic ? LD(a.q[k]) : F(0.f); }, ps.coat_tables.data());
+                auto plastic_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    return plastic_lanes<L>(c.in(is_plastic), q, ps.coat_tables.data());
+                };
                 const M is_plastic_b = fast && kind == F(float(kPacketPlasticBeckmann));
-                const bool any_plastic_b = lane::any(is_plastic_b);
-                const RoughPlasticT<F, BeckmannT<F>> plastic_b = plastic_lanes<F, BeckmannT>(
-                    is_plastic_b, [&](int k) { return any_plastic_b ? LD(a.q[k]) : F(0.f); }, ps.coat_tables.data());
+                auto plastic_b_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    return plastic_lanes<L, BeckmannT>(c.in(is_plastic_b), q, ps.coat_tables.data());
+                };
                 // The rough dielectrics (GGX or Beckmann), without multiple scattering.
                 const M is_rdiel = fast && kind == F(float(kPacketRoughDielectric));
                 const M is_rdiel_b = fast && kind == F(float(kPacketRoughDielectricBeckmann));
                 const M is_any_rdiel = is_rdiel || is_rdiel_b;
-                const bool any_rdiel = lane::any(is_any_rdiel);
-                auto rdiel_q = [&](int k) { return any_rdiel ? LD(a.q[k]) : F(0.f); };
-                const RoughDielectricT<GGXT, F> rdiel = rough_dielectric_lanes<GGXT, F>(is_any_rdiel, rdiel_q);
-                const RoughDielectricT<BeckmannT, F> rdiel_b = rough_dielectric_lanes<BeckmannT, F>(is_any_rdiel, rdiel_q);
+                auto rdiel_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    return rough_dielectric_lanes<GGXT, L>(c.in(is_any_rdiel), q);
+                };
+                auto rdiel_b_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    return rough_dielectric_lanes<BeckmannT, L>(c.in(is_any_rdiel), q);
+                };
                 // Oren–Nayar (classic or EON) and the thin dielectric.
                 const M is_on = fast && kind == F(float(kPacketOrenNayar));
-                const bool any_on = lane::any(is_on);
-                const OrenNayarT<F> oren = oren_nayar_lanes<F>(is_on, [&](int k) { return any_on ? LD(a.q[k]) : F(0.f); });
+                auto oren_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    return oren_nayar_lanes<L>(c.in(is_on), q);
+                };
                 const M is_thin = fast && kind == F(float(kPacketThinDielectric));
                 // The opaque solid principled BSDFs.
                 const M is_princ = fast && kind == F(float(kPacketPrincipled));
-                const bool any_princ = lane::any(is_princ);
-                const PrincipledBSDFT<F> princ =
-                    principled_lanes<F>(is_princ, [&](int k) { return any_princ ? LD(a.q[k]) : F(0.f); });
+                auto princ_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    return principled_lanes<L>(c.in(is_princ), q);
+                };
                 // The Burley 2012 principled BRDFs.
                 const M is_princ12 = fast && kind == F(float(kPacketPrincipled2012));
-                const bool any_princ12 = lane::any(is_princ12);
-                const Principled2012T<F> princ12 =
-                    principled2012_lanes<F>(is_princ12, [&](int k) { return any_princ12 ? LD(a.q[k]) : F(0.f); });
+                auto princ12_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    return principled2012_lanes<L>(c.in(is_princ12), q);
+                };
                 // The thin-sheet principled BSDFs.
                 const M is_pthin = fast && kind == F(float(kPacketPrincipledThin));
-                const bool any_pthin = lane::any(is_pthin);
-                const PrincipledThinT<F> pthin =
-                    principled_thin_lanes<F>(is_pthin, [&](int k) { return any_pthin ? LD(a.q[k]) : F(0.f); });
+                auto pthin_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    return principled_thin_lanes<L>(c.in(is_pthin), q);
+                };
                 // The principled solids with a transmission lobe.
                 const M is_psolid = fast && kind == F(float(kPacketPrincipledSolid));
-                const bool any_psolid = lane::any(is_psolid);
-                const PrincipledSolidT<F> psolid =
-                    principled_solid_lanes<F>(is_psolid, [&](int k) { return any_psolid ? LD(a.q[k]) : F(0.f); });
+                auto psolid_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    return principled_solid_lanes<L>(c.in(is_psolid), q);
+                };
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
+                // A packet form's call on the lanes `where`: body(c) with c a FormLanes. Where the
+                // packet has a half-width packet and at most half its lanes take part, on that
+                // (FormLanesHalf), else on the packet itself (FormLanesWhole).
+                auto run_form = [&](const M& where, const auto& body) {
+                    if constexpr (lane::kHasHalf<F>) {
+                        const FormLanesHalf<F> half(where);
+                        if (half.move.count() <= W / 2) return body(half);
+                    }
+                    body(FormLanesWhole<F>{where});
+                };
                 // Bump- and normal-mapped lanes whose terminator is softened (BSDF::soften_terminator).
                 const M soft = LM(a.soft) && fast;
                 const bool any_soft = lane::any(soft);
@@ -1256,34 +1292,44 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         PELLUCID_FORM_CALL(kPacketLambertian, is_lambert && nee, f_fast = lambert.eval(ctx, wo, wi);
                                            pdf_fast = lambert.pdf(ctx, wo, wi));
                     }
-                    if (lane::any(is_on && nee)) {
-                        PELLUCID_FORM_CALL(kPacketOrenNayar, is_on && nee,
-                                           f_fast = lane::select(is_on, oren.eval(ctx, wo, wi), f_fast);
-                                           pdf_fast = lane::select(is_on, oren.pdf(ctx, wo, wi), pdf_fast));
-                    }
-                    // The forms that evaluate f and pdf together: the microfacet conductors and the
-                    // plastics (one half vector, D and Λ(wo) once: ReflectionPairT::
-                    // torrance_sparrow_cos_pdf), the dielectrics and the principled BSDFs (one half
-                    // vector, in double: bxdf/dielectric.h, principled_bsdf.h; on the lanes given).
-                    auto merge = [&](const M& where, const auto& ep) {
-                        f_fast = lane::select(where, ep.f, f_fast);
-                        pdf_fast = lane::select(where, ep.pdf, pdf_fast);
+                    // The forms run by run_form: eval(c, on) evaluates on c's lanes, `on` those of
+                    // `where` that take part. The microfacet conductors and the plastics evaluate f
+                    // and pdf together (one half vector, D and Λ(wo) once: ReflectionPairT::
+                    // torrance_sparrow_cos_pdf), as do the dielectrics and the principled BSDFs (one
+                    // half vector, in double: bxdf/dielectric.h, principled_bsdf.h; on the lanes given).
+                    auto nee_form = [&](int kind, const M& where, const auto& eval) {
+                        const M on = where && nee;
+                        if (!lane::any(on)) return;
+                        (void)kind;
+                        run_form(on, [&](const auto& c) {
+                            PELLUCID_FORM_CALL(kind, on, const auto ep = eval(c, c.in(on)); c.put(f_fast, ep.f);
+                                               c.put(pdf_fast, ep.pdf));
+                        });
                     };
-                    auto due = [&](const M& where) { return lane::any(where && nee); };
-#define PELLUCID_NEE_FORM(kind, where, ...) \
-    if (due(where)) PELLUCID_FORM_CALL(kind, where && nee, merge(where, __VA_ARGS__))
-                    PELLUCID_NEE_FORM(kPacketRoughConductor, is_rough, rough.eval_pdf(ctx, wo, wi));
-                    PELLUCID_NEE_FORM(kPacketRoughConductorBeckmann, is_beckmann, beckmann.eval_pdf(ctx, wo, wi));
-                    PELLUCID_NEE_FORM(kPacketPlastic, is_plastic, plastic.eval_pdf(ctx, wo, wi));
-                    PELLUCID_NEE_FORM(kPacketPlasticBeckmann, is_plastic_b, plastic_b.eval_pdf(ctx, wo, wi));
-                    PELLUCID_NEE_FORM(kPacketRoughDielectric, is_rdiel, rdiel.eval_pdf(ctx, wo, wi, is_rdiel && nee));
-                    PELLUCID_NEE_FORM(kPacketRoughDielectricBeckmann, is_rdiel_b,
-                                      rdiel_b.eval_pdf(ctx, wo, wi, is_rdiel_b && nee));
-                    PELLUCID_NEE_FORM(kPacketPrincipled, is_princ, princ.eval_pdf(ctx, wo, wi, is_princ && nee));
-                    PELLUCID_NEE_FORM(kPacketPrincipled2012, is_princ12, princ12.eval_pdf(ctx, wo, wi, is_princ12 && nee));
-                    PELLUCID_NEE_FORM(kPacketPrincipledThin, is_pthin, pthin.eval_pdf(ctx, wo, wi, is_pthin && nee));
-                    PELLUCID_NEE_FORM(kPacketPrincipledSolid, is_psolid, psolid.eval_pdf(ctx, wo, wi, is_psolid && nee));
+                    // (The one-sample forms without a mask argument.)
+#define PELLUCID_NEE_FORM(kind, where, form)                                                                      \
+    nee_form(kind, where, [&](const auto& c, const auto&) {                                                       \
+        const auto m = form(c);                                                                                   \
+        return EvalPdfT<typename std::decay_t<decltype(c)>::L>{m.eval(ctx, c.in(wo), c.in(wi)), m.pdf(ctx, c.in(wo), c.in(wi))}; \
+    })
+#define PELLUCID_NEE_FORM_PAIR(kind, where, form) \
+    nee_form(kind, where, [&](const auto& c, const auto&) { return form(c).eval_pdf(ctx, c.in(wo), c.in(wi)); })
+#define PELLUCID_NEE_FORM_MASKED(kind, where, form) \
+    nee_form(kind, where, [&](const auto& c, const auto& on) { return form(c).eval_pdf(ctx, c.in(wo), c.in(wi), on); })
+                    PELLUCID_NEE_FORM(kPacketOrenNayar, is_on, oren_on);
+                    PELLUCID_NEE_FORM_PAIR(kPacketRoughConductor, is_rough, rough_on);
+                    PELLUCID_NEE_FORM_PAIR(kPacketRoughConductorBeckmann, is_beckmann, beckmann_on);
+                    PELLUCID_NEE_FORM_PAIR(kPacketPlastic, is_plastic, plastic_on);
+                    PELLUCID_NEE_FORM_PAIR(kPacketPlasticBeckmann, is_plastic_b, plastic_b_on);
+                    PELLUCID_NEE_FORM_MASKED(kPacketRoughDielectric, is_rdiel, rdiel_on);
+                    PELLUCID_NEE_FORM_MASKED(kPacketRoughDielectricBeckmann, is_rdiel_b, rdiel_b_on);
+                    PELLUCID_NEE_FORM_MASKED(kPacketPrincipled, is_princ, princ_on);
+                    PELLUCID_NEE_FORM_MASKED(kPacketPrincipled2012, is_princ12, princ12_on);
+                    PELLUCID_NEE_FORM_MASKED(kPacketPrincipledThin, is_pthin, pthin_on);
+                    PELLUCID_NEE_FORM_MASKED(kPacketPrincipledSolid, is_psolid, psolid_on);
 #undef PELLUCID_NEE_FORM
+#undef PELLUCID_NEE_FORM_PAIR
+#undef PELLUCID_NEE_FORM_MASKED
                     f_fast = lane::select(off, RGB<F>(F(0.f)), soften(f_fast, wi, wi_w));
                     pdf_fast = lane::select(off, F(0.f), pdf_fast);
                     const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
@@ -1318,19 +1364,32 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     };
 #define PELLUCID_SAMPLE_FORM(kind, where, ...) \
     if (lane::any(where)) PELLUCID_FORM_CALL(kind, where, merge(where, __VA_ARGS__))
-                    PELLUCID_SAMPLE_FORM(kPacketOrenNayar, is_on, oren.sample(ctx, wo, u_lobe, u2));
                     PELLUCID_SAMPLE_FORM(kPacketSmoothConductor, is_mirror, metal.sample(ctx, wo, u_lobe, u2));
-                    PELLUCID_SAMPLE_FORM(kPacketRoughConductor, is_rough, rough.sample(ctx, wo, u_lobe, u2));
-                    PELLUCID_SAMPLE_FORM(kPacketRoughConductorBeckmann, is_beckmann, beckmann.sample(ctx, wo, u_lobe, u2));
-                    PELLUCID_SAMPLE_FORM(kPacketPlastic, is_plastic, plastic.sample(ctx, wo, u_lobe, u2));
-                    PELLUCID_SAMPLE_FORM(kPacketPlasticBeckmann, is_plastic_b, plastic_b.sample(ctx, wo, u_lobe, u2));
-                    PELLUCID_SAMPLE_FORM(kPacketRoughDielectric, is_rdiel, rdiel.sample(ctx, wo, u_lobe, u2, is_rdiel));
-                    PELLUCID_SAMPLE_FORM(kPacketRoughDielectricBeckmann, is_rdiel_b,
-                                         rdiel_b.sample(ctx, wo, u_lobe, u2, is_rdiel_b));
-                    PELLUCID_SAMPLE_FORM(kPacketPrincipled, is_princ, princ.sample(ctx, wo, u_lobe, u2, is_princ));
-                    PELLUCID_SAMPLE_FORM(kPacketPrincipled2012, is_princ12, princ12.sample(ctx, wo, u_lobe, u2, is_princ12));
-                    PELLUCID_SAMPLE_FORM(kPacketPrincipledThin, is_pthin, pthin.sample(ctx, wo, u_lobe, u2, is_pthin));
-                    PELLUCID_SAMPLE_FORM(kPacketPrincipledSolid, is_psolid, psolid.sample(ctx, wo, u_lobe, u2, is_psolid));
+                    // The forms run by run_form: form(c) samples on c's lanes (with `on`, those of
+                    // `where`, where its sample takes a mask).
+                    auto sample_form = [&](int kind, const M& where, const auto& draw) {
+                        if (!lane::any(where)) return;
+                        (void)kind;
+                        run_form(where, [&](const auto& c) { PELLUCID_FORM_CALL(kind, where, put_sample(c, s, draw(c, c.in(where)))); });
+                    };
+#define PELLUCID_SAMPLE_FORM_ON(kind, where, form) \
+    sample_form(kind, where, [&](const auto& c, const auto&) { return form(c).sample(ctx, c.in(wo), c.in(u_lobe), c.in(u2)); })
+#define PELLUCID_SAMPLE_FORM_MASKED(kind, where, form)                                                              \
+    sample_form(kind, where,                                                                                        \
+                [&](const auto& c, const auto& on) { return form(c).sample(ctx, c.in(wo), c.in(u_lobe), c.in(u2), on); })
+                    PELLUCID_SAMPLE_FORM_ON(kPacketOrenNayar, is_on, oren_on);
+                    PELLUCID_SAMPLE_FORM_ON(kPacketRoughConductor, is_rough, rough_on);
+                    PELLUCID_SAMPLE_FORM_ON(kPacketRoughConductorBeckmann, is_beckmann, beckmann_on);
+                    PELLUCID_SAMPLE_FORM_ON(kPacketPlastic, is_plastic, plastic_on);
+                    PELLUCID_SAMPLE_FORM_ON(kPacketPlasticBeckmann, is_plastic_b, plastic_b_on);
+                    PELLUCID_SAMPLE_FORM_MASKED(kPacketRoughDielectric, is_rdiel, rdiel_on);
+                    PELLUCID_SAMPLE_FORM_MASKED(kPacketRoughDielectricBeckmann, is_rdiel_b, rdiel_b_on);
+                    PELLUCID_SAMPLE_FORM_MASKED(kPacketPrincipled, is_princ, princ_on);
+                    PELLUCID_SAMPLE_FORM_MASKED(kPacketPrincipled2012, is_princ12, princ12_on);
+                    PELLUCID_SAMPLE_FORM_MASKED(kPacketPrincipledThin, is_pthin, pthin_on);
+                    PELLUCID_SAMPLE_FORM_MASKED(kPacketPrincipledSolid, is_psolid, psolid_on);
+#undef PELLUCID_SAMPLE_FORM_ON
+#undef PELLUCID_SAMPLE_FORM_MASKED
                     PELLUCID_SAMPLE_FORM(kPacketSmoothDielectric, is_dielectric,
                                          SmoothDielectricT<F>{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
                                                               RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))}

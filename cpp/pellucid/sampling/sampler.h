@@ -51,8 +51,9 @@ namespace sobol {
 
 /// The bits of x in reverse order. With GFNI (x86), one affine transform over GF(2) reverses the
 /// bits of each byte (the matrix is the anti-diagonal 0x8040201008040201) and a byte swap does the
-/// rest; otherwise five swap steps of halves, quarters, ...
-inline uint32_t reverse_bits(uint32_t x) {
+/// rest; otherwise five swap steps of halves, quarters, ... (Always inlined: a copy emitted in a
+/// kernel object, built for its instruction set, must not stand in for other objects' calls.)
+[[gnu::always_inline]] inline uint32_t reverse_bits(uint32_t x) {
 #if defined(__GFNI__) && defined(__SSE2__)
     const __m128i v = _mm_gf2p8affine_epi64_epi8(_mm_cvtsi32_si128(int(x)), _mm_set1_epi64x(0x8040201008040201LL), 0);
     return __builtin_bswap32(uint32_t(_mm_cvtsi128_si32(v)));
@@ -69,7 +70,7 @@ inline uint32_t reverse_bits(uint32_t x) {
 /// function of bits 0..j-1 of x and the seed (multiplication by an even constant, addition and
 /// multiplication by an odd number only carry upward). Burley 2020 §3 (the Laine–Karras
 /// permutation, Listing 2); constants from Vegdahl 2021, which randomises the high bits better.
-inline uint32_t owen_scramble_reversed(uint32_t x, uint32_t seed) {
+[[gnu::always_inline]] inline uint32_t owen_scramble_reversed(uint32_t x, uint32_t seed) {
     x ^= x * 0x3d20adeau;
     x += seed;
     x *= (seed >> 16) | 1u;

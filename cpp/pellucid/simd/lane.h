@@ -120,6 +120,16 @@ inline I load_int_as(const int32_t* p) {
     if constexpr (std::is_same_v<I, int32_t>) return *p;
     else return I::load_unaligned(p);
 }
+/// The packet of half F's width that the packet forms of a 16-lane F run on where at most half its
+/// lanes take part (simd/packet.h: the AVX-512 packets'), or void where F has none.
+template <class F, class = void>
+struct HalfOf {
+    using type = void;
+};
+template <class F>
+using HalfT = typename HalfOf<F>::type;
+template <class F>
+inline constexpr bool kHasHalf = !std::is_void_v<HalfT<F>>;
 /// How a packet's mask is read from bools (simd/packet.h specialises it for its masks).
 template <class M>
 struct MaskLoad {

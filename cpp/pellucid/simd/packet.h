@@ -17,6 +17,33 @@
 
 #include "pellucid/simd/lane.h"
 
+#if defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__) && defined(__BMI2__)
+#define PELLUCID_HALF_PACKETS 1
+namespace pellucid {
+/// The low half of the 512-bit registers of architecture Full (an AVX-512 one) as an architecture
+/// of its own: 8-lane packets on xsimd's AVX2 kernels, for the packet forms that run on few lanes of
+/// a 16-lane packet (lane::HalfOf, path_kernel.h). Its own type, named after Full, so that what
+/// the AVX-512 kernel instantiates on it never shares a symbol with the AVX2 kernel's batches.
+template <class Full>
+struct half_of : xsimd::avx2 {
+    static constexpr char const* name() noexcept { return "half_of_avx512"; }
+};
+}  // namespace pellucid
+namespace xsimd {
+namespace types {
+// half_of<Full>'s registers are AVX2's (as XSIMD_DECLARE_SIMD_REGISTER_ALIAS declares an alias).
+template <class T, class Full>
+struct simd_register<T, pellucid::half_of<Full>> : simd_register<T, avx2> {
+    using register_type = typename simd_register<T, avx2>::register_type;
+    simd_register(register_type reg) noexcept : simd_register<T, avx2>{reg} {}
+    simd_register() = default;
+};
+template <class T, class Full>
+struct has_simd_register<T, pellucid::half_of<Full>> : has_simd_register<T, avx2> {};
+}  // namespace types
+}  // namespace xsimd
+#endif
+
 namespace pellucid {
 
 template <class A>
@@ -106,7 +133,7 @@ inline FP<A> gather(const float* base, const IP<A>& idx) {
     if constexpr (std::is_base_of_v<xsimd::avx512f, A>) return FP<A>(_mm512_i32gather_ps(idx, base, 4));
 #endif
 #if defined(__AVX2__)
-    if constexpr (std::is_same_v<A, xsimd::avx2>) return FP<A>(_mm256_i32gather_ps(base, idx, 4));
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>) return FP<A>(_mm256_i32gather_ps(base, idx, 4));
 #endif
     return FP<A>::gather(base, idx);
 }
@@ -116,7 +143,7 @@ inline IP<A> gather(const int32_t* base, const IP<A>& idx) {
     if constexpr (std::is_base_of_v<xsimd::avx512f, A>) return IP<A>(_mm512_i32gather_epi32(idx, base, 4));
 #endif
 #if defined(__AVX2__)
-    if constexpr (std::is_same_v<A, xsimd::avx2>) return IP<A>(_mm256_i32gather_epi32(base, idx, 4));
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>) return IP<A>(_mm256_i32gather_epi32(base, idx, 4));
 #endif
     return IP<A>::gather(base, idx);
 }
@@ -193,7 +220,7 @@ inline void gather_rows(const float* base, const IP<A>& off, FP<A>* out) {
     }
 #endif
 #if defined(__AVX2__)
-    if constexpr (std::is_same_v<A, xsimd::avx2>) {
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>) {
         for (int h = 0; h < N; h += 8) {
             __m256 r[8];
             for (int i = 0; i < 8; ++i) r[i] = _mm256_loadu_ps(base + o[i] + h);
@@ -219,9 +246,20 @@ inline void gather_rows(const float* base, const IP<A>& off, FP<A>* out) {
 
 /// A float-lane mask as an integer-lane mask, and back.
 template <class A>
-inline MIP<A> int_mask(const MP<A>& m) { return as_int(select(m, FP<A>(1.f), FP<A>(0.f))) != IP<A>(0); }
+inline MIP<A> int_mask(const MP<A>& m) {
+#if defined(__AVX2__)
+    // (An AVX2 mask's lanes are all ones or all zeros whatever their type: the same register.)
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>) return MIP<A>(_mm256_castps_si256(m));
+#endif
+    return as_int(select(m, FP<A>(1.f), FP<A>(0.f))) != IP<A>(0);
+}
 template <class A>
-inline MP<A> float_mask(const MIP<A>& m) { return to_float(select(m, IP<A>(1), IP<A>(0))) != FP<A>(0.f); }
+inline MP<A> float_mask(const MIP<A>& m) {
+#if defined(__AVX2__)
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>) return MP<A>(_mm256_castsi256_ps(m));
+#endif
+    return to_float(select(m, IP<A>(1), IP<A>(0))) != FP<A>(0.f);
+}
 template <class A>
 inline void store(float* p, const FP<A>& x) { x.store_unaligned(p); }
 template <class A>
@@ -248,7 +286,7 @@ inline void to_doubles(const FP<A>& x, DP<A>* parts) {
     }
 #endif
 #if defined(__AVX2__)
-    if constexpr (std::is_same_v<A, xsimd::avx2>) {
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>) {
         parts[0] = DP<A>(_mm256_cvtps_pd(_mm256_castps256_ps128(x)));
         parts[1] = DP<A>(_mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)));
         return;
@@ -276,7 +314,7 @@ inline FP<A> from_doubles(const DP<A>* parts) {
     }
 #endif
 #if defined(__AVX2__)
-    if constexpr (std::is_same_v<A, xsimd::avx2>)
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>)
         return FP<A>(_mm256_insertf128_ps(_mm256_castps128_ps256(_mm256_cvtpd_ps(parts[0])), _mm256_cvtpd_ps(parts[1]), 1));
 #endif
 #if defined(__SSE4_2__)
@@ -294,7 +332,7 @@ inline DP<A> round_to_float(const DP<A>& x) {
     if constexpr (std::is_base_of_v<xsimd::avx512f, A>) return DP<A>(_mm512_cvtps_pd(_mm512_cvtpd_ps(x)));
 #endif
 #if defined(__AVX2__)
-    if constexpr (std::is_same_v<A, xsimd::avx2>) return DP<A>(_mm256_cvtps_pd(_mm256_cvtpd_ps(x)));
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>) return DP<A>(_mm256_cvtps_pd(_mm256_cvtpd_ps(x)));
 #endif
 #if defined(__SSE4_2__)
     if constexpr (std::is_same_v<A, xsimd::sse4_2>) return DP<A>(_mm_cvtps_pd(_mm_cvtpd_ps(x)));
@@ -316,7 +354,7 @@ inline void store(bool* p, const MP<A>& m) {
     }
 #endif
 #if defined(__AVX2__)
-    if constexpr (std::is_same_v<A, xsimd::avx2>) {
+    if constexpr (std::is_base_of_v<xsimd::avx2, A>) {
         const __m256i one = _mm256_srli_epi32(_mm256_castps_si256(m), 31);
         const __m128i w = _mm_packus_epi32(_mm256_castsi256_si128(one), _mm256_extracti128_si256(one, 1));
         _mm_storel_epi64(reinterpret_cast<__m128i*>(p), _mm_packus_epi16(w, w));
@@ -334,6 +372,49 @@ inline void store(bool* p, const MP<A>& m) {
 #endif
     m.store_unaligned(p);
 }
+
+#if PELLUCID_HALF_PACKETS
+/// A 16-lane packet's lanes `where` (at most 8) moved into the low lanes of its half-width packet,
+/// in lane order (AVX-512's compress), and results moved back onto those lanes (its expand). Lanes
+/// of the half packet past the moved ones repeat the first moved lane, so that they hold inputs some
+/// lane really has (their masks are false).
+template <class A>
+class HalfMove {
+public:
+    using H = half_of<A>;
+    explicit HalfMove(const MP<A>& where)
+        : m_(__mmask16(where.data)), fill_(_mm512_set1_epi32(int(__builtin_ctz(uint32_t(m_) | 0x10000u)))) {}
+    FP<H> in(const FP<A>& x) const {
+        return FP<H>(_mm512_castps512_ps256(_mm512_mask_compress_ps(_mm512_permutexvar_ps(fill_, x), m_, x)));
+    }
+    IP<H> in(const IP<A>& x) const {
+        return IP<H>(_mm512_castsi512_si256(_mm512_mask_compress_epi32(_mm512_permutexvar_epi32(fill_, x), m_, x)));
+    }
+    MP<H> in(const MP<A>& v) const {
+        const uint32_t b = _pext_u32(uint32_t(v.data), uint32_t(m_));
+        return MP<H>(_mm256_castsi256_ps(_mm256_movm_epi32(__mmask8(b))));
+    }
+    void out(FP<A>& dst, const FP<H>& v) const { dst = FP<A>(_mm512_mask_expand_ps(dst, m_, _mm512_castps256_ps512(v))); }
+    void out(IP<A>& dst, const IP<H>& v) const {
+        dst = IP<A>(_mm512_mask_expand_epi32(dst, m_, _mm512_castsi256_si512(v)));
+    }
+    void out(MP<A>& dst, const MP<H>& v) const {
+        const uint32_t b = _pdep_u32(uint32_t(_mm256_movepi32_mask(_mm256_castps_si256(v))), uint32_t(m_));
+        dst = MP<A>(__mmask16((uint32_t(dst.data) & ~uint32_t(m_)) | b));
+    }
+    /// How many lanes move.
+    int count() const { return __builtin_popcount(uint32_t(m_)); }
+
+private:
+    __mmask16 m_;
+    __m512i fill_;
+};
+template <class A>
+struct HalfOf<FP<A>, std::enable_if_t<std::is_base_of_v<xsimd::avx512f, A>>> {
+    using type = FP<half_of<A>>;
+    using Move = HalfMove<A>;
+};
+#endif
 }  // namespace lane
 
 template <class A>
@@ -346,7 +427,7 @@ struct lane::MaskLoad<xsimd::batch_bool<float, A>> {
         }
 #endif
 #if defined(__AVX2__)
-        if constexpr (std::is_same_v<A, xsimd::avx2>) {
+        if constexpr (std::is_base_of_v<xsimd::avx2, A>) {
             const __m256i v = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p)));
             return xsimd::batch_bool<float, A>(_mm256_castsi256_ps(_mm256_cmpgt_epi32(v, _mm256_setzero_si256())));
         }
