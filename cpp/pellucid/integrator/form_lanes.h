@@ -47,6 +47,16 @@ struct FormLanesHalf {
     void put(RGB<F>& dst, const RGB<L>& v) const { put(dst.r, v.r), put(dst.g, v.g), put(dst.b, v.b); }
     void put(V3<F>& dst, const V3<L>& v) const { put(dst.x, v.x), put(dst.y, v.y), put(dst.z, v.z); }
 };
+/// body(c) with c the FormLanes of the lanes `where`: FormLanesHalf where F has a half-width packet
+/// and at most half its lanes take part, else FormLanesWhole.
+template <class F, class Body>
+inline void run_on_lanes(const MaskT<F>& where, const Body& body) {
+    if constexpr (lane::kHasHalf<F>) {
+        const FormLanesHalf<F> half(where);
+        if (half.move.count() <= kLaneWidth<F> / 2) return body(half);
+    }
+    body(FormLanesWhole<F>{where});
+}
 /// A sample's fields, through c.put.
 template <class C, class F, class L>
 inline void put_sample(const C& c, BxDFSampleT<F>& dst, const BxDFSampleT<L>& v) {

@@ -406,7 +406,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 // (The other lanes look along +z: a direction the lights take without a NaN.)
                 const V3<F> d = lane::select(esc, V3<F>(LD(a.ray_soa[3]), LD(a.ray_soa[4]), LD(a.ray_soa[5])),
                                              V3<F>(F(0.f), F(0.f), F(1.f)));
-                Le = escaped_radiance<F>(ps.lights, d, ps.use_mis, ps.use_nee, LM(a.specular), LD(a.prev_pdf));
+                run_on_lanes<F>(esc, [&](const auto& c) {
+                    c.put(Le, escaped_radiance<typename std::decay_t<decltype(c)>::L>(
+                                  ps.lights, c.in(d), ps.use_mis, ps.use_nee, c.in(LM(a.specular)), c.in(LD(a.prev_pdf))));
+                });
             } else if (!scene.infinite_lights.empty()) {  // (without lights at infinity, Le is 0)
                 alignas(64) float e[3][W];
                 for (int i = 0; i < W; ++i) {
@@ -671,75 +674,87 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             // texture.cpp), the invalid normals mirrored, the frame and the softened terminator;
             // their packet form then shades them.
             auto shade_tex_lanes = [&](const PathSetup::TexLaneMaterial& t, const M& in) {
-                using TL = PathSetup::TexLaneMaterial;
-                const F u = LD(a.tu), v = LD(a.tv);
-                // (s, t) = to_uv(u, v), as UVTransform::point.
-                auto st = [&](const float* m, F* s, F* tt) {
-                    *s = (F(m[0]) * u + F(m[1]) * v) + F(m[2]);
-                    *tt = (F(m[3]) * u + F(m[4]) * v) + F(m[5]);
-                };
-                RGB<F> q(F(t.albedo[0][0]), F(t.albedo[0][1]), F(t.albedo[0][2]));
-                if (t.reflectance == TL::kImage) {
-                    F s, tt;
-                    st(t.to_uv, &s, &tt);
-                    lane_bilinear<F>(t.image, s, tt, &q);
-                    auto clamp_t = [&](const F& x) {  // (clamp: v < lo ? lo : (v > hi ? hi : v))
-                        return lane::select(x < F(t.lo), F(t.lo), lane::select(x > F(t.hi), F(t.hi), x));
-                    };
-                    q = RGB<F>(clamp_t(q.r), clamp_t(q.g), clamp_t(q.b));
-                } else if (t.reflectance == TL::kChecker) {
-                    // The colour of the square the hit lies in (w is 0 or 1: one colour's albedo
-                    // exactly, or NaN where the uv is not finite, as eval_texture's).
-                    const F uv_map[6] = {F(t.to_uv[0]), F(t.to_uv[1]), F(t.to_uv[2]), F(t.to_uv[3]), F(t.to_uv[4]), F(t.to_uv[5])};
-                    const F w = checkerboard_square<F>(uv_map, u, v), w0 = F(1.f) - w;
-                    q = RGB<F>(F(t.albedo[0][0]) * w0 + F(t.albedo[1][0]) * w, F(t.albedo[0][1]) * w0 + F(t.albedo[1][1]) * w,
-                               F(t.albedo[0][2]) * w0 + F(t.albedo[1][2]) * w);
-                }
-                auto put = [&](float* p, const F& x) { ST(p, lane::select(in, x, LD(p))); };
-                put(a.kind, F(float(t.kind)));
                 SM(a.fast, in || LM(a.fast));
                 M goes = in;
-                if (t.kind == kPacketLambertian) {
-                    put(a.q[0], q.r), put(a.q[1], q.g), put(a.q[2], q.b);
-                    goes = in && !is_black(q);  // (Lambertian::flags: none for a black albedo, the path ends)
-                } else {
-                    // A rough plastic: the material's parameters with Kd's (PlasticBase, plastic_packet_params).
-                    for (int k = 0; k < kPlasticParams; ++k) {
-                        F x(t.q[k]);
-                        if (k >= 1 && k <= 3) x = plastic_diffuse_scale<F>(k == 1 ? q.r : k == 2 ? q.g : q.b, t.eta, t.rbar, t.variant);
-                        if (k == 8) x = (q.r + q.g + q.b) * F(1.f / 3.f);  // (Spectrum::average)
-                        put(a.q[k], x);
+                // On the lanes of a FormLanes c (run_on_lanes): the textures' gathers, the bump and
+                // the frame on 8 lanes where at most 8 take part.
+                run_on_lanes<F>(in, [&](const auto& c) {
+                    using L = typename std::decay_t<decltype(c)>::L;
+                    using TL = PathSetup::TexLaneMaterial;
+                    auto get = [&](const float* p) { return L(c.in(LD(p))); };
+                    auto put = [&](float* p, const L& x) {
+                        F d = LD(p);
+                        c.put(d, x);
+                        ST(p, d);
+                    };
+                    const L u = get(a.tu), v = get(a.tv);
+                    // (s, t) = to_uv(u, v), as UVTransform::point.
+                    auto st = [&](const float* m, L* s, L* tt) {
+                        *s = (L(m[0]) * u + L(m[1]) * v) + L(m[2]);
+                        *tt = (L(m[3]) * u + L(m[4]) * v) + L(m[5]);
+                    };
+                    RGB<L> q(L(t.albedo[0][0]), L(t.albedo[0][1]), L(t.albedo[0][2]));
+                    if (t.reflectance == TL::kImage) {
+                        L s, tt;
+                        st(t.to_uv, &s, &tt);
+                        lane_bilinear<L>(t.image, s, tt, &q);
+                        auto clamp_t = [&](const L& x) {  // (clamp: v < lo ? lo : (v > hi ? hi : v))
+                            return lane::select(x < L(t.lo), L(t.lo), lane::select(x > L(t.hi), L(t.hi), x));
+                        };
+                        q = RGB<L>(clamp_t(q.r), clamp_t(q.g), clamp_t(q.b));
+                    } else if (t.reflectance == TL::kChecker) {
+                        // The colour of the square the hit lies in (w is 0 or 1: one colour's albedo
+                        // exactly, or NaN where the uv is not finite, as eval_texture's).
+                        const L uv_map[6] = {L(t.to_uv[0]), L(t.to_uv[1]), L(t.to_uv[2]),
+                                             L(t.to_uv[3]), L(t.to_uv[4]), L(t.to_uv[5])};
+                        const L w = checkerboard_square<L>(uv_map, u, v), w0 = L(1.f) - w;
+                        q = RGB<L>(L(t.albedo[0][0]) * w0 + L(t.albedo[1][0]) * w, L(t.albedo[0][1]) * w0 + L(t.albedo[1][1]) * w,
+                                   L(t.albedo[0][2]) * w0 + L(t.albedo[1][2]) * w);
                     }
-                }
-                if (t.bump) {
-                    // mitsuba_height_gradient: the luminance of the bilinear gradient through to_uv
-                    // (∂f/∂u = a00·∂f/∂s + a10·∂f/∂t, ∂f/∂v = a01·∂f/∂s + a11·∂f/∂t); 0 for a constant.
-                    F gu(0.f), gv(0.f);
-                    if (t.bump_image) {
-                        F s, tt;
-                        st(t.height_uv, &s, &tt);
-                        RGB<F> h, ds, dt;
-                        lane_bilinear<F>(t.height, s, tt, &h, &ds, &dt);
-                        const float* m = t.height_uv;
-                        const RGB<F> du = ds * F(m[0]) + dt * F(m[3]), dv = ds * F(m[1]) + dt * F(m[4]);
-                        gu = F(0.2126f) * du.r + F(0.7152f) * du.g + F(0.0722f) * du.b;  // (Spectrum::luminance)
-                        gv = F(0.2126f) * dv.r + F(0.7152f) * dv.g + F(0.0722f) * dv.b;
+                    put(a.kind, L(float(t.kind)));
+                    if (t.kind == kPacketLambertian) {
+                        put(a.q[0], q.r), put(a.q[1], q.g), put(a.q[2], q.b);
+                        c.put(goes, c.in(in) && !is_black(q));  // (Lambertian::flags: none for a black albedo, the path ends)
+                    } else {
+                        // A rough plastic: the material's parameters with Kd's (PlasticBase, plastic_packet_params).
+                        for (int k = 0; k < kPlasticParams; ++k) {
+                            L x(t.q[k]);
+                            if (k >= 1 && k <= 3) x = plastic_diffuse_scale<L>(k == 1 ? q.r : k == 2 ? q.g : q.b, t.eta, t.rbar, t.variant);
+                            if (k == 8) x = (q.r + q.g + q.b) * L(1.f / 3.f);  // (Spectrum::average)
+                            put(a.q[k], x);
+                        }
                     }
-                    const FrameT<F> shading(V3<F>(LD(a.sx), LD(a.sy), LD(a.sz)), V3<F>(LD(a.tx), LD(a.ty), LD(a.tz)),
-                                            V3<F>(LD(a.nx), LD(a.ny), LD(a.nz)));
-                    const V3<F> dpdu(LD(a.dux), LD(a.duy), LD(a.duz)), dpdv(LD(a.dvx), LD(a.dvy), LD(a.dvz));
-                    const V3<F> ng(LD(a.ngx), LD(a.ngy), LD(a.ngz)), wo(LD(a.wox), LD(a.woy), LD(a.woz));
-                    V3<F> n = bump_normal_mitsuba_lanes<F>(dpdu, dpdv, ng, shading.n, F(t.bump_scale), gu, gv);
-                    if (t.mirror) n = mirror_invalid_normal<F>(shading, wo, n);
-                    const FrameT<F> f = FrameT<F>::from_xz(shading.s, n);
-                    put(a.sx, f.s.x), put(a.sy, f.s.y), put(a.sz, f.s.z);
-                    put(a.tx, f.t.x), put(a.ty, f.t.y), put(a.tz, f.t.z);
-                    put(a.nx, f.n.x), put(a.ny, f.n.y), put(a.nz, f.n.z);
-                    if (t.soften) {  // (about the unperturbed shading normal, BSDF::soften_terminator)
-                        SM(a.soft, in || LM(a.soft));
-                        SM(a.est, lane::select(in, M(t.estevez), LM(a.est)));
-                        put(a.n0x, shading.n.x), put(a.n0y, shading.n.y), put(a.n0z, shading.n.z);
+                    if (t.bump) {
+                        // mitsuba_height_gradient: the luminance of the bilinear gradient through to_uv
+                        // (∂f/∂u = a00·∂f/∂s + a10·∂f/∂t, ∂f/∂v = a01·∂f/∂s + a11·∂f/∂t); 0 for a constant.
+                        L gu(0.f), gv(0.f);
+                        if (t.bump_image) {
+                            L s, tt;
+                            st(t.height_uv, &s, &tt);
+                            RGB<L> h, ds, dt;
+                            lane_bilinear<L>(t.height, s, tt, &h, &ds, &dt);
+                            const float* m = t.height_uv;
+                            const RGB<L> du = ds * L(m[0]) + dt * L(m[3]), dv = ds * L(m[1]) + dt * L(m[4]);
+                            gu = L(0.2126f) * du.r + L(0.7152f) * du.g + L(0.0722f) * du.b;  // (Spectrum::luminance)
+                            gv = L(0.2126f) * dv.r + L(0.7152f) * dv.g + L(0.0722f) * dv.b;
+                        }
+                        auto get3 = [&](const float* x, const float* y, const float* z) { return V3<L>(get(x), get(y), get(z)); };
+                        const FrameT<L> shading(get3(a.sx, a.sy, a.sz), get3(a.tx, a.ty, a.tz), get3(a.nx, a.ny, a.nz));
+                        const V3<L> dpdu = get3(a.dux, a.duy, a.duz), dpdv = get3(a.dvx, a.dvy, a.dvz);
+                        const V3<L> ng = get3(a.ngx, a.ngy, a.ngz), wo = get3(a.wox, a.woy, a.woz);
+                        V3<L> n = bump_normal_mitsuba_lanes<L>(dpdu, dpdv, ng, shading.n, L(t.bump_scale), gu, gv);
+                        if (t.mirror) n = mirror_invalid_normal<L>(shading, wo, n);
+                        const FrameT<L> f = FrameT<L>::from_xz(shading.s, n);
+                        put(a.sx, f.s.x), put(a.sy, f.s.y), put(a.sz, f.s.z);
+                        put(a.tx, f.t.x), put(a.ty, f.t.y), put(a.tz, f.t.z);
+                        put(a.nx, f.n.x), put(a.ny, f.n.y), put(a.nz, f.n.z);
+                        // (about the unperturbed shading normal, BSDF::soften_terminator)
+                        if (t.soften) put(a.n0x, shading.n.x), put(a.n0y, shading.n.y), put(a.n0z, shading.n.z);
                     }
+                });
+                if (t.bump && t.soften) {
+                    SM(a.soft, in || LM(a.soft));
+                    SM(a.est, lane::select(in, M(t.estevez), LM(a.est)));
                 }
                 go_on(goes, goes && M(ps.use_nee));  // (diffuse or glossy: with NEE)
             };
@@ -1255,16 +1270,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 };
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
-                // A packet form's call on the lanes `where`: body(c) with c a FormLanes. Where the
-                // packet has a half-width packet and at most half its lanes take part, on that
-                // (FormLanesHalf), else on the packet itself (FormLanesWhole).
-                auto run_form = [&](const M& where, const auto& body) {
-                    if constexpr (lane::kHasHalf<F>) {
-                        const FormLanesHalf<F> half(where);
-                        if (half.move.count() <= W / 2) return body(half);
-                    }
-                    body(FormLanesWhole<F>{where});
-                };
+                // A packet form's call on the lanes `where`: body(c) with c a FormLanes (run_on_lanes).
+                auto run_form = [&](const M& where, const auto& body) { run_on_lanes<F>(where, body); };
                 // Bump- and normal-mapped lanes whose terminator is softened (BSDF::soften_terminator).
                 const M soft = LM(a.soft) && fast;
                 const bool any_soft = lane::any(soft);

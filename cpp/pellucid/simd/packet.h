@@ -394,9 +394,9 @@ public:
         const uint32_t b = _pext_u32(uint32_t(v.data), uint32_t(m_));
         return MP<H>(_mm256_castsi256_ps(_mm256_movm_epi32(__mmask8(b))));
     }
-    void out(FP<A>& dst, const FP<H>& v) const { dst = FP<A>(_mm512_mask_expand_ps(dst, m_, _mm512_castps256_ps512(v))); }
+    void out(FP<A>& dst, const FP<H>& v) const { dst = FP<A>(_mm512_mask_expand_ps(dst, m_, _mm512_zextps256_ps512(v))); }
     void out(IP<A>& dst, const IP<H>& v) const {
-        dst = IP<A>(_mm512_mask_expand_epi32(dst, m_, _mm512_castsi256_si512(v)));
+        dst = IP<A>(_mm512_mask_expand_epi32(dst, m_, _mm512_zextsi256_si512(v)));
     }
     void out(MP<A>& dst, const MP<H>& v) const {
         const uint32_t b = _pdep_u32(uint32_t(_mm256_movepi32_mask(_mm256_castps_si256(v))), uint32_t(m_));
