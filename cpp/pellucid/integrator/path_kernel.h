@@ -1185,7 +1185,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const M is_mirror = fast && kind == F(float(kPacketSmoothConductor));
                 const M is_rough = fast && kind == F(float(kPacketRoughConductor));
                 const M is_beckmann = fast && kind == F(float(kPacketRoughConductorBeckmann));
-                const LambertianT<F> lambert{RGB<F>(LD(a.q[0]), LD(a.q[1]), LD(a.q[2]))};
                 // The conductors' parameters (read only where such lanes exist).
                 const bool any_conductor = lane::any(is_mirror || is_rough || is_beckmann);
                 const SmoothConductorT<F> metal =
@@ -1200,6 +1199,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     using L = typename std::decay_t<decltype(c)>::L;     \
     auto q = [&](int k) { return L(c.in(LD(a.q[k]))); }; \
     (void)q
+                auto lambert_on = [&](const auto& c) {
+                    PELLUCID_LANES_OF(c);
+                    return LambertianT<L>{RGB<L>(q(0), q(1), q(2))};
+                };
                 auto rough_on = [&](const auto& c) {
                     PELLUCID_LANES_OF(c);
                     const M& is = is_rough;
@@ -1295,10 +1298,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     // Each packet form present evaluates on all lanes; its own lanes keep the result.
                     RGB<F> f_fast(F(0.f));
                     F pdf_fast(0.f);
-                    if (lane::any(is_lambert && nee)) {
-                        PELLUCID_FORM_CALL(kPacketLambertian, is_lambert && nee, f_fast = lambert.eval(ctx, wo, wi);
-                                           pdf_fast = lambert.pdf(ctx, wo, wi));
-                    }
                     // The forms run by run_form: eval(c, on) evaluates on c's lanes, `on` those of
                     // `where` that take part. The microfacet conductors and the plastics evaluate f
                     // and pdf together (one half vector, D and Λ(wo) once: ReflectionPairT::
@@ -1323,6 +1322,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     nee_form(kind, where, [&](const auto& c, const auto&) { return form(c).eval_pdf(ctx, c.in(wo), c.in(wi)); })
 #define PELLUCID_NEE_FORM_MASKED(kind, where, form) \
     nee_form(kind, where, [&](const auto& c, const auto& on) { return form(c).eval_pdf(ctx, c.in(wo), c.in(wi), on); })
+                    PELLUCID_NEE_FORM(kPacketLambertian, is_lambert, lambert_on);
                     PELLUCID_NEE_FORM(kPacketOrenNayar, is_on, oren_on);
                     PELLUCID_NEE_FORM_PAIR(kPacketRoughConductor, is_rough, rough_on);
                     PELLUCID_NEE_FORM_PAIR(kPacketRoughConductorBeckmann, is_beckmann, beckmann_on);
@@ -1358,8 +1358,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const V2<F> u2{LD(a.u[4]), LD(a.u[5])};
                     // Each packet form present samples on all lanes; its own lanes keep the result.
                     BxDFSampleT<F> s{M(false), V3<F>(F(0.f), F(0.f), F(1.f)), RGB<F>(F(0.f)), F(0.f), F(1.f), IntT<F>(0)};
-                    if (lane::any(is_lambert))
-                        PELLUCID_FORM_CALL(kPacketLambertian, is_lambert, s = lambert.sample(ctx, wo, u_lobe, u2));
                     auto merge = [&](const M& where, const BxDFSampleT<F>& d) {
                         const auto di = lane::int_mask(where);
                         s.valid = lane::select(where, d.valid, s.valid);
@@ -1384,6 +1382,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
 #define PELLUCID_SAMPLE_FORM_MASKED(kind, where, form)                                                              \
     sample_form(kind, where,                                                                                        \
                 [&](const auto& c, const auto& on) { return form(c).sample(ctx, c.in(wo), c.in(u_lobe), c.in(u2), on); })
+                    PELLUCID_SAMPLE_FORM_ON(kPacketLambertian, is_lambert, lambert_on);
                     PELLUCID_SAMPLE_FORM_ON(kPacketOrenNayar, is_on, oren_on);
                     PELLUCID_SAMPLE_FORM_ON(kPacketRoughConductor, is_rough, rough_on);
                     PELLUCID_SAMPLE_FORM_ON(kPacketRoughConductorBeckmann, is_beckmann, beckmann_on);
