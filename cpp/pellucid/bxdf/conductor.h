@@ -184,6 +184,14 @@ template <class F>
 using RoughConductorGGXT = MicrofacetConductorT<GGXT, F>;
 template <class F>
 using RoughConductorBeckmannT = MicrofacetConductorT<BeckmannT, F>;
+/// The rough conductor's packet form over DistT (GGXT or BeckmannT) from the path tracer's packet
+/// parameters q(k) (path_services.cpp, packet_form: 0–2 η, 3–5 k, 6–8 the reflectance's scale, 9 αx,
+/// 10 αy, 11 separable shadowing) on the lanes `where`; the other lanes get α 1.
+template <template <class> class DistT, class F, class Q>
+inline MicrofacetConductorT<DistT, F> rough_conductor_lanes(const MaskT<F>& where, Q q) {
+    return {DistT<F>{lane::select(where, q(9), F(1.f)), lane::select(where, q(10), F(1.f)), q(11) != F(0.f)},
+            SmoothConductorT<F>{RGB<F>(q(0), q(1), q(2)), RGB<F>(q(3), q(4), q(5)), RGB<F>(q(6), q(7), q(8))}};
+}
 
 /// Ideal mirror: weight = specular_reflectance · F(|cos θo|), discrete probability 1.
 template <class Fresnel>

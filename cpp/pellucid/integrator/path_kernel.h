@@ -1192,87 +1192,64 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                                                         RGB<F>(LD(a.q[3]), LD(a.q[4]), LD(a.q[5])),
                                                         RGB<F>(LD(a.q[6]), LD(a.q[7]), LD(a.q[8]))}
                                   : SmoothConductorT<F>{RGB<F>(F(0.f)), RGB<F>(F(0.f)), RGB<F>(F(0.f))};
-                // The forms below, but for the Lambertian and the delta forms, are built on the lanes
-                // of a FormLanes c (X_on(c); run_form below), each from the packet parameters of
-                // the lanes c takes, read through c.in.
-#define PELLUCID_LANES_OF(c)                             \
-    using L = typename std::decay_t<decltype(c)>::L;     \
-    auto q = [&](int k) { return L(c.in(LD(a.q[k]))); }; \
-    (void)q
-                auto lambert_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    return LambertianT<L>{RGB<L>(q(0), q(1), q(2))};
-                };
-                auto rough_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    const M& is = is_rough;
-                    return RoughConductorGGXT<L>{
-                        GGXT<L>{lane::select(c.in(is), q(9), L(1.f)), lane::select(c.in(is), q(10), L(1.f)), q(11) != L(0.f)},
-                        SmoothConductorT<L>{RGB<L>(q(0), q(1), q(2)), RGB<L>(q(3), q(4), q(5)), RGB<L>(q(6), q(7), q(8))}};
-                };
-                auto beckmann_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    const M& is = is_beckmann;
-                    return RoughConductorBeckmannT<L>{
-                        BeckmannT<L>{lane::select(c.in(is), q(9), L(1.f)), lane::select(c.in(is), q(10), L(1.f)), q(11) != L(0.f)},
-                        SmoothConductorT<L>{RGB<L>(q(0), q(1), q(2)), RGB<L>(q(3), q(4), q(5)), RGB<L>(q(6), q(7), q(8))}};
-                };
+                // The non-delta forms are built on the lanes of a FormLanes c (X_on(c), defined by
+                // PELLUCID_FORM_ON; run_form below), each from the packet parameters of the lanes c
+                // takes, read through c.in.
+#define PELLUCID_FORM_ON(name, ...)                              \
+    auto name = [&](const auto& c) {                             \
+        using L = typename std::decay_t<decltype(c)>::L;         \
+        auto q = [&](int k) { return L(c.in(LD(a.q[k]))); };     \
+        return __VA_ARGS__;                                      \
+    }
+                PELLUCID_FORM_ON(lambert_on, LambertianT<L>{RGB<L>(q(0), q(1), q(2))});
+                PELLUCID_FORM_ON(rough_on, rough_conductor_lanes<GGXT, L>(c.in(is_rough), q));
+                PELLUCID_FORM_ON(beckmann_on, rough_conductor_lanes<BeckmannT, L>(c.in(is_beckmann), q));
                 // The plastics (smooth, or rough over GGX or Beckmann; other lanes skip their lobes and tables).
                 const M is_plastic = fast && kind == F(float(kPacketPlastic));
-                auto plastic_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    return plastic_lanes<L>(c.in(is_plastic), q, ps.coat_tables.data());
-                };
+                PELLUCID_FORM_ON(plastic_on, plastic_lanes<L>(c.in(is_plastic), q, ps.coat_tables.data()));
                 const M is_plastic_b = fast && kind == F(float(kPacketPlasticBeckmann));
-                auto plastic_b_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    return plastic_lanes<L, BeckmannT>(c.in(is_plastic_b), q, ps.coat_tables.data());
-                };
+                PELLUCID_FORM_ON(plastic_b_on, plastic_lanes<L, BeckmannT>(c.in(is_plastic_b), q, ps.coat_tables.data()));
                 // The rough dielectrics (GGX or Beckmann), without multiple scattering.
                 const M is_rdiel = fast && kind == F(float(kPacketRoughDielectric));
                 const M is_rdiel_b = fast && kind == F(float(kPacketRoughDielectricBeckmann));
                 const M is_any_rdiel = is_rdiel || is_rdiel_b;
-                auto rdiel_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    return rough_dielectric_lanes<GGXT, L>(c.in(is_any_rdiel), q);
-                };
-                auto rdiel_b_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    return rough_dielectric_lanes<BeckmannT, L>(c.in(is_any_rdiel), q);
-                };
+                PELLUCID_FORM_ON(rdiel_on, rough_dielectric_lanes<GGXT, L>(c.in(is_any_rdiel), q));
+                PELLUCID_FORM_ON(rdiel_b_on, rough_dielectric_lanes<BeckmannT, L>(c.in(is_any_rdiel), q));
                 // Oren–Nayar (classic or EON) and the thin dielectric.
                 const M is_on = fast && kind == F(float(kPacketOrenNayar));
-                auto oren_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    return oren_nayar_lanes<L>(c.in(is_on), q);
-                };
+                PELLUCID_FORM_ON(oren_on, oren_nayar_lanes<L>(c.in(is_on), q));
                 const M is_thin = fast && kind == F(float(kPacketThinDielectric));
                 // The opaque solid principled BSDFs.
                 const M is_princ = fast && kind == F(float(kPacketPrincipled));
-                auto princ_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    return principled_lanes<L>(c.in(is_princ), q);
-                };
+                PELLUCID_FORM_ON(princ_on, principled_lanes<L>(c.in(is_princ), q));
                 // The Burley 2012 principled BRDFs.
                 const M is_princ12 = fast && kind == F(float(kPacketPrincipled2012));
-                auto princ12_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    return principled2012_lanes<L>(c.in(is_princ12), q);
-                };
+                PELLUCID_FORM_ON(princ12_on, principled2012_lanes<L>(c.in(is_princ12), q));
                 // The thin-sheet principled BSDFs.
                 const M is_pthin = fast && kind == F(float(kPacketPrincipledThin));
-                auto pthin_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    return principled_thin_lanes<L>(c.in(is_pthin), q);
-                };
+                PELLUCID_FORM_ON(pthin_on, principled_thin_lanes<L>(c.in(is_pthin), q));
                 // The principled solids with a transmission lobe.
                 const M is_psolid = fast && kind == F(float(kPacketPrincipledSolid));
-                auto psolid_on = [&](const auto& c) {
-                    PELLUCID_LANES_OF(c);
-                    return principled_solid_lanes<L>(c.in(is_psolid), q);
-                };
+                PELLUCID_FORM_ON(psolid_on, principled_solid_lanes<L>(c.in(is_psolid), q));
+#undef PELLUCID_FORM_ON
                 const BxDFContext ctx{TransportMode::Radiance, BxDFFlags::All};
                 const V3<F> wo = frame.to_local(wo_w);
+                // The non-delta packet forms, one line each: (PacketKind, its lanes, its form built on a
+                // FormLanes c, how NEE and sampling call it: SPLIT eval and pdf, PAIR eval_pdf, both
+                // without a mask; MASKED eval_pdf and sample on the lanes that take part).
+#define PELLUCID_NON_DELTA_FORMS(X)                                      \
+    X(kPacketLambertian, is_lambert, lambert_on, SPLIT)                  \
+    X(kPacketOrenNayar, is_on, oren_on, SPLIT)                           \
+    X(kPacketRoughConductor, is_rough, rough_on, PAIR)                   \
+    X(kPacketRoughConductorBeckmann, is_beckmann, beckmann_on, PAIR)     \
+    X(kPacketPlastic, is_plastic, plastic_on, PAIR)                      \
+    X(kPacketPlasticBeckmann, is_plastic_b, plastic_b_on, PAIR)          \
+    X(kPacketRoughDielectric, is_rdiel, rdiel_on, MASKED)                \
+    X(kPacketRoughDielectricBeckmann, is_rdiel_b, rdiel_b_on, MASKED)    \
+    X(kPacketPrincipled, is_princ, princ_on, MASKED)                     \
+    X(kPacketPrincipled2012, is_princ12, princ12_on, MASKED)             \
+    X(kPacketPrincipledThin, is_pthin, pthin_on, MASKED)                 \
+    X(kPacketPrincipledSolid, is_psolid, psolid_on, MASKED)
                 // A packet form's call on the lanes `where`: body(c) with c a FormLanes (run_on_lanes).
                 auto run_form = [&](const M& where, const auto& body) { run_on_lanes<F>(where, body); };
                 // Bump- and normal-mapped lanes whose terminator is softened (BSDF::soften_terminator).
@@ -1313,7 +1290,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         });
                     };
                     // (The one-sample forms without a mask argument.)
-#define PELLUCID_NEE_FORM(kind, where, form)                                                                      \
+#define PELLUCID_NEE_FORM_SPLIT(kind, where, form)                                                                      \
     nee_form(kind, where, [&](const auto& c, const auto&) {                                                       \
         const auto m = form(c);                                                                                   \
         return EvalPdfT<typename std::decay_t<decltype(c)>::L>{m.eval(ctx, c.in(wo), c.in(wi)), m.pdf(ctx, c.in(wo), c.in(wi))}; \
@@ -1322,19 +1299,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     nee_form(kind, where, [&](const auto& c, const auto&) { return form(c).eval_pdf(ctx, c.in(wo), c.in(wi)); })
 #define PELLUCID_NEE_FORM_MASKED(kind, where, form) \
     nee_form(kind, where, [&](const auto& c, const auto& on) { return form(c).eval_pdf(ctx, c.in(wo), c.in(wi), on); })
-                    PELLUCID_NEE_FORM(kPacketLambertian, is_lambert, lambert_on);
-                    PELLUCID_NEE_FORM(kPacketOrenNayar, is_on, oren_on);
-                    PELLUCID_NEE_FORM_PAIR(kPacketRoughConductor, is_rough, rough_on);
-                    PELLUCID_NEE_FORM_PAIR(kPacketRoughConductorBeckmann, is_beckmann, beckmann_on);
-                    PELLUCID_NEE_FORM_PAIR(kPacketPlastic, is_plastic, plastic_on);
-                    PELLUCID_NEE_FORM_PAIR(kPacketPlasticBeckmann, is_plastic_b, plastic_b_on);
-                    PELLUCID_NEE_FORM_MASKED(kPacketRoughDielectric, is_rdiel, rdiel_on);
-                    PELLUCID_NEE_FORM_MASKED(kPacketRoughDielectricBeckmann, is_rdiel_b, rdiel_b_on);
-                    PELLUCID_NEE_FORM_MASKED(kPacketPrincipled, is_princ, princ_on);
-                    PELLUCID_NEE_FORM_MASKED(kPacketPrincipled2012, is_princ12, princ12_on);
-                    PELLUCID_NEE_FORM_MASKED(kPacketPrincipledThin, is_pthin, pthin_on);
-                    PELLUCID_NEE_FORM_MASKED(kPacketPrincipledSolid, is_psolid, psolid_on);
-#undef PELLUCID_NEE_FORM
+#define PELLUCID_NEE_OF(kind, where, form, how) PELLUCID_NEE_FORM_##how(kind, where, form);
+                    PELLUCID_NON_DELTA_FORMS(PELLUCID_NEE_OF)
+#undef PELLUCID_NEE_OF
+#undef PELLUCID_NEE_FORM_SPLIT
 #undef PELLUCID_NEE_FORM_PAIR
 #undef PELLUCID_NEE_FORM_MASKED
                     f_fast = lane::select(off, RGB<F>(F(0.f)), soften(f_fast, wi, wi_w));
@@ -1377,25 +1345,19 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         (void)kind;
                         run_form(where, [&](const auto& c) { PELLUCID_FORM_CALL(kind, where, put_sample(c, s, draw(c, c.in(where)))); });
                     };
-#define PELLUCID_SAMPLE_FORM_ON(kind, where, form) \
+#define PELLUCID_SAMPLE_FORM_PAIR(kind, where, form) \
     sample_form(kind, where, [&](const auto& c, const auto&) { return form(c).sample(ctx, c.in(wo), c.in(u_lobe), c.in(u2)); })
 #define PELLUCID_SAMPLE_FORM_MASKED(kind, where, form)                                                              \
     sample_form(kind, where,                                                                                        \
                 [&](const auto& c, const auto& on) { return form(c).sample(ctx, c.in(wo), c.in(u_lobe), c.in(u2), on); })
-                    PELLUCID_SAMPLE_FORM_ON(kPacketLambertian, is_lambert, lambert_on);
-                    PELLUCID_SAMPLE_FORM_ON(kPacketOrenNayar, is_on, oren_on);
-                    PELLUCID_SAMPLE_FORM_ON(kPacketRoughConductor, is_rough, rough_on);
-                    PELLUCID_SAMPLE_FORM_ON(kPacketRoughConductorBeckmann, is_beckmann, beckmann_on);
-                    PELLUCID_SAMPLE_FORM_ON(kPacketPlastic, is_plastic, plastic_on);
-                    PELLUCID_SAMPLE_FORM_ON(kPacketPlasticBeckmann, is_plastic_b, plastic_b_on);
-                    PELLUCID_SAMPLE_FORM_MASKED(kPacketRoughDielectric, is_rdiel, rdiel_on);
-                    PELLUCID_SAMPLE_FORM_MASKED(kPacketRoughDielectricBeckmann, is_rdiel_b, rdiel_b_on);
-                    PELLUCID_SAMPLE_FORM_MASKED(kPacketPrincipled, is_princ, princ_on);
-                    PELLUCID_SAMPLE_FORM_MASKED(kPacketPrincipled2012, is_princ12, princ12_on);
-                    PELLUCID_SAMPLE_FORM_MASKED(kPacketPrincipledThin, is_pthin, pthin_on);
-                    PELLUCID_SAMPLE_FORM_MASKED(kPacketPrincipledSolid, is_psolid, psolid_on);
-#undef PELLUCID_SAMPLE_FORM_ON
+#define PELLUCID_SAMPLE_FORM_SPLIT PELLUCID_SAMPLE_FORM_PAIR
+#define PELLUCID_SAMPLE_OF(kind, where, form, how) PELLUCID_SAMPLE_FORM_##how(kind, where, form);
+                    PELLUCID_NON_DELTA_FORMS(PELLUCID_SAMPLE_OF)
+#undef PELLUCID_SAMPLE_OF
+#undef PELLUCID_SAMPLE_FORM_SPLIT
+#undef PELLUCID_SAMPLE_FORM_PAIR
 #undef PELLUCID_SAMPLE_FORM_MASKED
+#undef PELLUCID_NON_DELTA_FORMS
                     PELLUCID_SAMPLE_FORM(kPacketSmoothDielectric, is_dielectric,
                                          SmoothDielectricT<F>{LD(a.q[0]), RGB<F>(LD(a.q[1]), LD(a.q[2]), LD(a.q[3])),
                                                               RGB<F>(LD(a.q[4]), LD(a.q[5]), LD(a.q[6]))}

@@ -90,20 +90,10 @@ Result run(const In& in) {
               masked_eval, masked_sample);
         check([&](const auto& c) { return rough_dielectric_lanes<BeckmannT, typename std::decay_t<decltype(c)>::L>(c.in(where), params(c)); },
               masked_eval, masked_sample);
-        check([&](const auto& c) {
-                  using LT = typename std::decay_t<decltype(c)>::L;
-                  const auto q = params(c);
-                  return RoughConductorGGXT<LT>{GGXT<LT>{q(9), q(10), q(11) != LT(0.f)},
-                                                SmoothConductorT<LT>{RGB<LT>(q(0), q(1), q(2)), RGB<LT>(q(3), q(4), q(5)),
-                                                                     RGB<LT>(q(6), q(7), q(8))}};
-              },
+        check([&](const auto& c) { return rough_conductor_lanes<GGXT, typename std::decay_t<decltype(c)>::L>(c.in(where), params(c)); },
               eval, sample);
         check([&](const auto& c) {
-                  using LT = typename std::decay_t<decltype(c)>::L;
-                  const auto q = params(c);
-                  return RoughConductorBeckmannT<LT>{BeckmannT<LT>{q(9), q(10), q(11) != LT(0.f)},
-                                                     SmoothConductorT<LT>{RGB<LT>(q(0), q(1), q(2)), RGB<LT>(q(3), q(4), q(5)),
-                                                                          RGB<LT>(q(6), q(7), q(8))}};
+                  return rough_conductor_lanes<BeckmannT, typename std::decay_t<decltype(c)>::L>(c.in(where), params(c));
               },
               eval, sample);
     }
