@@ -22,7 +22,7 @@
 namespace pellucid {
 /// The low half of the 512-bit registers of architecture Full (an AVX-512 one) as an architecture
 /// of its own: 8-lane packets on xsimd's AVX2 kernels, for the packet forms that run on few lanes of
-/// a 16-lane packet (lane::HalfOf, path_kernel.h). Its own type, named after Full, so that what
+/// a 16-lane packet (lane::HalfOf, integrator/form_lanes.h). Its own type, named after Full, so that what
 /// the AVX-512 kernel instantiates on it never shares a symbol with the AVX2 kernel's batches.
 template <class Full>
 struct half_of : xsimd::avx2 {
