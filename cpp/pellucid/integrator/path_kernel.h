@@ -11,8 +11,8 @@
 // Per vertex, every lane's quantities are packets: throughput, radiance, MIS densities, the
 // shading frame, the roulette. The BSDF is dispatched per lane group: the lanes of each packet form
 // present (PathSetup::packet_kind; a textured material's where the BSDF built at its hit has one,
-// PathSetup::textured_packet) are shaded by it in one pass, masked; the
-// other lanes go through BSDF one at a time (path_services.h), as do emission, the samplers'
+// PathSetup::textured_packet) are shaded by it in one pass, masked (on the half-width packet where
+// at most half the lanes take part: integrator/form_lanes.h); the other lanes go through BSDF one at a time (path_services.h), as do emission, the samplers'
 // seeding (the independent sampler's numbers are drawn for all lanes at once) and the sampling of
 // lights with neither a row in the light table (LightTable) nor an emitter table (EmitterTable),
 // until those have packet forms too. Rays that escape the scene
@@ -1272,7 +1272,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     // plastics, the rough dielectrics and the principled models have lobes NEE can reach.)
                     const M off = leak || !(is_lambert || is_on || is_rough || is_beckmann || is_plastic || is_plastic_b ||
                                             is_any_rdiel || is_princ || is_princ12 || is_pthin || is_psolid);
-                    // Each packet form present evaluates on all lanes; its own lanes keep the result.
+                    // Each packet form present evaluates on its own lanes (run_form), which keep the result.
                     RGB<F> f_fast(F(0.f));
                     F pdf_fast(0.f);
                     // The forms run by run_form: eval(c, on) evaluates on c's lanes, `on` those of
@@ -1289,7 +1289,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                                                c.put(pdf_fast, ep.pdf));
                         });
                     };
-                    // (The one-sample forms without a mask argument.)
+                    // How each form is called (PELLUCID_NON_DELTA_FORMS): SPLIT eval and pdf apart,
+                    // PAIR eval_pdf, MASKED eval_pdf on the lanes that take part. (kind is read by the
+                    // diagnostic build's PELLUCID_FORM_CALL only.)
 #define PELLUCID_NEE_FORM_SPLIT(kind, where, form)                                                                      \
     nee_form(kind, where, [&](const auto& c, const auto&) {                                                       \
         const auto m = form(c);                                                                                   \
@@ -1324,7 +1326,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 {
                     const F u_lobe = LD(a.u[3]);
                     const V2<F> u2{LD(a.u[4]), LD(a.u[5])};
-                    // Each packet form present samples on all lanes; its own lanes keep the result.
+                    // Each packet form present samples its own lanes (run_form), which keep its result.
                     BxDFSampleT<F> s{M(false), V3<F>(F(0.f), F(0.f), F(1.f)), RGB<F>(F(0.f)), F(0.f), F(1.f), IntT<F>(0)};
                     auto merge = [&](const M& where, const BxDFSampleT<F>& d) {
                         const auto di = lane::int_mask(where);
