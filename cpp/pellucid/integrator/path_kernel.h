@@ -1185,10 +1185,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const M is_mirror = fast && kind == F(float(kPacketSmoothConductor));
                 const M is_rough = fast && kind == F(float(kPacketRoughConductor));
                 const M is_beckmann = fast && kind == F(float(kPacketRoughConductorBeckmann));
-                // The conductors' parameters (read only where such lanes exist).
-                const bool any_conductor = lane::any(is_mirror || is_rough || is_beckmann);
+                // (The mirror's parameters, read only where such lanes exist; the rough conductors
+                // build theirs on their own lanes, rough_on and beckmann_on.)
                 const SmoothConductorT<F> metal =
-                    any_conductor ? SmoothConductorT<F>{RGB<F>(LD(a.q[0]), LD(a.q[1]), LD(a.q[2])),
+                    lane::any(is_mirror) ? SmoothConductorT<F>{RGB<F>(LD(a.q[0]), LD(a.q[1]), LD(a.q[2])),
                                                         RGB<F>(LD(a.q[3]), LD(a.q[4]), LD(a.q[5])),
                                                         RGB<F>(LD(a.q[6]), LD(a.q[7]), LD(a.q[8]))}
                                   : SmoothConductorT<F>{RGB<F>(F(0.f)), RGB<F>(F(0.f)), RGB<F>(F(0.f))};
@@ -1328,17 +1328,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const V2<F> u2{LD(a.u[4]), LD(a.u[5])};
                     // Each packet form present samples its own lanes (run_form), which keep its result.
                     BxDFSampleT<F> s{M(false), V3<F>(F(0.f), F(0.f), F(1.f)), RGB<F>(F(0.f)), F(0.f), F(1.f), IntT<F>(0)};
-                    auto merge = [&](const M& where, const BxDFSampleT<F>& d) {
-                        const auto di = lane::int_mask(where);
-                        s.valid = lane::select(where, d.valid, s.valid);
-                        s.wi = lane::select(where, d.wi, s.wi);
-                        s.weight = lane::select(where, d.weight, s.weight);
-                        s.pdf = lane::select(where, d.pdf, s.pdf);
-                        s.eta = lane::select(where, d.eta, s.eta);
-                        s.lobe = lane::select(di, d.lobe, s.lobe);
-                    };
 #define PELLUCID_SAMPLE_FORM(kind, where, ...) \
-    if (lane::any(where)) PELLUCID_FORM_CALL(kind, where, merge(where, __VA_ARGS__))
+    if (lane::any(where)) PELLUCID_FORM_CALL(kind, where, put_sample(FormLanesWhole<F>{where}, s, __VA_ARGS__))
                     PELLUCID_SAMPLE_FORM(kPacketSmoothConductor, is_mirror, metal.sample(ctx, wo, u_lobe, u2));
                     // The forms run by run_form: form(c) samples on c's lanes (with `on`, those of
                     // `where`, where its sample takes a mask).
