@@ -33,16 +33,18 @@ bool is_one_pixel_box(const Filter& f) {
     return b && b->radius == 0.5f;
 }
 
-/// Sixteen floats and sixteen int32: one tap of the sixteen rows of eval_filter_taps16. GCC vector
-/// types: one AVX-512 register, two AVX2 or four SSE2/NEON ones, the same IEEE operation per element
-/// on each (no contraction: -ffp-contract=off).
-typedef float F16 __attribute__((vector_size(64)));
-typedef int32_t I16 __attribute__((vector_size(64)));
-inline F16 load_f16(const float* p) {
-    F16 v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
+/// N floats and N int32 (N = 16, 8 or 4): a block of rows of eval_filter_taps16. GCC vector types,
+/// the same IEEE operation per element on any width (no contraction: -ffp-contract=off). Each
+/// variant takes the width of its registers (AVX-512 16, AVX2 8, the SSE2/NEON baseline 4) and runs
+/// the sixteen rows as 16/N blocks: wider types than the registers are split by GCC into scalar
+/// code in places (inserts, extracts and scalar compares: about 10,000 instructions for the AVX2
+/// variant on 16-wide types, 14 % of an `env_diffuse` render), and each row's arithmetic does not
+/// depend on the other rows, so the blocks give the same bits.
+template <int N>
+struct TapVec {
+    typedef float F __attribute__((vector_size(4 * N)));
+    typedef int32_t I __attribute__((vector_size(4 * N)));
+};
 
 /// The abscissa offsets of the taps, float(i), as constants.
 constexpr float kTapOffset[kMaxFilterTaps] = {0,  1,  2,  3,  4,  5,  6,  7,  8,  9,  10, 11, 12, 13, 14, 15, 16,
@@ -52,52 +54,59 @@ constexpr float kTapOffset[kMaxFilterTaps] = {0,  1,  2,  3,  4,  5,  6,  7,  8,
 /// parts so that n·ln2_hi is exact (Cody & Waite 1980, Software Manual for the Elementary Functions,
 /// ch. 6), e^r by its Taylor series to r⁷ on |r| ≤ ln 2/2 (truncation below 6e-9), times 2^n built in
 /// the exponent field. Only IEEE-rounded operations, so every instruction set gives the same bits.
-__attribute__((always_inline)) inline F16 exp16(F16 x) {
-    const F16 lo = x < -87.f ? F16{} - 87.f : x;
-    const F16 xc = lo > 88.f ? F16{} + 88.f : lo;
-    const F16 n = (xc * 1.44269504f + 12582912.f) - 12582912.f;
-    const F16 r = (xc - n * 0.693359375f) - n * -2.12194440e-4f;
-    const F16 p = 1.f + r * (1.f + r * (0.5f + r * (1.f / 6.f + r * (1.f / 24.f + r * (1.f / 120.f + r * (1.f / 720.f + r * (1.f / 5040.f)))))));
-    const I16 k = (I16)(n + 12582912.f) - (I16)(F16{} + 12582912.f);
-    const F16 two_n = (F16)((k + 127) << 23);
-    const F16 e = p * two_n;
-    return (F16)((I16)e & (x < -87.f ? I16{} : I16{} - 1));
+template <int N>
+__attribute__((always_inline)) inline typename TapVec<N>::F exp_taps(typename TapVec<N>::F x) {
+    using FV = typename TapVec<N>::F;
+    using IV = typename TapVec<N>::I;
+    const FV lo = x < -87.f ? FV{} - 87.f : x;
+    const FV xc = lo > 88.f ? FV{} + 88.f : lo;
+    const FV n = (xc * 1.44269504f + 12582912.f) - 12582912.f;
+    const FV r = (xc - n * 0.693359375f) - n * -2.12194440e-4f;
+    const FV p = 1.f + r * (1.f + r * (0.5f + r * (1.f / 6.f + r * (1.f / 24.f + r * (1.f / 120.f + r * (1.f / 720.f + r * (1.f / 5040.f)))))));
+    const IV k = (IV)(n + 12582912.f) - (IV)(FV{} + 12582912.f);
+    const FV two_n = (FV)((k + 127) << 23);
+    const FV e = p * two_n;
+    return (FV)((IV)e & (x < -87.f ? IV{} : IV{} - 1));
 }
 
-// The Gaussian's taps (kShift: the shifted profile; kN: the number of taps when it is known at
-// compile time, 0 for any n). Each row starts at its middle tap c, at xc = x0 + c, and walks
-// outwards: right with the ratio e(x + 1)/e(x) = exp(−(2x + 1)k), left with e(x − 1)/e(x) =
+// The Gaussian's taps on rows [r0, r0 + N) (kShift: the shifted profile; kN: the number of taps when
+// it is known at compile time, 0 for any n). Each row starts at its middle tap c, at xc = x0 + c, and
+// walks outwards: right with the ratio e(x + 1)/e(x) = exp(−(2x + 1)k), left with e(x − 1)/e(x) =
 // exp(−(1 − 2x)k), each ratio shrinking by q = exp(−2k) a step. The product of the two first ratios
-// is q, so each row takes two exponentials, e(xc) and the right ratio (exp16). Every element is one
-// IEEE operation of the row's own input, in the same order whatever kShift, kN and the instruction set.
-template <bool kShift, int kN>
-__attribute__((always_inline)) inline void gaussian_taps16_impl(const GaussianFilter& g, const float x0[16], int n_dyn,
-                                                                float (*w)[16]) {
+// is q, so each row takes two exponentials, e(xc) and the right ratio (exp_taps). Every element is one
+// IEEE operation of the row's own input, in the same order whatever kShift, kN, N and the instruction set.
+template <int N, bool kShift, int kN>
+__attribute__((always_inline)) inline void gaussian_taps_block(const GaussianFilter& g, const float* x0, int n_dyn,
+                                                               float (*w)[16], int r0) {
+    using FV = typename TapVec<N>::F;
+    using IV = typename TapVec<N>::I;
     const int n = kN > 0 ? kN : n_dyn, c = n / 2;
-    const F16 zero{};
-    const F16 x = load_f16(x0), k = zero + g.m_k;
-    const F16 xc = x + kTapOffset[c];
-    const F16 ec = exp16(-xc * xc * k), r0 = exp16(-(2.f * xc + 1.f) * k);
-    const F16 q = zero + g.m_q, radius = zero + g.m_radius;
-    auto tap = [&](int i, F16 e) {
-        const F16 xi = x + kTapOffset[i];
-        F16 v;
+    const FV zero{};
+    FV x;
+    std::memcpy(&x, x0 + r0, sizeof x);
+    const FV k = zero + g.m_k;
+    const FV xc = x + kTapOffset[c];
+    const FV ec = exp_taps<N>(-xc * xc * k), r0v = exp_taps<N>(-(2.f * xc + 1.f) * k);
+    const FV q = zero + g.m_q, radius = zero + g.m_radius;
+    auto tap = [&](int i, FV e) {
+        const FV xi = x + kTapOffset[i];
+        FV v;
         if constexpr (kShift) {
-            const F16 d = e - g.m_bias;
+            const FV d = e - g.m_bias;
             v = zero < d ? d : zero;  // std::max(0, g − g(r))
         } else {
             v = zero < e ? e : zero;  // std::max(0, e) (e − 0 is e)
         }
         // |x| < r (false for NaN, as fabs)
-        const I16 in = ((F16)((I16)xi & 0x7fffffff) < radius);
-        const F16 out = (F16)((I16)v & in);
-        std::memcpy(w[i], &out, sizeof out);
+        const IV in = ((FV)((IV)xi & 0x7fffffff) < radius);
+        const FV out = (FV)((IV)v & in);
+        std::memcpy(w[i] + r0, &out, sizeof out);
     };
     // The two walks are independent: the left one's first ratio (a division) starts at once.
-    F16 el_ratio = q / r0;  // exp(−(1 − 2xc)k)
-    F16 el = ec * el_ratio;
+    FV el_ratio = q / r0v;  // exp(−(1 − 2xc)k)
+    FV el = ec * el_ratio;
     el_ratio *= q;
-    F16 er = ec, er_ratio = r0;
+    FV er = ec, er_ratio = r0v;
     for (int i = c; i < n; ++i) {
         tap(i, er);
         er *= er_ratio;
@@ -110,20 +119,29 @@ __attribute__((always_inline)) inline void gaussian_taps16_impl(const GaussianFi
     }
 }
 
-template <bool kShift>
+template <int N, bool kShift, int kN>
+__attribute__((always_inline)) inline void gaussian_taps16_impl(const GaussianFilter& g, const float x0[16], int n,
+                                                                float (*w)[16]) {
+    static_assert(16 % N == 0, "whole blocks of rows");
+    for (int r0 = 0; r0 < 16; r0 += N) gaussian_taps_block<N, kShift, kN>(g, x0, n, w, r0);
+}
+
+template <int N, bool kShift>
 __attribute__((always_inline)) inline void gaussian_taps16_shift(const GaussianFilter& g, const float x0[16], int n,
                                                                  float (*w)[16]) {
     switch (n) {  // the film's common sizes fully unrolled
-    case 5: return gaussian_taps16_impl<kShift, 5>(g, x0, n, w);
-    case 7: return gaussian_taps16_impl<kShift, 7>(g, x0, n, w);
-    case 3: return gaussian_taps16_impl<kShift, 3>(g, x0, n, w);
-    default: return gaussian_taps16_impl<kShift, 0>(g, x0, n, w);
+    case 5: return gaussian_taps16_impl<N, kShift, 5>(g, x0, n, w);
+    case 7: return gaussian_taps16_impl<N, kShift, 7>(g, x0, n, w);
+    case 3: return gaussian_taps16_impl<N, kShift, 3>(g, x0, n, w);
+    default: return gaussian_taps16_impl<N, kShift, 0>(g, x0, n, w);
     }
 }
 
+/// The sixteen rows in blocks of N (the variant's register width in floats).
+template <int N>
 __attribute__((always_inline)) inline void gaussian_taps16(const GaussianFilter& g, const float x0[16], int n, float (*w)[16]) {
-    if (g.shift) gaussian_taps16_shift<true>(g, x0, n, w);
-    else gaussian_taps16_shift<false>(g, x0, n, w);
+    if (g.shift) gaussian_taps16_shift<N, true>(g, x0, n, w);
+    else gaussian_taps16_shift<N, false>(g, x0, n, w);
 }
 
 // The instruction-set variants of the Gaussian's taps (FilterTapsVariant): on x86-64 with GCC,
@@ -131,14 +149,16 @@ __attribute__((always_inline)) inline void gaussian_taps16(const GaussianFilter&
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define PELLUCID_TAPS_X86_VARIANTS 1
 #endif
-void gaussian_taps16_baseline(const GaussianFilter& g, const float x0[16], int n, float (*w)[16]) { gaussian_taps16(g, x0, n, w); }
+void gaussian_taps16_baseline(const GaussianFilter& g, const float x0[16], int n, float (*w)[16]) {
+    gaussian_taps16<4>(g, x0, n, w);
+}
 #ifdef PELLUCID_TAPS_X86_VARIANTS
 __attribute__((target("avx2"))) void gaussian_taps16_avx2(const GaussianFilter& g, const float x0[16], int n, float (*w)[16]) {
-    gaussian_taps16(g, x0, n, w);
+    gaussian_taps16<8>(g, x0, n, w);
 }
 __attribute__((target("avx512f"))) void gaussian_taps16_avx512(const GaussianFilter& g, const float x0[16], int n,
                                                                float (*w)[16]) {
-    gaussian_taps16(g, x0, n, w);
+    gaussian_taps16<16>(g, x0, n, w);
 }
 #endif
 

@@ -115,9 +115,9 @@ constexpr int kMaxFilterTaps = 2 * 16 + 1;
 /// rightwards; each row starts at its middle tap and walks outwards, so the rounding compounds over
 /// at most m steps (within 1.5e-6 of the profile, relative, for σ ≤ 1.2; test_filter.cpp). The
 /// exponentials are film.cpp's own (Cody–Waite reduction and a polynomial, IEEE-rounded operations
-/// only) and the recurrence runs on the sixteen rows side by side (3, 5 and 7 taps in fixed-size
-/// code, the same operations), compiled for the baseline and, on x86-64, for AVX2 and AVX-512
-/// (FilterTapsVariant): every variant gives the same bits, so the weights are the same on every
+/// only) and the recurrence runs on the sixteen rows side by side, in blocks of one register's
+/// width (3, 5 and 7 taps in fixed-size code, the same operations), compiled for the baseline (4
+/// rows a block) and, on x86-64, for AVX2 (8) and AVX-512 (16) (FilterTapsVariant): every variant gives the same bits, so the weights are the same on every
 /// machine and for every SIMD target of the path tracer. Each row's arithmetic depends only on its
 /// own x0: a row's weights do not depend on the other rows of the call.
 void eval_filter_taps16(const Filter& f, const float x0[16], int n, float (*w)[16]);
