@@ -98,4 +98,52 @@ private:
     PCG32(Raw, uint64_t state, uint64_t inc) : m_state(state), m_inc(inc) {}
     uint64_t m_state, m_inc;
 };
+
+/// PCG32's parts on four streams side by side, for the loops that advance a packet's streams (the
+/// path kernel): GCC/Clang vector types, one AVX2 register of states (two SSE or NEON ones). Plain
+/// loops over PCG32::step, output and to_float stay scalar on AVX2, which has neither a 64-bit
+/// multiply nor an unsigned conversion to float; these spell both out, and every element is
+/// computed as the scalar functions compute it, bit for bit (tests/cpp/sampling/test_rng.cpp).
+/// (GCC notes that a vector return changes the ABI between instruction sets: these are always
+/// inlined, never called. The kernel uses them on its AVX2 and AVX-512 targets, whose registers hold
+/// a State, and its SSE4.2 and scalar targets keep the scalar loops.)
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+struct PCG32x4 {
+    typedef uint64_t State __attribute__((vector_size(32)));
+    typedef int64_t Mask64 __attribute__((vector_size(32)));
+    typedef uint32_t U32 __attribute__((vector_size(16)));
+    typedef int32_t I32 __attribute__((vector_size(16)));
+    typedef float F32 __attribute__((vector_size(16)));
+
+    [[gnu::always_inline]] static State step(State state, State inc) { return state * 0x5851f42d4c957f2dULL + inc; }
+    [[gnu::always_inline]] static U32 output(State state) {
+        const U32 xorshifted = __builtin_convertvector(((state >> 18u) ^ state) >> 27u, U32);
+        const U32 rot = __builtin_convertvector(state >> 59u, U32);
+        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
+    }
+    /// PCG32::to_float: float(v) is v rounded once to the nearest float; so is hi·2¹⁶ + lo with v's
+    /// high and low 16 bits, both converted exactly (as signed integers) and hi·2¹⁶ exact, so the
+    /// sum's one rounding gives the same float.
+    [[gnu::always_inline]] static F32 to_float(U32 v) {
+        const F32 hi = __builtin_convertvector((I32)(v >> 16u), F32);
+        const F32 lo = __builtin_convertvector((I32)(v & 0xffffu), F32);
+        const F32 f = (hi * 65536.f + lo) * 0x1p-32f;
+        return kOneMinusEpsilon < f ? F32{} + kOneMinusEpsilon : f;  // std::min(f, kOneMinusEpsilon)
+    }
+    /// mix_bits on four values.
+    [[gnu::always_inline]] static State mix_bits(State v) {
+        v ^= v >> 31u;
+        v *= 0x7fb5d329728ea185ULL;
+        v ^= v >> 27u;
+        v *= 0x81dadef4bc2dd44dULL;
+        v ^= v >> 33u;
+        return v;
+    }
+};
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 }  // namespace pellucid

@@ -1,0 +1,77 @@
+// PCG32 on four streams side by side (sampling/rng.h, PCG32x4) against the scalar generator, bit
+// for bit: the path kernel draws its packets' numbers and seeds their samples with it, and every
+// SIMD target must give the scalar target's image (the seeding itself:
+// SimdTargetRender.PacketStartedSamplesAreStartSamples).
+// SPDX-License-Identifier: Apache-2.0
+// (This file is built for the baseline instruction set, where GCC notes that a 32-byte vector
+// return would change the ABI; PCG32x4's functions are always inlined.)
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "pellucid/sampling/rng.h"
+
+using namespace pellucid;
+
+namespace {
+uint32_t float_bits(float f) {
+    uint32_t b;
+    std::memcpy(&b, &f, sizeof b);
+    return b;
+}
+
+// 64-bit values from a fixed generator, with the edges of the ranges the functions read.
+std::vector<uint64_t> test_states() {
+    std::vector<uint64_t> v = {0, 1, ~0ULL, 0x8000000000000000ULL, 0x00000000ffffffffULL, 0xffffffff00000000ULL,
+                               0x5851f42d4c957f2dULL, 0x853c49e6748fea9bULL};
+    uint64_t x = 0x9E3779B97F4A7C15ULL;
+    for (int i = 0; i < 4000; ++i) v.push_back(x = mix_bits(x + uint64_t(i)));
+    while (v.size() % 4) v.push_back(mix_bits(v.size()));
+    return v;
+}
+}  // namespace
+
+TEST(PCG32x4, PartsEqualTheScalarOnes) {
+    using X = PCG32x4;
+    const std::vector<uint64_t> s = test_states();
+    for (size_t b = 0; b + 4 <= s.size(); b += 4) {
+        X::State st, inc;
+        std::memcpy(&st, &s[b], sizeof st);
+        for (int l = 0; l < 4; ++l) inc[l] = PCG32::increment_of(s[(b + 7 * l + 3) % s.size()]);
+        const X::State stepped = X::step(st, inc), mixed = X::mix_bits(st);
+        const X::U32 out = X::output(st);
+        const X::F32 f = X::to_float(out);
+        for (int l = 0; l < 4; ++l) {
+            ASSERT_EQ(stepped[l], PCG32::step(s[b + l], inc[l])) << s[b + l];
+            ASSERT_EQ(mixed[l], mix_bits(s[b + l])) << s[b + l];
+            ASSERT_EQ(out[l], PCG32::output(s[b + l])) << s[b + l];
+            ASSERT_EQ(float_bits(f[l]), float_bits(PCG32::to_float(out[l]))) << out[l];
+        }
+    }
+}
+
+// to_float's conversion rounds as float(v) does: every 32-bit value whose rounding to 24 bits is a
+// tie or next to one, and the values that round up to 2³² (clamped to 1 − ε).
+TEST(PCG32x4, ToFloatRoundsAsTheScalarConversion) {
+    using X = PCG32x4;
+    std::vector<uint32_t> v = {0u, 1u, 0xffffu, 0x10000u, 0xffffffffu, 0xffffff80u, 0xffffff7fu, 0x80000000u};
+    for (uint32_t e = 24; e < 32; ++e)
+        for (uint32_t m = 0; m < 64; ++m) {
+            const uint32_t base = (1u << e) + m * (1u << (e - 6)) * 3u;
+            const uint32_t half = 1u << (e - 24);  // half an ulp of a float at this exponent
+            for (uint32_t d : {half - 1u, half, half + 1u, 2u * half, 3u * half}) v.push_back(base + d);
+        }
+    uint32_t x = 12345u;
+    for (int i = 0; i < 20000; ++i) v.push_back(x = x * 1664525u + 1013904223u);
+    while (v.size() % 4) v.push_back(0u);
+    for (size_t b = 0; b < v.size(); b += 4) {
+        X::U32 u;
+        std::memcpy(&u, &v[b], sizeof u);
+        const X::F32 f = X::to_float(u);
+        for (int l = 0; l < 4; ++l) ASSERT_EQ(float_bits(f[l]), float_bits(PCG32::to_float(v[b + l]))) << v[b + l];
+    }
+}
