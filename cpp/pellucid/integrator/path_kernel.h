@@ -290,7 +290,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         // The lanes `go` take the chunk's next paths, in lane order, or go idle. The paths are dealt
         // out one lane at a time (a counter over the chunk's pixels and samples); with the
         // independent sampler and a splatting film, each sample's seeding and pixel offset are
-        // computed for all lanes at once, from PCG32's parts in a loop the compiler vectorises
+        // computed for all lanes at once, from PCG32's parts, four streams a vector (PCG32x4)
         // (the numbers path_services::start_sample gives); otherwise one lane at a time by it.
         const bool packet_seeding = ps.sampler == SamplerType::Independent && splat;
         auto start_lanes = [&](const bool* go) {
