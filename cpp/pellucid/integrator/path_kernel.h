@@ -637,20 +637,16 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 if constexpr (W % 4 == 0 && W >= 8) {  // four streams at a time (PCG32x4: the same bits)
                     using X = PCG32x4;
                     for (int b = 0; b < W; b += 4) {
-                        X::State s, c;
-                        X::I32 d0, d1;
-                        std::memcpy(&s, st + b, sizeof s), std::memcpy(&c, inc + b, sizeof c);
-                        std::memcpy(&d0, a.draw0 + b, sizeof d0), std::memcpy(&d1, a.draw1 + b, sizeof d1);
+                        X::State s = X::load<X::State>(st + b);
+                        const X::State c = X::load<X::State>(inc + b);
+                        const X::I32 d0 = X::load<X::I32>(a.draw0 + b), d1 = X::load<X::I32>(a.draw1 + b);
                         for (int k = 0; k < 7; ++k) {
                             const X::I32 kv = X::I32{} + k;
                             const X::I32 draw = (kv >= d0) & (kv < d1);
-                            X::F32 u;
-                            std::memcpy(&u, a.u[k] + b, sizeof u);
-                            u = draw ? X::to_float(X::output(s)) : u;
-                            std::memcpy(a.u[k] + b, &u, sizeof u);
+                            X::store(a.u[k] + b, draw ? X::to_float(X::output(s)) : X::load<X::F32>(a.u[k] + b));
                             s = __builtin_convertvector(draw, X::Mask64) ? X::step(s, c) : s;
                         }
-                        std::memcpy(st + b, &s, sizeof s);
+                        X::store(st + b, s);
                     }
                 } else {
                     for (int k = 0; k < 7; ++k) {

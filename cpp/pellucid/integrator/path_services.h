@@ -217,20 +217,16 @@ template <int N>
     if constexpr (N % 4 == 0 && N >= 8) {  // four streams at a time (PCG32x4: the same bits)
         using X = PCG32x4;
         for (int b = 0; b < N; b += 4) {
-            X::State st, smp;
-            X::F32 x, y;
-            std::memcpy(&st, stream + b, sizeof st), std::memcpy(&smp, sample + b, sizeof smp);
-            std::memcpy(&x, cx + b, sizeof x), std::memcpy(&y, cy + b, sizeof y);
+            const X::State st = X::load<X::State>(stream + b), smp = X::load<X::State>(sample + b);
             const X::State c = (st << 1u) | 1u;                   // increment_of
             X::State s = X::mix_bits(smp ^ (st << 1u));           // sample_init
             s = X::step(X::step(X::State{}, c) + s, c);           // seeded_state
             const X::F32 u0 = X::to_float(X::output(s));
             s = X::step(s, c);
             const X::F32 u1 = X::to_float(X::output(s));
-            s = X::step(s, c);
-            const X::F32 px = x + (u0 - 0.5f), py = y + (u1 - 0.5f);
-            std::memcpy(state + b, &s, sizeof s), std::memcpy(inc + b, &c, sizeof c);
-            std::memcpy(fx + b, &px, sizeof px), std::memcpy(fy + b, &py, sizeof py);
+            X::store(state + b, X::step(s, c)), X::store(inc + b, c);
+            // film_position with a splatting film: the pixel's corner + 0.5 + (u - 0.5).
+            X::store(fx + b, X::load<X::F32>(cx + b) + (u0 - 0.5f)), X::store(fy + b, X::load<X::F32>(cy + b) + (u1 - 0.5f));
         }
         return;
     }

@@ -4,6 +4,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 
 #include "pellucid/math/constants.h"
 #include "pellucid/math/vec.h"
@@ -118,6 +119,19 @@ struct PCG32x4 {
     typedef int32_t I32 __attribute__((vector_size(16)));
     typedef float F32 __attribute__((vector_size(16)));
 
+    /// Four elements of an array as a vector V (State, I32 or F32), and back.
+    template <class V, class T>
+    [[gnu::always_inline]] static V load(const T* p) {
+        static_assert(sizeof(V) == 4 * sizeof(T), "four elements");
+        V v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    }
+    template <class V, class T>
+    [[gnu::always_inline]] static void store(T* p, const V& v) {
+        static_assert(sizeof(V) == 4 * sizeof(T), "four elements");
+        std::memcpy(p, &v, sizeof v);
+    }
     [[gnu::always_inline]] static State step(State state, State inc) { return state * 0x5851f42d4c957f2dULL + inc; }
     [[gnu::always_inline]] static U32 output(State state) {
         const U32 xorshifted = __builtin_convertvector(((state >> 18u) ^ state) >> 27u, U32);
