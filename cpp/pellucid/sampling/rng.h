@@ -11,15 +11,54 @@
 
 namespace pellucid {
 
-/// 64-bit finaliser of MurmurHash3 / splitmix64; used to decorrelate seeds.
-inline uint64_t mix_bits(uint64_t v) {
-    v ^= v >> 31;
+// The generator's arithmetic, written once for a uint64_t and for PCG32x4's vectors of four
+// (GCC/Clang vector types take the same operators, element by element). These and PCG32x4's
+// functions take vectors by reference: a 32-byte vector argument, in code built for the baseline
+// instruction set, draws GCC's note on the ABI of such arguments (which no pragma silences), and
+// every one of them is inlined anyway.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"  // vector arguments: see PCG32x4
+#endif
+namespace rng_detail {
+typedef uint64_t U64x4 __attribute__((vector_size(32)));
+typedef uint32_t U32x4 __attribute__((vector_size(16)));
+/// The low 32 bits of each element.
+[[gnu::always_inline]] inline uint32_t low32(uint64_t v) { return uint32_t(v); }
+[[gnu::always_inline]] inline U32x4 low32(const U64x4& v) { return __builtin_convertvector(v, U32x4); }
+
+/// 64-bit finaliser of MurmurHash3 / splitmix64.
+template <class T>
+[[gnu::always_inline]] inline T mix_bits(const T& value) {
+    T v = value;
+    v ^= v >> 31u;
     v *= 0x7fb5d329728ea185ULL;
-    v ^= v >> 27;
+    v ^= v >> 27u;
     v *= 0x81dadef4bc2dd44dULL;
-    v ^= v >> 33;
+    v ^= v >> 33u;
     return v;
 }
+/// PCG32's state transition, the step of a 64-bit LCG with pcg32's
+/// multiplier (O'Neill 2014).
+template <class T>
+[[gnu::always_inline]] inline T pcg_step(const T& state, const T& inc) {
+    return state * 0x5851f42d4c957f2dULL + inc;
+}
+/// PCG32's output of a step from `state`: XSH RR, a xorshift of the high bits, kept to 32 bits
+/// and rotated by the top 5 bits of the state (O'Neill 2014, PCG-XSH-RR).
+template <class T>
+[[gnu::always_inline]] inline auto pcg_output(const T& state) {
+    const auto xorshifted = low32(((state >> 18u) ^ state) >> 27u);
+    const auto rot = low32(state >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
+}
+}  // namespace rng_detail
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
+/// 64-bit finaliser of MurmurHash3 / splitmix64; used to decorrelate seeds.
+inline uint64_t mix_bits(uint64_t v) { return rng_detail::mix_bits(v); }
 
 class PCG32 {
 public:
@@ -70,14 +109,8 @@ public:
     // The generator's parts, for code that advances many streams side by side (the path kernel
     // keeps a packet's states in arrays, and these loops vectorise): the state after `state`, the
     // output of a step from `state` (XSH RR: xorshift high, random rotation), and [0, 1) from it.
-    [[gnu::always_inline]] static uint64_t step(uint64_t state, uint64_t inc) {
-        return state * 0x5851f42d4c957f2dULL + inc;
-    }
-    [[gnu::always_inline]] static uint32_t output(uint64_t state) {
-        const uint32_t xorshifted = uint32_t(((state >> 18u) ^ state) >> 27u);
-        const uint32_t rot = uint32_t(state >> 59u);
-        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31));
-    }
+    [[gnu::always_inline]] static uint64_t step(uint64_t state, uint64_t inc) { return rng_detail::pcg_step(state, inc); }
+    [[gnu::always_inline]] static uint32_t output(uint64_t state) { return rng_detail::pcg_output(state); }
     [[gnu::always_inline]] static float to_float(uint32_t v) {
         return std::min(float(v) * 0x1p-32f, kOneMinusEpsilon);  // std::min inlines; std::fmin is a libm call
     }
@@ -113,9 +146,9 @@ private:
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
 struct PCG32x4 {
-    typedef uint64_t State __attribute__((vector_size(32)));
+    typedef rng_detail::U64x4 State;
     typedef int64_t Mask64 __attribute__((vector_size(32)));
-    typedef uint32_t U32 __attribute__((vector_size(16)));
+    typedef rng_detail::U32x4 U32;
     typedef int32_t I32 __attribute__((vector_size(16)));
     typedef float F32 __attribute__((vector_size(16)));
 
@@ -132,12 +165,8 @@ struct PCG32x4 {
         static_assert(sizeof(V) == 4 * sizeof(T), "four elements");
         std::memcpy(p, &v, sizeof v);
     }
-    [[gnu::always_inline]] static State step(State state, State inc) { return state * 0x5851f42d4c957f2dULL + inc; }
-    [[gnu::always_inline]] static U32 output(State state) {
-        const U32 xorshifted = __builtin_convertvector(((state >> 18u) ^ state) >> 27u, U32);
-        const U32 rot = __builtin_convertvector(state >> 59u, U32);
-        return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31u));
-    }
+    [[gnu::always_inline]] static State step(const State& state, const State& inc) { return rng_detail::pcg_step(state, inc); }
+    [[gnu::always_inline]] static U32 output(const State& state) { return rng_detail::pcg_output(state); }
     /// PCG32::to_float: float(v) is v rounded once to the nearest float; so is hi·2¹⁶ + lo with v's
     /// high and low 16 bits, both converted exactly (as signed integers) and hi·2¹⁶ exact, so the
     /// sum's one rounding gives the same float.
@@ -148,14 +177,7 @@ struct PCG32x4 {
         return kOneMinusEpsilon < f ? F32{} + kOneMinusEpsilon : f;  // std::min(f, kOneMinusEpsilon)
     }
     /// mix_bits on four values.
-    [[gnu::always_inline]] static State mix_bits(State v) {
-        v ^= v >> 31u;
-        v *= 0x7fb5d329728ea185ULL;
-        v ^= v >> 27u;
-        v *= 0x81dadef4bc2dd44dULL;
-        v ^= v >> 33u;
-        return v;
-    }
+    [[gnu::always_inline]] static State mix_bits(const State& v) { return rng_detail::mix_bits(v); }
 };
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop

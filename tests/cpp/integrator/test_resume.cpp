@@ -127,15 +127,23 @@ TEST_P(ResumeBitIdentical, FinishedThenContinued) {
 
 // Cancelled at whatever point a timer hits (during a render far too long to finish), then continued
 // a few samples past that point: bit-identical to an uninterrupted render of that length.
+// The timer fires 0.25 s in, but never before 8 spp of samples have been taken: a first pass is at
+// most 8 spp (1 with filter sampling, 2-8 with splatting: render_loop.cpp), so at least one pass is
+// whole however slow the build. (A sanitizer build on a loaded machine took longer than 0.25 s for
+// the first pass, which a cancellation midway discards.)
 TEST_P(ResumeBitIdentical, CancelledThenContinued) {
     const auto [film, sampler] = GetParam();
-    auto scene = scene_from(scene_json(film, sampler, 48, 36));
+    const int w = 48, h = 36;
+    auto scene = scene_from(scene_json(film, sampler, w, h));
     std::atomic<bool> cancel{false};
+    RenderProgress progress;
     RenderOptions o;
     o.spp = 1 << 24;
     o.cancel = &cancel;
+    o.progress_out = &progress;
     std::thread timer([&] {
         std::this_thread::sleep_for(std::chrono::milliseconds(250));
+        while (progress.samples.load() < uint64_t(8 * w * h)) std::this_thread::sleep_for(std::chrono::milliseconds(1));
         cancel = true;
     });
     const RenderResult part = render(*scene, o);
