@@ -20,6 +20,11 @@ if(PELLUCID_SANITIZE)
   add_compile_options(-fsanitize=${PELLUCID_SANITIZE} -fno-sanitize-recover=all -fno-omit-frame-pointer)
   add_link_options(-fsanitize=${PELLUCID_SANITIZE})
 endif()
+# The SIMD targets the path tracer and its lane tests are built for, as a list (x86-64: avx512, avx2,
+# sse4; arm64: neon); empty: every target of the processor family. The scalar target is always
+# built, and the run time picks the widest built target the CPU runs. `make sanitize` builds "avx2"
+# on x86-64 (Makefile).
+set(PELLUCID_KERNEL_TARGETS "" CACHE STRING "SIMD targets to build, e.g. avx2;sse4 (empty: all of this processor family)")
 # A diagnostic build of the path tracer (bench/dispatch_stats.py): each masked call of a packet
 # form records its active lanes and its time stamp-counter cycles, printed when the process exits.
 # Off in every other build, where the counting compiles to nothing.
