@@ -2,7 +2,7 @@
 SPDX-License-Identifier: Apache-2.0
 
     python -m pellucid bench --suite [--scenes a,b] [--spp N] [--threads 2] [--quick] [--repeats R]
-        [--reference-spp 1024] [--reference-renderer ours|mitsuba] [--no-peer] [--no-agreement]
+        [--error-repeats E] [--reference-spp 1024] [--reference-renderer ours|mitsuba] [--no-peer] [--no-agreement]
         [--out-dir bench/results/suite] [--cache-dir bench/cache] [--mitsuba-python PY]
 
 For each scene of the manifest (bench/suite/suite.json, written with the scenes by
@@ -10,7 +10,11 @@ bench/suite/make_suite.py) both renderers render the same spp with the same numb
 default), each in its own process and each warm: pellucid renders 1 spp untimed first, Mitsuba renders
 the timed configuration once untimed (its JIT compiles per spp and film). Only the render is timed,
 never loading. ``--repeats R`` alternates R timed runs of each renderer, each with its own seed: samples/s
-is the median run's, relMSE the mean over the R images. Mitsuba 3 is optional
+is the median run's, relMSE the mean over the R images. ``--error-repeats E`` adds E more renders of
+each renderer, each with its own seed, whose images count in relMSE only: where a few rare bright
+paths dominate an image's error (caustics through near-specular glass, say), a handful of images
+gives ratios anywhere from a third to several times the true one, so the ratio is given with a 90 %
+bootstrap interval over the images. Mitsuba 3 is optional
 (bench/peers/setup_mitsuba.sh); without it the suite reports pellucid alone. Per scene it reports:
 
 * samples/s of each renderer and their ratio (pellucid / Mitsuba), and the geometric mean of the ratio;
@@ -55,7 +59,8 @@ CSV_FIELDS = ("scene", "peer", "width", "height", "spp", "threads",
               "ours_invalid_samples",
               "mitsuba_seconds", "mitsuba_samples_per_second", "mitsuba_load_seconds", "mitsuba_peak_rss_mb",
               "ratio", "ours_relmse", "mitsuba_relmse", "ref_relmse_floor", "ours_eqtime_relmse",
-              "mitsuba_eqtime_relmse", "relmse_ratio", "ztest_pass_fraction", "ztest_critical_z", "agreement",
+              "mitsuba_eqtime_relmse", "relmse_ratio", "relmse_ratio_lo", "relmse_ratio_hi", "relmse_images",
+              "ztest_pass_fraction", "ztest_critical_z", "agreement",
               "mean_ratio", "reference")
 
 
@@ -238,6 +243,8 @@ class Result:
     ztest: Optional[Tuple[float, float]] = None
     ours_all: List[Run] = dataclasses.field(default_factory=list)  # every repeat (ours / mitsuba: the median)
     mitsuba_all: List[Run] = dataclasses.field(default_factory=list)
+    ours_err: List[Run] = dataclasses.field(default_factory=list)  # --error-repeats: images for relMSE only
+    mitsuba_err: List[Run] = dataclasses.field(default_factory=list)
 
     @property
     def ratio(self) -> Optional[float]:
@@ -271,6 +278,12 @@ def measure_scene(entry: Dict[str, Any], folder: pathlib.Path, args, mi_py: Opti
         if mi_py is not None:
             mi_runs.append(run_peer(mi_py, scene, folder, args.seed + 1 + 7919 * r, args.threads, 1, substitute,
                                     workdir, twin))
+    ours_err, mi_err = [], []
+    for r in range(args.error_repeats):  # images for relMSE only, their seeds apart from the timed ones'
+        ours_err.append(run_ours(scene, folder, 50_000 + args.seed + 7919 * r, args.threads, workdir))
+        if mi_py is not None:
+            mi_err.append(run_peer(mi_py, scene, folder, 50_001 + args.seed + 7919 * r, args.threads, 1, substitute,
+                                   workdir, twin))
     ours = _median_run(ours_runs)
     mi = _median_run(mi_runs) if mi_runs else None
 
@@ -283,7 +296,8 @@ def measure_scene(entry: Dict[str, Any], folder: pathlib.Path, args, mi_py: Opti
     ref_desc = (f"{ref_spp_real} spp by " + ("pellucid mis" if args.reference_renderer == "ours"
                                                else "Mitsuba llvm_ad_rgb") + f" ({pathlib.Path(ref_path).name})")
     res = Result(entry["name"], entry["peer"], W, H, spp, args.threads, ours, mi, ref_desc,
-                 _bench.ref_relmse_floor(ref, ref_var), ours_all=ours_runs, mitsuba_all=mi_runs)
+                 _bench.ref_relmse_floor(ref, ref_var), ours_all=ours_runs, mitsuba_all=mi_runs, ours_err=ours_err,
+                 mitsuba_err=mi_err)
     if mi_py is not None and entry["peer"] == "same" and not args.no_agreement:
         agree = json.loads(json.dumps(scene))
         agree["sampler"]["sample_count"] = -(-spp // AGREEMENT_PASSES) * AGREEMENT_PASSES
@@ -301,22 +315,49 @@ def _mean_relmse(runs: Sequence[Run], ref: np.ndarray) -> Tuple[float, float]:
     return (float(np.mean([_bench.rel_mse(r.image, ref) for r in runs])), float(np.mean([r.seconds for r in runs])))
 
 
+BOOTSTRAP_DRAWS, BOOTSTRAP_SEED = 2000, 12345
+
+
+def relmse_ratio_interval(ours: Sequence[float], theirs: Sequence[float], floor: float, time_scale: float,
+                          level: float = 0.9) -> Optional[Tuple[float, float]]:
+    """The central `level` interval of the equal-time relMSE ratio, (mean(ours) - floor) /
+    ((mean(theirs) - floor) * time_scale), over bootstrap resamples of each renderer's per-image relMSE
+    (drawn apart: the images are independent), with a fixed seed; None with fewer than 3 images a side."""
+    if len(ours) < 3 or len(theirs) < 3:
+        return None
+    rng = np.random.default_rng(BOOTSTRAP_SEED)
+    o, t = np.asarray(ours, np.float64), np.asarray(theirs, np.float64)
+    mo = o[rng.integers(0, len(o), (BOOTSTRAP_DRAWS, len(o)))].mean(1)
+    mt = t[rng.integers(0, len(t), (BOOTSTRAP_DRAWS, len(t)))].mean(1)
+    num = np.maximum(mo - floor, 0.0)
+    den = np.maximum(mt - floor, 0.0) * time_scale
+    ratio = np.where(den > 0, num / np.where(den > 0, den, 1.0), np.inf)
+    lo, hi = np.quantile(ratio, [(1 - level) / 2, (1 + level) / 2])
+    return float(lo), float(hi)
+
+
 def row(res: Result, ref: np.ndarray) -> Dict[str, Any]:
     """One CSV row. Samples/s: the median repeat. relMSE: the mean over the repeats. relMSE above the
     reference's noise floor scales as 1/time, so Mitsuba's is scaled to pellucid's render time:
     ``mitsuba_eqtime_relmse = (relMSE - floor) * t_mitsuba / t_ours`` (t: mean seconds of the repeats)."""
     o, m = res.ours, res.mitsuba
-    ours_rel, ours_t = _mean_relmse(res.ours_all or [o], ref)
+    ours_imgs = (res.ours_all or [o]) + res.ours_err
+    ours_rel, ours_t = _mean_relmse(ours_imgs, ref)
     d: Dict[str, Any] = {
         "scene": res.scene, "peer": res.peer, "width": res.width, "height": res.height, "spp": res.spp,
         "threads": res.threads, "ours_seconds": o.seconds, "ours_samples_per_second": o.samples_per_second,
         "ours_load_seconds": o.load_seconds, "ours_peak_rss_mb": o.peak_rss_mb, "ours_relmse": ours_rel,
         "ours_invalid_samples": sum(r.invalid_samples for r in res.ours_all or [o]),
         "ref_relmse_floor": res.ref_floor, "ours_eqtime_relmse": max(ours_rel - res.ref_floor, 0.0),
-        "reference": res.reference}
+        "reference": res.reference, "relmse_images": len(ours_imgs)}
     if m is not None:
-        mi_rel, mi_t = _mean_relmse(res.mitsuba_all or [m], ref)
+        mi_imgs = (res.mitsuba_all or [m]) + res.mitsuba_err
+        mi_rel, mi_t = _mean_relmse(mi_imgs, ref)
         eq = max(mi_rel - res.ref_floor, 0.0) * mi_t / ours_t
+        iv = relmse_ratio_interval([_bench.rel_mse(r.image, ref) for r in ours_imgs],
+                                   [_bench.rel_mse(r.image, ref) for r in mi_imgs], res.ref_floor, mi_t / ours_t)
+        if iv is not None:
+            d["relmse_ratio_lo"], d["relmse_ratio_hi"] = iv
         d.update({"mitsuba_seconds": m.seconds, "mitsuba_samples_per_second": m.samples_per_second,
                   "mitsuba_load_seconds": m.load_seconds, "mitsuba_peak_rss_mb": m.peak_rss_mb, "ratio": res.ratio,
                   "mitsuba_relmse": mi_rel, "mitsuba_eqtime_relmse": eq,
@@ -419,7 +460,7 @@ def summary(rows: Sequence[Dict[str, Any]], argv: Sequence[str], machine: Tuple[
             lines.append(f"| {r['scene']} | {r['spp']} | {r['ours_samples_per_second'] / 1e6:.3f} | "
                          f"{r['mitsuba_samples_per_second'] / 1e6:.3f} | {r['ratio']:.2f}x | "
                          f"{r['ours_eqtime_relmse']:.3e} | {r['mitsuba_eqtime_relmse']:.3e} | "
-                         f"{r['relmse_ratio']:.2f} | {z} | {r['mean_ratio']:.4f} | "
+                         f"{_ratio_with_interval(r)} | {z} | {r['mean_ratio']:.4f} | "
                          f"{_mb(r['ours_peak_rss_mb'])} / {_mb(r['mitsuba_peak_rss_mb'])} |")
     else:
         lines += ["| scene | spp | pellucid M samples/s | relMSE (above the reference's noise) | load s | peak MB |",
@@ -429,12 +470,20 @@ def summary(rows: Sequence[Dict[str, Any]], argv: Sequence[str], machine: Tuple[
                          f"{r['ours_eqtime_relmse']:.3e} | {r['ours_load_seconds']:.2f} | {_mb(r['ours_peak_rss_mb'])} |")
     lines += ["", "Columns: samples/s = width x height x spp / render seconds (loading and the warm-up render "
               "excluded; the median of the repeats). relMSE = mean (x - r)^2 / (r^2 + 0.01) against the reference, "
-              "averaged over the repeats, minus the reference's own noise floor; Mitsuba's is scaled by its render "
-              "time over pellucid's, so both are at pellucid's time. Agreement: share of pixel channels whose |z| between pellucid and a 16-pass Mitsuba render "
+              "averaged over the images (the timed repeats' and the --error-repeats'), minus the reference's own "
+              "noise floor; Mitsuba's is scaled by its render time over pellucid's (the images' mean seconds), so "
+              "both are at pellucid's time; in brackets, the ratio's 90 % bootstrap interval over the images "
+              "(with 3 or more a side). Agreement: share of pixel channels whose |z| between pellucid and a 16-pass Mitsuba render "
               "is within the Sidak-corrected critical value (alpha = 0.01), PASS at >= 99 %; 'models differ' "
               "scenes are timed against Mitsuba's nearest models. Mean ratio: image mean pellucid / Mitsuba. "
               "Peak MB: maximum resident memory of each renderer's process (Mitsuba's includes its LLVM JIT).", ""]
     return "\n".join(lines)
+
+
+def _ratio_with_interval(r: Dict[str, Any]) -> str:
+    if "relmse_ratio_lo" not in r:
+        return f"{r['relmse_ratio']:.2f}"
+    return f"{r['relmse_ratio']:.2f} ({r['relmse_ratio_lo']:.2f}-{r['relmse_ratio_hi']:.2f})"
 
 
 def plot(rows: Sequence[Dict[str, Any]], path: pathlib.Path, title: str) -> None:
@@ -489,6 +538,8 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--spp", type=int, default=None, help="samples per pixel for both renderers (default: the scene's)")
     p.add_argument("--threads", type=int, default=2, help="threads for both renderers (default 2)")
     p.add_argument("--repeats", type=int, default=1, help="timed runs per renderer, alternated; median speed")
+    p.add_argument("--error-repeats", type=int, default=0,
+                   help="more renders per renderer, each its own seed, for relMSE only (default 0)")
     p.add_argument("--quick", action="store_true",
                    help=f"films of at most {QUICK_SIZE} pixels a side, {QUICK_SPP} spp, {QUICK_REF_SPP}-spp references")
     p.add_argument("--reference-spp", type=int, default=None, help="reference spp (default 1024; quick 64)")
@@ -520,6 +571,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     try:
         if args.threads < 1 or args.repeats < 1 or (args.spp is not None and args.spp < 1):
             raise ValueError("--threads, --repeats and --spp must be >= 1")
+        if args.error_repeats < 0:
+            raise ValueError("--error-repeats must be >= 0")
         entries = load_manifest(folder)
         if args.scenes:
             wanted = [s.strip() for s in args.scenes.split(",") if s.strip()]

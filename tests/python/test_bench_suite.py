@@ -247,6 +247,38 @@ def test_equal_time_relmse_and_geomean():
         "y", "same", 2, 2, 4, 2, ours=mk(1.0, 1.0), mitsuba=None, reference="r", ref_floor=0.0), ref)]).endswith("none")
 
 
+def test_error_repeats_and_the_ratio_interval():
+    ref = np.ones((2, 2, 3))
+    mk = lambda v, s: bench_suite.Run(np.full((2, 2, 3), v), None, 4, s, 16.0 * s, 0.0, None)
+    res = bench_suite.Result("x", "same", 2, 2, 4, 2, ours=mk(1.1, 1.0), mitsuba=mk(1.2, 1.0), reference="r",
+                             ref_floor=0.0)
+    r = bench_suite.row(res, ref)
+    assert "relmse_ratio_lo" not in r and r["relmse_images"] == 1  # one image a side: no interval
+    assert bench_suite._ratio_with_interval(r) == f"{r['relmse_ratio']:.2f}"
+    # The error renders count in relMSE (and in its time scale), never in samples/s.
+    res.ours_err = [mk(1.3, 1.0), mk(1.1, 1.0)]
+    res.mitsuba_err = [mk(1.2, 3.0), mk(1.2, 1.0)]
+    r = bench_suite.row(res, ref)
+    assert r["relmse_images"] == 3
+    assert r["ratio"] == pytest.approx(1.0)
+    assert r["ours_eqtime_relmse"] == pytest.approx((0.01 + 0.09 + 0.01) / 3 / 1.01)
+    assert r["mitsuba_eqtime_relmse"] == pytest.approx(0.04 / 1.01 * (5.0 / 3) / 1.0)
+    lo, hi = r["relmse_ratio_lo"], r["relmse_ratio_hi"]
+    assert lo <= r["relmse_ratio"] <= hi and lo < hi
+    # Ours' images are 0.01, 0.09, 0.01 (/1.01): resamples of their mean run from 0.01 to 0.09, so the
+    # 90 % interval lies within and is wide; Mitsuba's are all alike.
+    scale = 0.04 / 1.01 * 5.0 / 3
+    assert lo >= 0.01 / 1.01 / scale - 1e-12 and hi <= 0.09 / 1.01 / scale + 1e-12
+    assert hi / lo > 2
+    assert bench_suite._ratio_with_interval(r) == f"{r['relmse_ratio']:.2f} ({lo:.2f}-{hi:.2f})"
+    # Fixed seed: the same interval every time.
+    assert bench_suite.row(res, ref)["relmse_ratio_lo"] == lo
+    # All images alike: the interval is the ratio itself.
+    iv = bench_suite.relmse_ratio_interval([0.02] * 4, [0.04] * 4, 0.0, 1.0)
+    assert iv == pytest.approx((0.5, 0.5))
+    assert bench_suite.relmse_ratio_interval([0.02] * 2, [0.04] * 4, 0.0, 1.0) is None
+
+
 def test_runner_quick_without_peer(tmp_path):
     out, cache = tmp_path / "out", tmp_path / "cache"
     cmd = [sys.executable, "-m", "pellucid", "bench", "--suite", "--quick", "--no-peer",
@@ -270,4 +302,7 @@ def test_runner_quick_without_peer(tmp_path):
 def test_runner_rejects_unknown_scenes(capsys, tmp_path):
     assert bench.main(["--suite", "--no-peer", "--scenes", "cornell_lambert,nosuch", "--out-dir", str(tmp_path)]) == 2
     assert "--scenes: unknown scene(s) nosuch" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())
+    assert bench.main(["--suite", "--no-peer", "--error-repeats", "-1", "--out-dir", str(tmp_path)]) == 2
+    assert "--error-repeats must be >= 0" in capsys.readouterr().err
     assert not any(tmp_path.iterdir())
