@@ -516,6 +516,14 @@ def plot(rows: Sequence[Dict[str, Any]], path: pathlib.Path, title: str) -> None
         vals = [r.get("relmse_ratio", float("nan")) for r in rows]
         ax.bar(x, [v if math.isfinite(v) else 0 for v in vals],
                color=["tab:blue" if v <= 1 else "tab:orange" for v in vals])
+        # The 90 % bootstrap interval over the images, where the run has one.
+        iv = [(k, r) for k, r in enumerate(rows) if "relmse_ratio_lo" in r and math.isfinite(vals[k])]
+        if iv:
+            ax.errorbar([k for k, _ in iv], [vals[k] for k, _ in iv],
+                        yerr=[[vals[k] - r["relmse_ratio_lo"] for k, r in iv],
+                              [r["relmse_ratio_hi"] - vals[k] for k, r in iv]],
+                        fmt="none", ecolor="k", elinewidth=1, capsize=2, label="90 % interval over the images")
+            ax.legend(fontsize=8)
         ax.set_yscale("log")
         ax.axhline(1.0, color="k", lw=1)
         ax.set_ylabel("equal-time relMSE  pellucid / Mitsuba\n(< 1: pellucid better)")

@@ -247,7 +247,7 @@ def test_equal_time_relmse_and_geomean():
         "y", "same", 2, 2, 4, 2, ours=mk(1.0, 1.0), mitsuba=None, reference="r", ref_floor=0.0), ref)]).endswith("none")
 
 
-def test_error_repeats_and_the_ratio_interval():
+def test_error_repeats_and_the_ratio_interval(tmp_path):
     ref = np.ones((2, 2, 3))
     mk = lambda v, s: bench_suite.Run(np.full((2, 2, 3), v), None, 4, s, 16.0 * s, 0.0, None)
     res = bench_suite.Result("x", "same", 2, 2, 4, 2, ours=mk(1.1, 1.0), mitsuba=mk(1.2, 1.0), reference="r",
@@ -277,6 +277,11 @@ def test_error_repeats_and_the_ratio_interval():
     iv = bench_suite.relmse_ratio_interval([0.02] * 4, [0.04] * 4, 0.0, 1.0)
     assert iv == pytest.approx((0.5, 0.5))
     assert bench_suite.relmse_ratio_interval([0.02] * 2, [0.04] * 4, 0.0, 1.0) is None
+    # The chart draws the interval as an error bar (a row without one beside it).
+    bench_suite.plot([r, bench_suite.row(bench_suite.Result("y", "same", 2, 2, 4, 2, ours=mk(1.1, 1.0),
+                                                            mitsuba=mk(1.2, 1.0), reference="r", ref_floor=0.0), ref)],
+                     tmp_path / "suite.png", "t")
+    assert (tmp_path / "suite.png").stat().st_size > 0
 
 
 def test_runner_quick_without_peer(tmp_path):
