@@ -54,7 +54,8 @@ TEST(Parallel, InOrderEachThreadRunsIncreasingIndices) {
 }
 
 // An exception reaches the caller and no further index starts: index 0 throws at once, while a
-// full run of the others would take about a second.
+// full run of the others would take five seconds or more (each sleeps 100 µs): the other thread
+// starts 1000 only if the throwing one is held off for 0.1 s between its throw and its catch.
 TEST(Parallel, InOrderExceptionStopsTheLoop) {
     for (int threads : {1, 2}) {
         std::atomic<int64_t> started{0};
@@ -62,7 +63,7 @@ TEST(Parallel, InOrderExceptionStopsTheLoop) {
                                            [&](int64_t i) {
                                                ++started;
                                                if (i == 0) throw std::runtime_error("tile 0 failed");
-                                               std::this_thread::sleep_for(std::chrono::microseconds(10));
+                                               std::this_thread::sleep_for(std::chrono::microseconds(100));
                                            }),
                      std::runtime_error);
         EXPECT_LT(started.load(), 1000) << threads << " threads";
