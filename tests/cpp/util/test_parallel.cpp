@@ -53,19 +53,28 @@ TEST(Parallel, InOrderEachThreadRunsIncreasingIndices) {
         }
 }
 
-// An exception reaches the caller and no further index starts: index 0 throws at once, while a
-// full run of the others would take five seconds or more (each sleeps 100 µs): the other thread
-// starts 1000 only if the throwing one is held off for 0.1 s between its throw and its catch.
+// An exception reaches the caller and no further index starts. Index 0 throws once another thread
+// has started a body (TBB would not start a task that had not begun when the loop was cancelled, so
+// the test waits until one has), while a full run of the others would take five seconds or more
+// (each sleeps 100 µs): the other thread starts 1000 only if the throwing one is held off for 0.1 s
+// between its throw and its catch.
 TEST(Parallel, InOrderExceptionStopsTheLoop) {
     for (int threads : {1, 2}) {
         std::atomic<int64_t> started{0};
         EXPECT_THROW(parallel_for_in_order(100000, threads,
                                            [&](int64_t i) {
                                                ++started;
-                                               if (i == 0) throw std::runtime_error("tile 0 failed");
+                                               if (i == 0) {
+                                                   const auto t0 = std::chrono::steady_clock::now();
+                                                   while (threads > 1 && started.load() < 2 &&
+                                                          std::chrono::steady_clock::now() - t0 < std::chrono::seconds(5))
+                                                       std::this_thread::yield();
+                                                   throw std::runtime_error("tile 0 failed");
+                                               }
                                                std::this_thread::sleep_for(std::chrono::microseconds(100));
                                            }),
                      std::runtime_error);
         EXPECT_LT(started.load(), 1000) << threads << " threads";
+        if (threads > 1) EXPECT_GE(started.load(), 2) << "the second thread never started a body";
     }
 }
