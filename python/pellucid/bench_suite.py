@@ -12,9 +12,9 @@ the timed configuration once untimed (its JIT compiles per spp and film). Only t
 never loading. ``--repeats R`` alternates R timed runs of each renderer, each with its own seed: samples/s
 is the median run's, relMSE the mean over the R images. ``--error-repeats E`` adds E more renders of
 each renderer, each with its own seed, whose images count in relMSE only: where a few rare bright
-paths dominate an image's error (caustics through near-specular glass, say), a handful of images
-gives ratios anywhere from a third to several times the true one, so the ratio is given with a 90 %
-bootstrap interval over the images. Mitsuba 3 is optional
+paths dominate an image's error (caustics through near-specular glass, say), the ratio of a handful
+of images can land far from that of many, either way, so the ratio is given with a 90 % bootstrap
+interval over the images. Mitsuba 3 is optional
 (bench/peers/setup_mitsuba.sh); without it the suite reports pellucid alone. Per scene it reports:
 
 * samples/s of each renderer and their ratio (pellucid / Mitsuba), and the geometric mean of the ratio;
@@ -309,10 +309,10 @@ def measure_scene(entry: Dict[str, Any], folder: pathlib.Path, args, mi_py: Opti
     return res, {"ref": ref}
 
 
-def _mean_relmse(runs: Sequence[Run], ref: np.ndarray) -> Tuple[float, float]:
-    """Mean relMSE and mean render seconds over the repeats (each repeat renders its own seed, so the
-    mean is a steadier estimate where a few rare bright paths dominate one image's error)."""
-    return (float(np.mean([_bench.rel_mse(r.image, ref) for r in runs])), float(np.mean([r.seconds for r in runs])))
+def _relmse_and_time(runs: Sequence[Run], ref: np.ndarray) -> Tuple[List[float], float]:
+    """Each image's relMSE, and the mean render seconds (each image renders its own seed, so the mean
+    relMSE is a steadier estimate where a few rare bright paths dominate one image's error)."""
+    return [_bench.rel_mse(r.image, ref) for r in runs], float(np.mean([r.seconds for r in runs]))
 
 
 BOOTSTRAP_DRAWS, BOOTSTRAP_SEED = 2000, 12345
@@ -337,12 +337,14 @@ def relmse_ratio_interval(ours: Sequence[float], theirs: Sequence[float], floor:
 
 
 def row(res: Result, ref: np.ndarray) -> Dict[str, Any]:
-    """One CSV row. Samples/s: the median repeat. relMSE: the mean over the repeats. relMSE above the
-    reference's noise floor scales as 1/time, so Mitsuba's is scaled to pellucid's render time:
-    ``mitsuba_eqtime_relmse = (relMSE - floor) * t_mitsuba / t_ours`` (t: mean seconds of the repeats)."""
+    """One CSV row. Samples/s: the median timed repeat. relMSE: the mean over the images (the timed
+    repeats' and the error repeats'). relMSE above the reference's noise floor scales as 1/time, so
+    Mitsuba's is scaled to pellucid's render time: ``mitsuba_eqtime_relmse = (relMSE - floor) *
+    t_mitsuba / t_ours`` (t: mean seconds of the images)."""
     o, m = res.ours, res.mitsuba
     ours_imgs = (res.ours_all or [o]) + res.ours_err
-    ours_rel, ours_t = _mean_relmse(ours_imgs, ref)
+    ours_each, ours_t = _relmse_and_time(ours_imgs, ref)
+    ours_rel = float(np.mean(ours_each))
     d: Dict[str, Any] = {
         "scene": res.scene, "peer": res.peer, "width": res.width, "height": res.height, "spp": res.spp,
         "threads": res.threads, "ours_seconds": o.seconds, "ours_samples_per_second": o.samples_per_second,
@@ -352,10 +354,10 @@ def row(res: Result, ref: np.ndarray) -> Dict[str, Any]:
         "reference": res.reference, "relmse_images": len(ours_imgs)}
     if m is not None:
         mi_imgs = (res.mitsuba_all or [m]) + res.mitsuba_err
-        mi_rel, mi_t = _mean_relmse(mi_imgs, ref)
+        mi_each, mi_t = _relmse_and_time(mi_imgs, ref)
+        mi_rel = float(np.mean(mi_each))
         eq = max(mi_rel - res.ref_floor, 0.0) * mi_t / ours_t
-        iv = relmse_ratio_interval([_bench.rel_mse(r.image, ref) for r in ours_imgs],
-                                   [_bench.rel_mse(r.image, ref) for r in mi_imgs], res.ref_floor, mi_t / ours_t)
+        iv = relmse_ratio_interval(ours_each, mi_each, res.ref_floor, mi_t / ours_t)
         if iv is not None:
             d["relmse_ratio_lo"], d["relmse_ratio_hi"] = iv
         d.update({"mitsuba_seconds": m.seconds, "mitsuba_samples_per_second": m.samples_per_second,
