@@ -110,9 +110,12 @@ def test_cli_exit_status_table_and_json(tmp_path, monkeypatch, capsys) -> None:
 # --- Dropped samples: every render reports them -------------------------------------------------
 
 def _overflow_scene(tmp_path):
-    """A white furnace lit at 3e38: each bounce adds about 3e38, so multi-bounce paths overflow a
-    float to +Inf; the film drops those samples and counts them (a deterministic count per seed)."""
+    """A white furnace lit at 3e38, rendered with the nee strategy: a light sample of the environment
+    weighs its radiance by f cos / pdf, up to 4 with the uniform sphere's pdf 1/4π, which overflows a
+    float to +Inf; the film drops those samples and counts them (a deterministic count per seed).
+    (Under mis the environment is BSDF sampling's alone, and every path is exactly 3e38.)"""
     d = scenes.furnace(radiance=3e38, width=8, height=8, spp=4)
+    d["integrator"]["strategy"] = "nee"
     path = tmp_path / "overflow.json"
     path.write_text(json.dumps(d))
     return d, path

@@ -431,7 +431,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     // stays 1 at medium collisions (a lossless medium walled in by mirrors would never end).
     ps.max_depth = max_depth < 0 ? kUnboundedDepth : max_depth;
     ps.rr_depth = rr_depth;
-    ps.use_nee = use_nee && !scene.lights.empty();
+    ps.use_nee = use_nee && !scene.lights.empty() && scene.nee_lights;
     ps.use_mis = use_mis;
     ps.sampler = type;
     const size_t n = scene.material_bxdfs.size();

@@ -57,6 +57,19 @@ inline bool is_at_infinity(const Light& l) {
     }, l);
 }
 
+/// Whether next-event estimation samples light l when the integrator weighs light and BSDF samples
+/// by MIS. A constant environment is not: NEE would pick its directions uniformly over the sphere
+/// (density 1/4π), half of them below the surface and the rest without regard to the BSDF, while
+/// the BSDF sample's direction escapes to the same radiance with a density shaped like the
+/// integrand; so the BSDF sample alone estimates it (MIS weight 1, as the light's density is then
+/// 0), and the NEE sample goes to the other lights. The estimate stays unbiased as long as a
+/// BSDF's sampling reaches every direction its BSDF scatters into: tests/python/test_constant_env_mis.py
+/// renders a sphere of every model under a constant environment and under an environment map of the
+/// same radiance (which NEE samples) and compares them pixel by pixel. pbrt-v4 does the same for its uniform
+/// infinite light (Pharr et al. 2023, pbrt-v4 §12.5.1, allowIncompletePDF; Karlík et al. 2019, "MIS
+/// Compensation", EGSR).
+inline bool nee_under_mis(const Light& l) { return !std::holds_alternative<ConstantLight>(l); }
+
 /// Unnormalised probabilities with which next-event estimation picks each light.
 ///  - "uniform": every light alike (Mitsuba 3's emitter sampling).
 ///  - "power": in proportion to light_power. A light at infinity counts the power crossing a disk

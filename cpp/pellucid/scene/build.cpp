@@ -431,8 +431,18 @@ private:
             if (!n->is_array()) fail("lights", std::string("expected an array, got a ") + n->kind_name());
             for (size_t i = 0; i < n->size(); ++i) build_light(n->items()[i], path_index("lights", i), radius);
         }
-        m_scene.light_distribution =
-            Distribution1D(light_selection_weights(m_scene.lights, m_scene.integrator.light_selection, radius));
+        std::vector<float> w = light_selection_weights(m_scene.lights, m_scene.integrator.light_selection, radius);
+        // Under MIS, NEE leaves the lights nee_under_mis excludes to BSDF sampling; without any
+        // other light, the paths take no NEE sample at all (Scene::nee_lights).
+        const std::string& strategy = m_scene.integrator.strategy;
+        if (strategy == "mis" || strategy == "direct") {
+            m_scene.nee_lights = false;
+            for (size_t i = 0; i < w.size(); ++i) {
+                if (nee_under_mis(m_scene.lights[i])) m_scene.nee_lights = true;
+                else w[i] = 0.f;
+            }
+        }
+        m_scene.light_distribution = Distribution1D(w);
     }
 
     void build_light(const Node& node, const std::string& path, float radius) {

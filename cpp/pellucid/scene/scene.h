@@ -119,7 +119,8 @@ public:
     const BxDF no_scatter_bxdf = SmoothConductor<ConductorFresnel>(ConductorFresnel{}, Spectrum(0.f));
     std::vector<Light> lights;
     std::vector<uint32_t> infinite_lights;  ///< indices into lights
-    Distribution1D light_distribution;      ///< light selection (light_selection_weights)
+    Distribution1D light_distribution;      ///< light selection (light_selection_weights; nee_under_mis)
+    bool nee_lights = true;                 ///< NEE samples some light (false: MIS of constant environments only)
     PerspectiveCamera camera;
     Filter filter = GaussianFilter{};
     bool film_splatting = false;  ///< film.reconstruction "splatting" (image/film.h), else filter sampling

@@ -255,6 +255,7 @@ void adopt(Scene& to, Scene& from, bool geometry) {
     to.lights = std::move(from.lights);
     to.infinite_lights = std::move(from.infinite_lights);
     to.light_distribution = std::move(from.light_distribution);
+    to.nee_lights = from.nee_lights;
     to.camera = from.camera;
     to.filter = from.filter;
     to.film_splatting = from.film_splatting;

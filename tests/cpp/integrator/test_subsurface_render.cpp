@@ -158,10 +158,13 @@ TEST(SubsurfaceChoice, EachAutoRuleFiresOnTheSceneBuiltForIt) {
 TEST(SubsurfaceChoice, TheCoatedStandInMatchesTheDiffusionRenderOfAFlatObject) {
     // The far-field rule replaces the BSSRDF by its flat-surface limit: under uniform light both give
     // F + (1 − F)·Rd (the half-space test above), so the coated material's image must match it.
+    // Under the constant environment, mis estimates the light by BSDF sampling alone: each sample is
+    // at most about 0.64, with a long lower tail (the coat's transmittance at grazing directions),
+    // so the pixels are compared with their pooled variance, at 256 spp.
     const double F0 = fresnel_dielectric(1.f, 1.33f);
-    auto scene = scene_from(slab_scene(R"({"type": "subsurface", "albedo": 0.6, "mfp": 1e-4, "int_ior": 1.33})", 64));
+    auto scene = scene_from(slab_scene(R"({"type": "subsurface", "albedo": 0.6, "mfp": 1e-4, "int_ior": 1.33})", 256));
     ASSERT_EQ(chosen(*scene), SubsurfaceModel::Coated) << scene->subsurface_choices[0].reason;
-    expect_constant_image(render(*scene), F0 + (1 - F0) * 0.6, "coated stand-in");
+    pellucid::test::expect_iid_constant_image(render(*scene), F0 + (1 - F0) * 0.6, "coated stand-in");
 }
 
 TEST(SubsurfaceChoice, BadInputIsReportedWithItsNumbers) {

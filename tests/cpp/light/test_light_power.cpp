@@ -16,6 +16,7 @@
 #include <cmath>
 
 #include "light_cases.h"
+#include "pellucid/integrator/path_services.h"
 #include "pellucid/math/constants.h"
 #include "pellucid/sampling/rng.h"
 #include "pellucid/sampling/warp.h"
@@ -211,9 +212,10 @@ TEST(DeltaLightSemantics, DirectionalSampleSemanticsAndPower) {
 TEST(LightSelection, BalancedGivesEachLightAtInfinityTheShareOfAllFiniteLights) {
     // Two point lights of power 4π·1 and 4π·3, a constant environment and a directional light.
     // balanced: the two lights at infinity and the finite set get 1/3 each; the finite third is
-    // split 1 : 3 by power. The environment's power over the scene's disk must not matter.
+    // split 1 : 3 by power. The environment's power over the scene's disk must not matter. (The
+    // nee strategy: under mis, NEE leaves the constant environment out; the test below.)
     auto scene = scene_from(R"({"camera": {"type": "perspective"}, "film": {"width": 4, "height": 4},
-        "integrator": {"type": "path"},
+        "integrator": {"type": "path", "strategy": "nee"},
         "shapes": [{"type": "sphere", "radius": 50, "material": {"type": "lambertian"}}],
         "lights": [{"type": "point", "position": [0, 0, 0], "intensity": 1},
                    {"type": "constant", "radiance": 7},
@@ -224,6 +226,40 @@ TEST(LightSelection, BalancedGivesEachLightAtInfinityTheShareOfAllFiniteLights) 
     EXPECT_NEAR(scene->light_pmf(1), 1.0 / 3.0, 1e-6);
     EXPECT_NEAR(scene->light_pmf(2), 3.0 / 12.0, 1e-6);
     EXPECT_NEAR(scene->light_pmf(3), 1.0 / 3.0, 1e-6);
+}
+
+TEST(LightSelection, MisLeavesConstantEnvironmentsToBsdfSampling) {
+    // Under mis and direct, NEE never picks a constant environment (light.h, nee_under_mis); the
+    // other lights share the probabilities by the selection rule: balanced gives the directional
+    // light as much as the finite pair, which splits its half 1 : 3.
+    const std::string lights = R"("lights": [{"type": "point", "position": [0, 0, 0], "intensity": 1},
+                   {"type": "constant", "radiance": 7},
+                   {"type": "point", "position": [1, 0, 0], "intensity": 3},
+                   {"type": "directional", "direction": [0, -1, 0], "irradiance": 0.01}]})";
+    auto make = [](const std::string& strategy, const std::string& lights) {
+        return scene_from(R"({"camera": {"type": "perspective"}, "film": {"width": 4, "height": 4},
+            "integrator": {"type": "path", "strategy": ")" + strategy + R"("},
+            "shapes": [{"type": "sphere", "radius": 50, "material": {"type": "lambertian"}}], )" + lights);
+    };
+    for (const char* strategy : {"mis", "direct"}) {
+        auto scene = make(strategy, lights);
+        EXPECT_NEAR(scene->light_pmf(0), 1.0 / 8.0, 1e-6) << strategy;
+        EXPECT_EQ(scene->light_pmf(1), 0.f) << strategy;
+        EXPECT_NEAR(scene->light_pmf(2), 3.0 / 8.0, 1e-6) << strategy;
+        EXPECT_NEAR(scene->light_pmf(3), 0.5, 1e-6) << strategy;
+        EXPECT_TRUE(scene->nee_lights) << strategy;
+    }
+    // Lit by constant environments only: no light for NEE under mis (the paths take no light
+    // samples, PathSetup::use_nee); nee and bsdf keep the rule as it was.
+    const std::string env_only = R"("lights": [{"type": "constant", "radiance": 1}, {"type": "constant", "radiance": 2}]})";
+    auto mis = make("mis", env_only);
+    EXPECT_FALSE(mis->nee_lights);
+    EXPECT_FALSE(make_path_setup(*mis, 8, 5, true, true, SamplerType::Independent).use_nee);
+    EXPECT_FALSE(make("direct", env_only)->nee_lights);
+    auto nee = make("nee", env_only);
+    EXPECT_TRUE(nee->nee_lights);
+    EXPECT_NEAR(nee->light_pmf(0), 0.5, 1e-6);
+    EXPECT_TRUE(make("bsdf", env_only)->nee_lights);
 }
 
 TEST(LightSelection, PowerAndUniformModes) {

@@ -48,4 +48,22 @@ inline void expect_constant_image(const RenderResult& r, double expected, const 
     EXPECT_EQ(fails, 0) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")";
     expect_image_mean(r, expected, what);
 }
+/// expect_constant_image for an image whose pixels are identically distributed (a uniform view of a
+/// uniform scene): each pixel is tested against the pooled variance, the mean of all pixels' own
+/// estimates, at the same α. A skewed estimator (a pixel's samples bounded above with a long lower
+/// tail, as BSDF sampling of a smooth coat gives under uniform light) makes a pixel's own variance
+/// small exactly where its mean is high, which the pooled estimate does not.
+inline void expect_iid_constant_image(const RenderResult& r, double expected, const std::string& what) {
+    const size_t n = r.image.data.size();
+    const double z_max = z_two_sided(sidak_alpha(0.01, int(n)));
+    double pooled = 0;
+    for (size_t i = 0; i < n; ++i) pooled += r.variance.data[i];
+    pooled = pooled / double(n) + std::pow(1e-6 * expected, 2);
+    int fails = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (std::fabs(r.image.data[i] - expected) / std::sqrt(pooled) > z_max) ++fails;
+    EXPECT_EQ(fails, 0) << what << ": pixels failing the per-pixel z-test against the pooled variance (|z| > "
+                        << z_max << ")";
+    expect_image_mean(r, expected, what);
+}
 }  // namespace pellucid::test
