@@ -19,7 +19,7 @@ namespace pellucid {
 class PathIntegrator final : public Integrator {
 public:
     explicit PathIntegrator(const IntegratorSettings& s)
-        : m_s(s), m_use_nee(s.strategy != "bsdf"), m_use_mis(s.strategy == "mis" || s.strategy == "direct"),
+        : m_s(s), m_use_nee(s.strategy != "bsdf"), m_use_mis(s.uses_mis()),
           m_max_depth(s.strategy == "direct" ? 2 : s.max_depth) {}
     /// Renders with the estimator of integrator/path_kernel.h on the widest SIMD target the CPU
     /// has (integrator/simd_target.h).

@@ -434,8 +434,7 @@ private:
         std::vector<float> w = light_selection_weights(m_scene.lights, m_scene.integrator.light_selection, radius);
         // Under MIS, NEE leaves the lights nee_under_mis excludes to BSDF sampling; without any
         // other light, the paths take no NEE sample at all (Scene::nee_lights).
-        const std::string& strategy = m_scene.integrator.strategy;
-        if (strategy == "mis" || strategy == "direct") {
+        if (m_scene.integrator.uses_mis()) {
             m_scene.nee_lights = false;
             for (size_t i = 0; i < w.size(); ++i) {
                 if (nee_under_mis(m_scene.lights[i])) m_scene.nee_lights = true;

@@ -57,6 +57,9 @@ struct IntegratorSettings {
     std::string aov;  ///< type "aov": "albedo", "normal" or "depth" (integrator/aov.h)
     bool medium_nee = true;  ///< next-event estimation at medium collisions (docs/media.md)
     std::string channel_sampling = "throughput";  ///< which colour channel tracks a medium: "throughput" or "uniform"
+    /// Whether the strategy weighs light and BSDF samples by MIS ("mis" and "direct"); the path
+    /// tracer and the scene's light selection (nee_under_mis) both ask here.
+    bool uses_mis() const { return strategy == "mis" || strategy == "direct"; }
 };
 
 class Scene {

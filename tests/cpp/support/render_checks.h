@@ -35,17 +35,25 @@ inline void expect_image_mean(const RenderResult& r, double expected, const std:
 /// every pixel has the same expectation, so their spread measures the real per-pixel variance,
 /// heavy tails included (NEE near a box's edges), which per-pixel sample variances miss when they
 /// have not seen the rare large samples, and which Sobol samples' variances overestimate.
-inline void expect_constant_image(const RenderResult& r, double expected, const std::string& what) {
+inline void expect_constant_image(const RenderResult& r, double expected, const std::string& what,
+                                  bool pooled_variance = false) {
     const size_t n = r.image.data.size();
     const double z_max = z_two_sided(sidak_alpha(0.01, int(n)));
+    double pooled = 0;
+    if (pooled_variance) {
+        for (size_t i = 0; i < n; ++i) pooled += r.variance.data[i];
+        pooled /= double(n);
+    }
     int fails = 0;
     for (size_t i = 0; i < n; ++i) {
         // Float rounding of a path's sum (~1e-6 relative) bounds how exact a zero-variance
         // estimator (NEE inside a closed sphere) can be.
-        double d = std::fabs(r.image.data[i] - expected), s2 = r.variance.data[i] + std::pow(1e-6 * expected, 2);
+        const double v = pooled_variance ? pooled : r.variance.data[i];
+        double d = std::fabs(r.image.data[i] - expected), s2 = v + std::pow(1e-6 * expected, 2);
         if (d / std::sqrt(s2) > z_max) ++fails;
     }
-    EXPECT_EQ(fails, 0) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")";
+    EXPECT_EQ(fails, 0) << what << ": pixels failing the per-pixel z-test (|z| > " << z_max << ")"
+                        << (pooled_variance ? " against the pooled variance" : "");
     expect_image_mean(r, expected, what);
 }
 /// expect_constant_image for an image whose pixels are identically distributed (a uniform view of a
@@ -54,16 +62,6 @@ inline void expect_constant_image(const RenderResult& r, double expected, const 
 /// tail, as BSDF sampling of a smooth coat gives under uniform light) makes a pixel's own variance
 /// small exactly where its mean is high, which the pooled estimate does not.
 inline void expect_iid_constant_image(const RenderResult& r, double expected, const std::string& what) {
-    const size_t n = r.image.data.size();
-    const double z_max = z_two_sided(sidak_alpha(0.01, int(n)));
-    double pooled = 0;
-    for (size_t i = 0; i < n; ++i) pooled += r.variance.data[i];
-    pooled = pooled / double(n) + std::pow(1e-6 * expected, 2);
-    int fails = 0;
-    for (size_t i = 0; i < n; ++i)
-        if (std::fabs(r.image.data[i] - expected) / std::sqrt(pooled) > z_max) ++fails;
-    EXPECT_EQ(fails, 0) << what << ": pixels failing the per-pixel z-test against the pooled variance (|z| > "
-                        << z_max << ")";
-    expect_image_mean(r, expected, what);
+    expect_constant_image(r, expected, what, true);
 }
 }  // namespace pellucid::test
