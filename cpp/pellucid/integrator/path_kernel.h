@@ -637,10 +637,17 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 if constexpr (W % 4 == 0 && W >= 8) {  // four streams at a time (PCG32x4: the same bits)
                     using X = PCG32x4;
                     for (int b = 0; b < W; b += 4) {
+                        // Only the numbers some lane of the four draws: [lo, hi) (none for lanes
+                        // that do not go on, u0–u2 only where a lane takes a light sample, u6 only
+                        // under roulette).
+                        int lo = 7, hi = 0;
+                        for (int i = b; i < b + 4; ++i)
+                            if (a.draw0[i] < a.draw1[i]) lo = std::min(lo, a.draw0[i]), hi = std::max(hi, a.draw1[i]);
+                        if (lo >= hi) continue;
                         X::State s = X::load<X::State>(st + b);
                         const X::State c = X::load<X::State>(inc + b);
                         const X::I32 d0 = X::load<X::I32>(a.draw0 + b), d1 = X::load<X::I32>(a.draw1 + b);
-                        for (int k = 0; k < 7; ++k) {
+                        for (int k = lo; k < hi; ++k) {
                             const X::I32 kv = X::I32{} + k;
                             const X::I32 draw = (kv >= d0) & (kv < d1);
                             X::store(a.u[k] + b, draw ? X::to_float(X::output(s)) : X::load<X::F32>(a.u[k] + b));
