@@ -1073,7 +1073,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const V3<F> d = e - o;
                 ST(a.sh[0], o.x), ST(a.sh[1], o.y), ST(a.sh[2], o.z), ST(a.sh[3], d.x), ST(a.sh[4], d.y), ST(a.sh[5], d.z);
                 ST(a.sh[6], F(1.f - 1e-4f));
-            } else if (ps.lights.any) {
+            } else if (ps.lights.any && lane::any(LM(a.nee))) {
                 // Next-event estimation on the packet lights: each lane picks its light as
                 // path_services::sample_light does, and the lanes whose light has a row in the
                 // light table (light_table.h) sample it together; the shadow ray ends at the
