@@ -1060,7 +1060,9 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             // Next-event estimation on the emitter table, for all lanes at once: a point on an
             // emitting triangle and the shadow ray toward it (SurfaceInteraction::spawn_ray_to:
             // both ends offset off their surfaces).
-            if (!ps.emitters.empty()) {
+            // (Either runs only when some lane takes a light sample: a vertex starts with no lane's
+            // nee or nee_ok set.)
+            if (!ps.emitters.empty() && lane::any(LM(a.nee))) {
                 const M nee = LM(a.nee);
                 const V3<F> p(LD(a.px), LD(a.py), LD(a.pz)), ng(LD(a.ngx), LD(a.ngy), LD(a.ngz));
                 const EmitterSample<F> es = sample_emitter<F>(ps.emitters, LD(a.u[0]), V2<F>{LD(a.u[1]), LD(a.u[2])}, p);
