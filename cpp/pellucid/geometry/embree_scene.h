@@ -50,6 +50,9 @@ public:
     /// Add an analytic sphere. Returns the geometry id.
     uint32_t add_sphere(const Point3f& center, float radius);
     void commit();
+    /// Whether the committed scene is traced without Embree: a single sphere and no mesh, every ray
+    /// tested against the sphere (the same sphere test as Embree's callback, so the same hits).
+    bool traced_directly() const;
 
     /// Closest hit in (0, ray.tmax]. Thread-safe after commit().
     bool intersect(const Ray& ray, RayHit& hit) const;

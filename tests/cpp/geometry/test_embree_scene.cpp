@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 
 #include "pellucid/geometry/embree_scene.h"
@@ -224,4 +225,94 @@ TEST(EmbreeScene, IntersectLanesAgreeWithSingleRaysAndIgnoreMaskedLanes) {
             EXPECT_EQ(hl.v[i], single.v);
         }
     }
+}
+
+// A scene of one sphere and no mesh is traced without Embree (traced_directly), every ray against
+// the sphere. It must give what Embree gives: the same scene with a mesh added far from every ray
+// (which makes it an Embree scene) must report the same hits bit for bit (t, ids, the single ray's
+// normal) and the same occlusion, for rays from outside and from inside, with finite tmax, and with
+// masked lanes holding NaN.
+TEST(EmbreeScene, SpheresTracedDirectlyGiveEmbreesHits) {
+    const Point3f centres[4] = {Point3f(0, 0, 0), Point3f(1.2f, 0.3f, -0.4f), Point3f(-2, 1, 0.5f), Point3f(0.4f, -1.5f, 1)};
+    const float radii[4] = {1.f, 0.7f, 0.5f, 1.3f};
+    for (int count = 1; count <= 1; ++count) {  // (kDirectSpheres)
+        EmbreeScene direct, embree;
+        for (int k = 0; k < count; ++k) {
+            EXPECT_EQ(direct.add_sphere(centres[k], radii[k]), uint32_t(k));
+            EXPECT_EQ(embree.add_sphere(centres[k], radii[k]), uint32_t(k));
+        }
+        TriangleMesh far = TriangleMesh::rectangle();
+        far.transform(Transform::translate(Vec3f(1e4f, 1e4f, 1e4f)));
+        embree.add_mesh(far);
+        direct.commit(), embree.commit();
+        ASSERT_TRUE(direct.traced_directly());
+        ASSERT_FALSE(embree.traced_directly());
+        uint64_t state = 777 + uint64_t(count);
+        auto next = [&] {  // a fixed LCG: the same rays on every run
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            return float(state >> 40) / float(1 << 24);
+        };
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        int hits = 0, blocked_count = 0;
+        for (int packet = 0; packet < 64; ++packet) {
+            float soa[7][16];
+            bool valid[16];
+            for (int i = 0; i < 16; ++i) {
+                // Origins in a box around the spheres (some inside one), each ray aimed at a point
+                // near one of the spheres (about half of them hit); every fourth ray a short one.
+                const Vec3f o(6.f * next() - 3.f, 6.f * next() - 3.f, 6.f * next() - 3.f);
+                const int k = std::min(count - 1, int(next() * float(count)));
+                const Vec3f aim = Vec3f(centres[k]) + 1.5f * radii[k] * Vec3f(2.f * next() - 1.f, 2.f * next() - 1.f, 2.f * next() - 1.f);
+                const Vec3f d = normalize(aim - o);
+                const float tmax = i % 4 == 3 ? 2.f * next() : kInfinity;
+                valid[i] = (packet + i) % 7 != 3;
+                const float v[7] = {o.x, o.y, o.z, d.x, d.y, d.z, tmax};
+                for (int k = 0; k < 7; ++k) soa[k][i] = valid[i] ? v[k] : nan;
+            }
+            const float* const p[7] = {soa[0], soa[1], soa[2], soa[3], soa[4], soa[5], soa[6]};
+            for (int m : {16, 8, 5}) {
+                HitLanes a, b;
+                direct.intersect_lanes(m, p, valid, a);
+                embree.intersect_lanes(m, p, valid, b);
+                bool ba[16], bb[16];
+                direct.occluded_lanes(m, p, valid, ba);
+                embree.occluded_lanes(m, p, valid, bb);
+                for (int i = 0; i < m; ++i) {
+                    ASSERT_EQ(a.hit(i), b.hit(i)) << count << " spheres, packet " << packet << ", lane " << i;
+                    EXPECT_EQ(ba[i], bb[i]) << count << " spheres, packet " << packet << ", lane " << i;
+                    if (!valid[i]) {
+                        EXPECT_FALSE(a.hit(i));
+                        EXPECT_FALSE(ba[i]);
+                        continue;
+                    }
+                    blocked_count += ba[i];
+                    if (!a.hit(i)) continue;
+                    hits += m == 16;  // (each of the 1024 rays counted once)
+                    EXPECT_EQ(a.t[i], b.t[i]) << count << " spheres, packet " << packet << ", lane " << i;
+                    EXPECT_EQ(a.geom_id[i], b.geom_id[i]);
+                    EXPECT_EQ(a.prim_id[i], b.prim_id[i]);
+                    const Ray r{Vec3f(soa[0][i], soa[1][i], soa[2][i]), Vec3f(soa[3][i], soa[4][i], soa[5][i]), soa[6][i]};
+                    RayHit sa, sb;
+                    ASSERT_TRUE(direct.intersect(r, sa));
+                    ASSERT_TRUE(embree.intersect(r, sb));
+                    EXPECT_EQ(sa.t, sb.t);
+                    EXPECT_EQ(sa.t, a.t[i]);
+                    EXPECT_EQ(sa.geom_id, sb.geom_id);
+                    EXPECT_EQ(sa.ng.x, sb.ng.x);
+                    EXPECT_EQ(sa.ng.y, sb.ng.y);
+                    EXPECT_EQ(sa.ng.z, sb.ng.z);
+                    EXPECT_EQ(direct.occluded(r), embree.occluded(r));
+                    EXPECT_TRUE(direct.occluded(r));  // a hit in (0, tmax] blocks
+                }
+            }
+        }
+        EXPECT_GT(hits, 1024 / 4) << count << " spheres";  // the rays do reach the spheres
+        EXPECT_LT(hits, 1024 * 9 / 10) << count << " spheres";  // and do miss them
+        EXPECT_GT(blocked_count, 1024 / 4) << count << " spheres";
+    }
+    // Two spheres, or a mesh, go to Embree.
+    EmbreeScene two;
+    for (int k = 0; k < 2; ++k) two.add_sphere(Point3f(float(3 * k), 0, 0), 1.f);
+    two.commit();
+    EXPECT_FALSE(two.traced_directly());
 }
