@@ -35,8 +35,8 @@ struct EmbreeScene::Impl {
     std::deque<SphereData> spheres;
     std::vector<uint32_t> sphere_ids;  // the geometry id of each entry of spheres
     uint32_t meshes = 0;
-    // A scene of at most kDirectSpheres spheres (one) and no mesh is traced without Embree
-    // (commit()): every ray tests the sphere (EmbreeScene::intersect_lanes).
+    // A scene of one sphere and no mesh is traced without Embree (commit(), DirectArgs): every ray
+    // tests the sphere.
     bool direct = false;
     void check() {
         if (!error.empty()) {
@@ -165,6 +165,41 @@ namespace {
 }
 static_assert(sizeof(float) == sizeof(unsigned), "RTCHitN mixes float and unsigned fields of one size");
 
+/// A scene of one sphere and no mesh is traced without Embree (EmbreeScene::traced_directly). In
+/// such a scene, Embree's packet call (its traversal of the two-level BVH, the ray packet's layout,
+/// the callback) costs about as much as the sphere test itself: testing the sphere directly rendered
+/// a sphere in a constant environment (bench/suite/env_diffuse.json, 1 thread) in 0.94-0.95 of the
+/// time. Two spheres side by side, each ray tested against both, took 1.04x the time, four 1.30x
+/// (the test in double precision for every ray and sphere against Embree's bounding-box culling), so
+/// only a lone sphere is traced so. Rays [0, n) as arrays (soa) where valid; the sphere's test is
+/// the callbacks' sphere_first_root, so the same hits.
+struct DirectArgs {
+    const SphereData* sphere;
+    uint32_t id;  ///< its geometry id
+    int n;
+    const float* const* soa;
+    const bool* valid;
+};
+[[gnu::always_inline]] inline void direct_intersect_n(const DirectArgs& A, float* t_out, uint32_t* geom_out) {
+    for (int i = 0; i < A.n; ++i) {
+        bool hit;
+        const float t = sphere_first_root(*A.sphere, A.soa[0][i], A.soa[1][i], A.soa[2][i], A.soa[3][i], A.soa[4][i],
+                                          A.soa[5][i], 0.f, A.soa[6][i], &hit);
+        const bool take = hit & A.valid[i];
+        t_out[i] = take ? t : A.soa[6][i];
+        geom_out[i] = take ? A.id : ~0u;
+    }
+}
+[[gnu::always_inline]] inline void direct_occluded_n(const DirectArgs& A, bool* blocked) {
+    for (int i = 0; i < A.n; ++i) {
+        bool hit;
+        sphere_first_root(*A.sphere, A.soa[0][i], A.soa[1][i], A.soa[2][i], A.soa[3][i], A.soa[4][i], A.soa[5][i], 0.f,
+                          A.soa[6][i], &hit);
+        blocked[i] = hit & A.valid[i];
+    }
+}
+
+
 #define PELLUCID_SPHERE_CALLBACKS(SUFFIX, ATTR)                                                        \
     ATTR void sphere_intersect_##SUFFIX(const RTCIntersectFunctionNArguments* args) {                  \
         switch (args->N) {                                                                            \
@@ -183,10 +218,21 @@ static_assert(sizeof(float) == sizeof(unsigned), "RTCHitN mixes float and unsign
         case 1: return sphere_occluded_n(args, 1);                                                    \
         default: return sphere_occluded_n(args, args->N);                                              \
         }                                                                                             \
+    }                                                                                                 \
+    ATTR void direct_intersect_##SUFFIX(const DirectArgs& a, float* t, uint32_t* geom) {             \
+        if (a.n == 8) return direct_intersect_n(DirectArgs{a.sphere, a.id, 8, a.soa, a.valid}, t, geom); \
+        if (a.n == 16) return direct_intersect_n(DirectArgs{a.sphere, a.id, 16, a.soa, a.valid}, t, geom); \
+        direct_intersect_n(a, t, geom);                                                               \
+    }                                                                                                 \
+    ATTR void direct_occluded_##SUFFIX(const DirectArgs& a, bool* blocked) {                          \
+        if (a.n == 8) return direct_occluded_n(DirectArgs{a.sphere, a.id, 8, a.soa, a.valid}, blocked); \
+        if (a.n == 16) return direct_occluded_n(DirectArgs{a.sphere, a.id, 16, a.soa, a.valid}, blocked); \
+        direct_occluded_n(a, blocked);                                                                \
     }
-// The callbacks, compiled for the baseline and, on x86-64 with GCC, for AVX2 (four doubles a vector,
-// no FMA) and AVX-512 (eight), the widest the CPU runs chosen once (sphere_variant); the same bits
-// every way (sphere_first_root: IEEE operations in double, never contracted).
+// The callbacks and the direct trace, compiled for the baseline and, on x86-64 with GCC, for AVX2
+// (four doubles a vector, no FMA) and AVX-512 (eight), the widest the CPU runs chosen once
+// (sphere_calls); the same bits every way (sphere_first_root: IEEE operations in double, never
+// contracted).
 PELLUCID_SPHERE_CALLBACKS(baseline, )
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define PELLUCID_SPHERE_X86_VARIANTS 1
@@ -205,20 +251,27 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
     b->upper_x = s.upper[0], b->upper_y = s.upper[1], b->upper_z = s.upper[2];
 }
 
-/// The callbacks of the widest variant this CPU runs.
+/// The callbacks and the direct trace of the widest variant this CPU runs.
 struct SphereCallbacks {
     RTCIntersectFunctionN intersect;
     RTCOccludedFunctionN occluded;
+    void (*direct_intersect)(const DirectArgs&, float*, uint32_t*);
+    void (*direct_occluded)(const DirectArgs&, bool*);
 };
 SphereCallbacks sphere_variant() {
 #ifdef PELLUCID_SPHERE_X86_VARIANTS
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"))
-        return {sphere_intersect_avx512, sphere_occluded_avx512};
-    if (__builtin_cpu_supports("avx2")) return {sphere_intersect_avx2, sphere_occluded_avx2};
+        return {sphere_intersect_avx512, sphere_occluded_avx512, direct_intersect_avx512, direct_occluded_avx512};
+    if (__builtin_cpu_supports("avx2"))
+        return {sphere_intersect_avx2, sphere_occluded_avx2, direct_intersect_avx2, direct_occluded_avx2};
 #endif
-    return {sphere_intersect_baseline, sphere_occluded_baseline};
+    return {sphere_intersect_baseline, sphere_occluded_baseline, direct_intersect_baseline, direct_occluded_baseline};
+}
+const SphereCallbacks& sphere_calls() {
+    static const SphereCallbacks v = sphere_variant();
+    return v;
 }
 }  // namespace
 
@@ -239,9 +292,8 @@ uint32_t EmbreeScene::add_sphere(const Point3f& c, float r) {
     rtcSetGeometryUserPrimitiveCount(g, 1);
     rtcSetGeometryUserData(g, &s);
     rtcSetGeometryBoundsFunction(g, sphere_bounds, nullptr);
-    static const SphereCallbacks callbacks = sphere_variant();
-    rtcSetGeometryIntersectFunction(g, callbacks.intersect);
-    rtcSetGeometryOccludedFunction(g, callbacks.occluded);
+    rtcSetGeometryIntersectFunction(g, sphere_calls().intersect);
+    rtcSetGeometryOccludedFunction(g, sphere_calls().occluded);
     rtcCommitGeometry(g);
     uint32_t id = m_impl->next_id++;
     rtcAttachGeometryByID(m_impl->scene, g, id);
@@ -251,129 +303,29 @@ uint32_t EmbreeScene::add_sphere(const Point3f& c, float r) {
     return id;
 }
 
-namespace {
-/// The most spheres a scene without meshes may have to be traced without Embree. In a scene of one
-/// sphere, Embree's packet call (its traversal of the two-level BVH, the ray packet's layout, the
-/// callback) costs about as much as the sphere test itself: testing the sphere directly rendered a
-/// sphere in a constant environment (bench/suite/env_diffuse.json, 1 thread) in 0.94-0.95 of the
-/// time. With two spheres side by side it took 1.04x the time, with four 1.30x (the test in double
-/// precision for every ray and sphere against Embree's bounding-box culling), so one it is.
-constexpr size_t kDirectSpheres = 1;
-
-/// The direct trace: rays [0, n) as arrays (soa), each tested against every sphere in order, the
-/// nearest root kept. The same sphere_first_root as Embree's callbacks, and the same rule for
-/// roots at equal distance (a later sphere's root at t ≤ tfar replaces), so the same hits.
-struct DirectArgs {
-    const SphereData* const* spheres;
-    const uint32_t* ids;
-    size_t count;
-    int n;
-    const float* const* soa;
-    const bool* valid;
-};
-[[gnu::always_inline]] inline void direct_intersect_n(const DirectArgs& A, float* t_out, uint32_t* geom_out) {
-    for (int i = 0; i < A.n; ++i) t_out[i] = A.soa[6][i], geom_out[i] = ~0u;
-    for (size_t k = 0; k < A.count; ++k) {
-        const SphereData& s = *A.spheres[k];
-        const uint32_t id = A.ids[k];
-        for (int i = 0; i < A.n; ++i) {
-            bool hit;
-            const float t = sphere_first_root(s, A.soa[0][i], A.soa[1][i], A.soa[2][i], A.soa[3][i], A.soa[4][i],
-                                              A.soa[5][i], 0.f, t_out[i], &hit);
-            const bool take = hit & A.valid[i];
-            t_out[i] = take ? t : t_out[i];
-            geom_out[i] = take ? id : geom_out[i];
-        }
-    }
-}
-[[gnu::always_inline]] inline void direct_occluded_n(const DirectArgs& A, bool* blocked) {
-    for (int i = 0; i < A.n; ++i) blocked[i] = false;
-    for (size_t k = 0; k < A.count; ++k) {
-        const SphereData& s = *A.spheres[k];
-        for (int i = 0; i < A.n; ++i) {
-            bool hit;
-            sphere_first_root(s, A.soa[0][i], A.soa[1][i], A.soa[2][i], A.soa[3][i], A.soa[4][i], A.soa[5][i], 0.f,
-                              A.soa[6][i], &hit);
-            blocked[i] = blocked[i] | (hit & A.valid[i]);
-        }
-    }
-}
-// Compiled as the sphere callbacks are: for the baseline and, on x86-64 with GCC, AVX2 and AVX-512,
-// the widest the CPU runs chosen once; the same bits every way.
-#define PELLUCID_DIRECT_SPHERES(SUFFIX, ATTR)                                                          \
-    ATTR void direct_intersect_##SUFFIX(const DirectArgs& a, float* t, uint32_t* geom) {             \
-        if (a.n == 8) return direct_intersect_n(DirectArgs{a.spheres, a.ids, a.count, 8, a.soa, a.valid}, t, geom); \
-        if (a.n == 16) return direct_intersect_n(DirectArgs{a.spheres, a.ids, a.count, 16, a.soa, a.valid}, t, geom); \
-        direct_intersect_n(a, t, geom);                                                               \
-    }                                                                                                 \
-    ATTR void direct_occluded_##SUFFIX(const DirectArgs& a, bool* blocked) {                          \
-        if (a.n == 8) return direct_occluded_n(DirectArgs{a.spheres, a.ids, a.count, 8, a.soa, a.valid}, blocked); \
-        if (a.n == 16) return direct_occluded_n(DirectArgs{a.spheres, a.ids, a.count, 16, a.soa, a.valid}, blocked); \
-        direct_occluded_n(a, blocked);                                                                \
-    }
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC push_options
-#pragma GCC optimize("no-trapping-math")
-#endif
-PELLUCID_DIRECT_SPHERES(baseline, )
-#ifdef PELLUCID_SPHERE_X86_VARIANTS
-PELLUCID_DIRECT_SPHERES(avx2, __attribute__((target("avx2"))))
-PELLUCID_DIRECT_SPHERES(avx512, __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw"))))
-#endif
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC pop_options
-#endif
-#undef PELLUCID_DIRECT_SPHERES
-
-struct DirectVariant {
-    void (*intersect)(const DirectArgs&, float*, uint32_t*);
-    void (*occluded)(const DirectArgs&, bool*);
-};
-DirectVariant direct_variant() {
-#ifdef PELLUCID_SPHERE_X86_VARIANTS
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"))
-        return {direct_intersect_avx512, direct_occluded_avx512};
-    if (__builtin_cpu_supports("avx2")) return {direct_intersect_avx2, direct_occluded_avx2};
-#endif
-    return {direct_intersect_baseline, direct_occluded_baseline};
-}
-const DirectVariant& direct_calls() {
-    static const DirectVariant v = direct_variant();
-    return v;
-}
-}  // namespace
 
 void EmbreeScene::commit() {
     rtcCommitScene(m_impl->scene);
     m_impl->check();
-    m_impl->direct = m_impl->meshes == 0 && !m_impl->spheres.empty() && m_impl->spheres.size() <= kDirectSpheres;
+    m_impl->direct = m_impl->meshes == 0 && m_impl->spheres.size() == 1;
 }
 
 bool EmbreeScene::traced_directly() const { return m_impl->direct; }
 
 bool EmbreeScene::intersect(const Ray& ray, RayHit& hit) const {
     if (m_impl->direct) {
+        const SphereData& s = m_impl->spheres.front();
         const float ox = ray.o.x, oy = ray.o.y, oz = ray.o.z, dx = ray.d.x, dy = ray.d.y, dz = ray.d.z;
-        float tfar = ray.tmax;
-        const SphereData* best = nullptr;
-        for (size_t k = 0; k < m_impl->spheres.size(); ++k) {
-            bool h;
-            const float t = sphere_first_root(m_impl->spheres[k], ox, oy, oz, dx, dy, dz, 0.f, tfar, &h);
-            if (!h) continue;
-            tfar = t, best = &m_impl->spheres[k];
-            hit.geom_id = m_impl->sphere_ids[k];
-        }
-        if (!best) {
+        bool h;
+        const float t = sphere_first_root(s, ox, oy, oz, dx, dy, dz, 0.f, ray.tmax, &h);
+        if (!h) {
             hit.geom_id = ~0u;
             return false;
         }
         // As the callback reports it: Ng = p − c, unnormalised.
-        const SphereData& s = *best;
-        hit.t = tfar, hit.prim_id = 0, hit.u = 0.f, hit.v = 0.f;
-        hit.ng = Vec3f(float(double(ox) + double(tfar) * dx - s.cx), float(double(oy) + double(tfar) * dy - s.cy),
-                       float(double(oz) + double(tfar) * dz - s.cz));
+        hit.t = t, hit.geom_id = m_impl->sphere_ids.front(), hit.prim_id = 0, hit.u = 0.f, hit.v = 0.f;
+        hit.ng = Vec3f(float(double(ox) + double(t) * dx - s.cx), float(double(oy) + double(t) * dy - s.cy),
+                       float(double(oz) + double(t) * dz - s.cz));
         return true;
     }
     RTCIntersectContext ctx;
@@ -408,12 +360,9 @@ bool EmbreeScene::intersect(const Ray& ray, RayHit& hit) const {
 
 bool EmbreeScene::occluded(const Ray& ray) const {
     if (m_impl->direct) {
-        for (const SphereData& s : m_impl->spheres) {
-            bool h;
-            sphere_first_root(s, ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z, 0.f, ray.tmax, &h);
-            if (h) return true;
-        }
-        return false;
+        bool h;
+        sphere_first_root(m_impl->spheres.front(), ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z, 0.f, ray.tmax, &h);
+        return h;
     }
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -529,10 +478,8 @@ void EmbreeScene::intersect_lanes(int n, const float* const soa[7], const bool* 
     static_assert(kPacketSize == 16, "the packet calls below are at most 16 wide");
     if (n <= 0) return;
     if (m_impl->direct) {
-        const SphereData* spheres[kDirectSpheres];
-        for (size_t k = 0; k < m_impl->spheres.size(); ++k) spheres[k] = &m_impl->spheres[k];
-        direct_calls().intersect(DirectArgs{spheres, m_impl->sphere_ids.data(), m_impl->spheres.size(), n, soa, valid},
-                                 hits.t, hits.geom_id);
+        sphere_calls().direct_intersect(DirectArgs{&m_impl->spheres.front(), m_impl->sphere_ids.front(), n, soa, valid},
+                                        hits.t, hits.geom_id);
         for (int i = 0; i < n; ++i) hits.prim_id[i] = 0, hits.u[i] = 0.f, hits.v[i] = 0.f;
         return;
     }
@@ -545,10 +492,8 @@ void EmbreeScene::intersect_lanes(int n, const float* const soa[7], const bool* 
 void EmbreeScene::occluded_lanes(int n, const float* const soa[7], const bool* valid, bool* occluded) const {
     if (n <= 0) return;
     if (m_impl->direct) {
-        const SphereData* spheres[kDirectSpheres];
-        for (size_t k = 0; k < m_impl->spheres.size(); ++k) spheres[k] = &m_impl->spheres[k];
-        direct_calls().occluded(DirectArgs{spheres, m_impl->sphere_ids.data(), m_impl->spheres.size(), n, soa, valid},
-                                occluded);
+        sphere_calls().direct_occluded(DirectArgs{&m_impl->spheres.front(), m_impl->sphere_ids.front(), n, soa, valid},
+                                       occluded);
         return;
     }
     if (n <= 8) occluded_k<8, RTCRay8>(m_impl->scene, n, soa, valid, occluded);

@@ -235,7 +235,8 @@ TEST(EmbreeScene, IntersectLanesAgreeWithSingleRaysAndIgnoreMaskedLanes) {
 TEST(EmbreeScene, SpheresTracedDirectlyGiveEmbreesHits) {
     const Point3f centres[4] = {Point3f(0, 0, 0), Point3f(1.2f, 0.3f, -0.4f), Point3f(-2, 1, 0.5f), Point3f(0.4f, -1.5f, 1)};
     const float radii[4] = {1.f, 0.7f, 0.5f, 1.3f};
-    for (int count = 1; count <= 1; ++count) {  // (kDirectSpheres)
+    {
+        const int count = 1;
         EmbreeScene direct, embree;
         for (int k = 0; k < count; ++k) {
             EXPECT_EQ(direct.add_sphere(centres[k], radii[k]), uint32_t(k));
