@@ -219,6 +219,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         bool at_exit[W];     // this vertex is a BSSRDF's exit point (its exit lobe scatters)
         bool to_exit[W];     // this vertex's sample entered a BSSRDF: the next vertex is its exit
         float u[7][W];
+        // The independent sampler's PCG32 streams (state, increment), lane i at [i]: its numbers are
+        // drawn from here for all lanes at once (draw_independent), so they stay in arrays and never
+        // go through the lanes' Sampler records (which other samplers use).
+        uint64_t rs[W], ri[W];
         // Each lane's ray (origin, direction, tmax) as arrays: what the packet trace reads
         // (EmbreeScene::intersect_lanes), and the ray itself: ray[i] holds a lane's ray
         // differentials, and its origin, direction and tmax only once lane_ray(i) has copied them
@@ -318,6 +322,8 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 } else {
                     path_services::start_sample(ps, splat, x, y, sample, seed_l, &sampler[i], &done[k].fx, &done[k].fy);
                     a.cfx[i] = done[k].fx, a.cfy[i] = done[k].fy;
+                    if (ps.sampler == SamplerType::Independent)
+                        a.rs[i] = sampler[i].stream().state(), a.ri[i] = sampler[i].stream().increment();
                 }
                 if (ps.media || ps.subsurface)
                     medium_rng[i] = path_services::medium_rng(ps, x, y, sample, job.seed);
@@ -345,15 +351,14 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             SM(a.cam, st || LM(a.cam));
             any_cam = true;
             if (!packet_seeding) return;
-            // Sampler(Independent, pixel seed, sample) after its get_pixel_2d(), and the film
-            // positions, as start_sample's.
+            // The stream of Sampler(Independent, pixel seed, sample) after its get_pixel_2d(), and the
+            // film positions, as start_sample's.
             alignas(64) uint64_t state[W], inc[W];
             alignas(64) float fx[W], fy[W];
             path_services::start_independent_samples<W>(stream, sample_of, x0, y0, state, inc, fx, fy);
             for (uint32_t m = lane_bits<F>(started); m; m &= m - 1) {
                 const int i = lowest_lane<F>(m);
-                sampler[i] = Sampler::independent_after_pixel(PCG32::from_state(state[i], inc[i]),
-                                                              Sampler::PixelSeed{stream[i], 0}, sample_of[i]);
+                a.rs[i] = state[i], a.ri[i] = inc[i];
                 FilmSample& d = done[size_t(path_of[i])];
                 a.cfx[i] = d.fx = fx[i], a.cfy[i] = d.fy = fy[i];
             }
@@ -629,11 +634,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 a.draw0[i] = a.nee[i] ? 0 : 3, a.draw1[i] = rr ? 7 : 6;  // drawn below, for all lanes at once
             };
             // The independent sampler's numbers u[draw0, draw1) of every lane, drawn from the lanes'
-            // PCG32 streams side by side: the states in an array, each step for all lanes (lanes
-            // outside their range keep theirs), four streams a vector (PCG32x4).
+            // PCG32 streams side by side (Arrays::rs, ri): each step for all lanes (lanes outside
+            // their range keep theirs), four streams a vector (PCG32x4).
             auto draw_independent = [&]() {
-                alignas(64) uint64_t st[W], inc[W];
-                for (int i = 0; i < W; ++i) st[i] = sampler[i].stream().state(), inc[i] = sampler[i].stream().increment();
+                uint64_t* const st = a.rs;
+                const uint64_t* const inc = a.ri;
                 if constexpr (W % 4 == 0 && W >= 8) {  // four streams at a time (PCG32x4: the same bits)
                     using X = PCG32x4;
                     for (int b = 0; b < W; b += 4) {
@@ -666,7 +671,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                         }
                     }
                 }
-                for (int i = 0; i < W; ++i) sampler[i].stream().set_state(st[i]);
             };
             // The lanes `goes` go on from their hit, those of `nee` with next-event estimation: their
             // numbers for this vertex are due (as draw_randoms gives them, lane by lane).
