@@ -17,7 +17,7 @@
 // lights with neither a row in the light table (LightTable) nor an emitter table (EmitterTable),
 // until those have packet forms too. Rays that escape the scene
 // take the radiance of the lights at infinity as a packet (escaped_radiance). Every lane keeps its
-// own Sampler and the estimates reach the film in (pixel, sample) order, so images do not depend on
+// own sampler stream and the estimates reach the film in (pixel, sample) order, so images do not depend on
 // the thread count.
 //
 // Media (medium/medium.h, docs/media.md), when the scene has any: each lane tracks the medium its
