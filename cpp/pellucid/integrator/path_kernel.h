@@ -454,6 +454,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             const float* const ray_soa[7] = {a.ray_soa[0], a.ray_soa[1], a.ray_soa[2], a.ray_soa[3],
                                              a.ray_soa[4], a.ray_soa[5], a.ray_soa[6]};
             path_services::trace_lanes(scene, W, ray_soa, a.traced, hl, hit);
+            if (ps.prefetch_hits) prefetch_index_rows<W>(scene, hl.geom_id, hl.prim_id, hit);
             // Hit records (below, after the restarts): full ones one lane at a time (Scene::fill_hit),
             // then the vertices of the lanes that need no more, as packets (the same templates
             // fill_hit uses, so the same bits).
@@ -499,6 +500,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     HitLanes hl2;
                     bool hit2[W];
                     path_services::trace_lanes(scene, W, ray_soa, esc_b, hl2, hit2);
+                    if (ps.prefetch_hits) prefetch_index_rows<W>(scene, hl2.geom_id, hl2.prim_id, hit2);
                     for (int i = 0; i < W; ++i) {
                         if (!esc_b[i]) continue;
                         hl.t[i] = hl2.t[i], hl.geom_id[i] = hl2.geom_id[i], hl.prim_id[i] = hl2.prim_id[i];
@@ -546,6 +548,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 vl_m = vl_m || svl_m;
             }
             SM(vl, vl_m);
+            if (ps.prefetch_hits) prefetch_vertices<W>(scene, hl.geom_id, hl.prim_id, hit);
             hv.clear();
             for (int i = 0; i < W; ++i) {
                 if (vl[i]) {

@@ -15,6 +15,7 @@
 #endif
 
 #include "pellucid/sampling/mis.h"
+#include "pellucid/scene/hit_packets.h"
 #include "pellucid/scene/scene.h"
 
 namespace pellucid {
@@ -492,6 +493,7 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.subsurface = !scene.subsurface.empty();
     make_triangle_table(scene, &ps);
     make_sphere_table(scene, &ps);
+    for (const TriangleMesh& m : scene.meshes) ps.prefetch_hits |= m.triangle_count() > kPrefetchTriangles;
     return ps;
 }
 

@@ -155,6 +155,9 @@ struct PathSetup {
     /// (0, 0), (1, 0), (1, 1) for a mesh without uvs; two unused; ∂p/∂u, ∂p/∂v as FlatTriangle has
     /// them; two unused), else empty.
     static constexpr int kTriUVStride = 16;
+    /// Some mesh has more than kPrefetchTriangles triangles: the kernel requests its hits' index
+    /// rows as soon as the hits are known (prefetch_index_rows, scene/hit_packets.h).
+    bool prefetch_hits = false;
     std::vector<float> tri_uv;
     /// The spheres likewise (gathered by geometry): sphere_row[g] is sphere geometry g's row in
     /// sphere_table, or −1 (a mesh, an emitter, a scene with media or subsurface scattering). Each

@@ -13,14 +13,18 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <fstream>
 #include <set>
 #include <string>
 
 #include "pellucid/api.h"
 #include "pellucid/integrator/path_services.h"
 #include "pellucid/integrator/simd_target.h"
+#include "pellucid/scene/hit_packets.h"
 #include "pellucid/scene/json_io.h"
+#include "support/temp_dir.h"
 
 using namespace pellucid;
 
@@ -413,6 +417,66 @@ TEST(SimdTargetRender, ShapeTableLanesEqualLaneByLaneRecords) {
             EXPECT_EQ(0u, differing(a.image, b.image)) << file << " " << to_string(t);
         }
     }
+}
+
+TEST(SimdTargetRender, LargeMeshHitsArePrefetchedWithoutChangingTheImage) {
+    // A bowl of 182 x 182 quads (66,248 triangles, above kPrefetchTriangles) with vertex normals, so
+    // that its hits are recorded one lane at a time with their index rows and vertices requested
+    // first (prefetch_index_rows, prefetch_vertices): the path setup asks for it, and every target
+    // renders the image it renders without it, bit for bit (the requests read each hit's index row,
+    // which the sanitizer build checks).
+    const test::TempDir tmp("pellucid_prefetch_");
+    const int n = 182;
+    {
+        std::ofstream ply(tmp.file("bowl.ply"));
+        ply << "ply\nformat ascii 1.0\nelement vertex " << (n + 1) * (n + 1)
+            << "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\n"
+               "property float nz\nelement face "
+            << n * n << "\nproperty list uchar int vertex_indices\nend_header\n";
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                const float x = -1.f + 2.f * float(i) / float(n), z = -1.f + 2.f * float(j) / float(n);
+                const float nx = -0.6f * x, ny = 1.f, nz = -0.6f * z, l = std::sqrt(nx * nx + ny * ny + nz * nz);
+                ply << x << ' ' << 0.3f * (x * x + z * z) << ' ' << z << ' ' << nx / l << ' ' << ny / l << ' ' << nz / l << '\n';
+            }
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const int a = j * (n + 1) + i;
+                ply << "4 " << a << ' ' << a + n + 1 << ' ' << a + n + 2 << ' ' << a + 1 << '\n';
+            }
+    }
+    std::ofstream(tmp.file("scene.json")) << R"({
+        "camera": {"type": "perspective", "fov": 50, "to_world": [{"look_at": {"origin": [0, 2, 2.5], "target": [0, 0.2, 0], "up": [0, 1, 0]}}]},
+        "film": {"width": 40, "height": 32},
+        "sampler": {"type": "independent", "sample_count": 8},
+        "integrator": {"type": "path", "max_depth": 6},
+        "materials": {"gold": {"type": "rough_conductor", "material": "Au", "alpha": 0.2},
+                      "clay": {"type": "lambertian", "reflectance": 0.5}},
+        "shapes": [{"type": "ply", "filename": "bowl.ply", "material": "gold"},
+                   {"type": "sphere", "center": [0, 0.6, 0], "radius": 0.3, "material": "clay"}],
+        "lights": [{"type": "constant", "radiance": 0.5}, {"type": "directional", "direction": [-0.3, -1, -0.4], "irradiance": 2}]
+    })";
+    auto scene = load_file(tmp.file("scene.json"));
+    ASSERT_EQ(scene->meshes.size(), 1u);
+    ASSERT_GT(scene->meshes[0].triangle_count(), kPrefetchTriangles);
+    const PathSetup with = make_path_setup(*scene, 6, 5, true, true, SamplerType::Independent);
+    EXPECT_TRUE(with.prefetch_hits);
+    PathSetup without = with;
+    without.prefetch_hits = false;
+    RenderOptions o;
+    o.spp = 8;
+    o.seed = 3;
+    std::vector<SimdTarget> targets = available_simd_targets();
+    targets.push_back(SimdTarget::Scalar);
+    for (SimdTarget t : targets) {
+        const PathTileFn tile = path_tile_function(t);
+        const RenderResult a = render_loop(*scene, o, [&](const TileJob& j, Film& f) { return tile(with, j, f); });
+        const RenderResult b = render_loop(*scene, o, [&](const TileJob& j, Film& f) { return tile(without, j, f); });
+        EXPECT_EQ(0u, differing(a.image, b.image)) << to_string(t);
+    }
+    // The suite's Cornell box (36 triangles) asks for none.
+    auto small = load_scene("bench/suite/cornell_lambert.json", 16, 16);
+    EXPECT_FALSE(make_path_setup(*small, 6, 5, true, true, SamplerType::Independent).prefetch_hits);
 }
 
 TEST(SimdTargetRender, PacketStartedSamplesAreStartSamples) {
