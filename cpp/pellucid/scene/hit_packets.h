@@ -86,32 +86,31 @@ template <int W>
 /// them: prefetch_index_rows requests the rows of the lanes `take` that hit such a mesh as soon
 /// as the packet's hits are known, so that their reads overlap the work before the records are made.
 inline constexpr size_t kPrefetchTriangles = size_t(1) << 16;
+/// The mesh of geometry g if it has more than kPrefetchTriangles triangles, else null.
+[[gnu::always_inline]] inline const TriangleMesh* large_mesh(const Scene& scene, uint32_t g) {
+    const ShapeRecord& s = scene.shapes[g];
+    if (s.kind != ShapeRecord::Kind::Mesh) return nullptr;
+    const TriangleMesh& m = scene.meshes[s.mesh_index];
+    return m.triangle_count() > kPrefetchTriangles ? &m : nullptr;
+}
 template <int W>
 inline void prefetch_index_rows(const Scene& scene, const uint32_t* geom_id, const uint32_t* prim_id, const bool* take) {
-    for (int i = 0; i < W; ++i) {
-        if (!take[i]) continue;
-        const ShapeRecord& s = scene.shapes[geom_id[i]];
-        if (s.kind != ShapeRecord::Kind::Mesh) continue;
-        const TriangleMesh& m = scene.meshes[s.mesh_index];
-        if (m.triangle_count() > kPrefetchTriangles) __builtin_prefetch(&m.indices[3 * size_t(prim_id[i])]);
-    }
+    for (int i = 0; i < W; ++i)
+        if (const TriangleMesh* m = take[i] ? large_mesh(scene, geom_id[i]) : nullptr)
+            __builtin_prefetch(&m->indices[3 * size_t(prim_id[i])]);
 }
-
 /// The corners, vertex normals and uvs of the same lanes' triangles, through their index rows
 /// (requested just before the records are made, once the rows have had the time to arrive).
 template <int W>
 inline void prefetch_vertices(const Scene& scene, const uint32_t* geom_id, const uint32_t* prim_id, const bool* take) {
     for (int i = 0; i < W; ++i) {
-        if (!take[i]) continue;
-        const ShapeRecord& s = scene.shapes[geom_id[i]];
-        if (s.kind != ShapeRecord::Kind::Mesh) continue;
-        const TriangleMesh& m = scene.meshes[s.mesh_index];
-        if (m.triangle_count() <= kPrefetchTriangles) continue;
-        const uint32_t* idx = &m.indices[3 * size_t(prim_id[i])];
+        const TriangleMesh* m = take[i] ? large_mesh(scene, geom_id[i]) : nullptr;
+        if (!m) continue;
+        const uint32_t* idx = &m->indices[3 * size_t(prim_id[i])];
         for (int c = 0; c < 3; ++c) {
-            __builtin_prefetch(&m.positions[idx[c]]);
-            if (!m.normals.empty()) __builtin_prefetch(&m.normals[idx[c]]);
-            if (!m.uvs.empty()) __builtin_prefetch(&m.uvs[idx[c]]);
+            __builtin_prefetch(&m->positions[idx[c]]);
+            if (!m->normals.empty()) __builtin_prefetch(&m->normals[idx[c]]);
+            if (!m->uvs.empty()) __builtin_prefetch(&m->uvs[idx[c]]);
         }
     }
 }

@@ -89,6 +89,24 @@ void expect_every_target_gives_the_scalar_image(const Scene& scene, const std::s
 }
 }  // namespace
 
+namespace {
+/// Every target, the scalar one too, renders the same image from either path setup of the scene.
+void expect_setups_give_the_same_image(const Scene& scene, const PathSetup& with, const PathSetup& without, int spp,
+                                       int seed, const std::string& name) {
+    RenderOptions o;
+    o.spp = spp;
+    o.seed = seed;
+    std::vector<SimdTarget> targets = available_simd_targets();
+    targets.push_back(SimdTarget::Scalar);
+    for (SimdTarget t : targets) {
+        const PathTileFn tile = path_tile_function(t);
+        const RenderResult a = render_loop(scene, o, [&](const TileJob& j, Film& f) { return tile(with, j, f); });
+        const RenderResult b = render_loop(scene, o, [&](const TileJob& j, Film& f) { return tile(without, j, f); });
+        EXPECT_EQ(0u, differing(a.image, b.image)) << name << " " << to_string(t);
+    }
+}
+}  // namespace
+
 class SimdTargetRender : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SimdTargetRender, EveryTargetGivesTheScalarImage) {
@@ -405,17 +423,7 @@ TEST(SimdTargetRender, ShapeTableLanesEqualLaneByLaneRecords) {
         without.tri_table.clear();
         without.sphere_row.clear();
         without.sphere_table.clear();
-        RenderOptions o;
-        o.spp = 16;
-        o.seed = 5;
-        std::vector<SimdTarget> targets = available_simd_targets();
-        targets.push_back(SimdTarget::Scalar);
-        for (SimdTarget t : targets) {
-            const PathTileFn tile = path_tile_function(t);
-            const RenderResult a = render_loop(*scene, o, [&](const TileJob& j, Film& f) { return tile(with, j, f); });
-            const RenderResult b = render_loop(*scene, o, [&](const TileJob& j, Film& f) { return tile(without, j, f); });
-            EXPECT_EQ(0u, differing(a.image, b.image)) << file << " " << to_string(t);
-        }
+        expect_setups_give_the_same_image(*scene, with, without, 16, 5, file);
     }
 }
 
@@ -463,17 +471,7 @@ TEST(SimdTargetRender, LargeMeshHitsArePrefetchedWithoutChangingTheImage) {
     EXPECT_TRUE(with.prefetch_hits);
     PathSetup without = with;
     without.prefetch_hits = false;
-    RenderOptions o;
-    o.spp = 8;
-    o.seed = 3;
-    std::vector<SimdTarget> targets = available_simd_targets();
-    targets.push_back(SimdTarget::Scalar);
-    for (SimdTarget t : targets) {
-        const PathTileFn tile = path_tile_function(t);
-        const RenderResult a = render_loop(*scene, o, [&](const TileJob& j, Film& f) { return tile(with, j, f); });
-        const RenderResult b = render_loop(*scene, o, [&](const TileJob& j, Film& f) { return tile(without, j, f); });
-        EXPECT_EQ(0u, differing(a.image, b.image)) << to_string(t);
-    }
+    expect_setups_give_the_same_image(*scene, with, without, 8, 3, "bowl");
     // The suite's Cornell box (36 triangles) asks for none.
     auto small = load_scene("bench/suite/cornell_lambert.json", 16, 16);
     EXPECT_FALSE(make_path_setup(*small, 6, 5, true, true, SamplerType::Independent).prefetch_hits);
