@@ -94,7 +94,7 @@ inline constexpr size_t kPrefetchTriangles = size_t(1) << 16;
     return m.triangle_count() > kPrefetchTriangles ? &m : nullptr;
 }
 template <int W>
-inline void prefetch_index_rows(const Scene& scene, const uint32_t* geom_id, const uint32_t* prim_id, const bool* take) {
+[[gnu::always_inline]] inline void prefetch_index_rows(const Scene& scene, const uint32_t* geom_id, const uint32_t* prim_id, const bool* take) {
     for (int i = 0; i < W; ++i)
         if (const TriangleMesh* m = take[i] ? large_mesh(scene, geom_id[i]) : nullptr)
             __builtin_prefetch(&m->indices[3 * size_t(prim_id[i])]);
@@ -102,7 +102,7 @@ inline void prefetch_index_rows(const Scene& scene, const uint32_t* geom_id, con
 /// The corners, vertex normals and uvs of the same lanes' triangles, through their index rows
 /// (requested just before the records are made, once the rows have had the time to arrive).
 template <int W>
-inline void prefetch_vertices(const Scene& scene, const uint32_t* geom_id, const uint32_t* prim_id, const bool* take) {
+[[gnu::always_inline]] inline void prefetch_vertices(const Scene& scene, const uint32_t* geom_id, const uint32_t* prim_id, const bool* take) {
     for (int i = 0; i < W; ++i) {
         const TriangleMesh* m = take[i] ? large_mesh(scene, geom_id[i]) : nullptr;
         if (!m) continue;
