@@ -548,7 +548,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 vl_m = vl_m || svl_m;
             }
             SM(vl, vl_m);
-            if (ps.prefetch_hits) prefetch_vertices<W>(scene, hl.geom_id, hl.prim_id, hit);
+            if (ps.prefetch_hits) {  // (the lanes vl read the shape tables' rows)
+                alignas(64) bool take[W];
+                for (int i = 0; i < W; ++i) take[i] = hit[i] & !vl[i];
+                prefetch_vertices<W>(scene, hl.geom_id, hl.prim_id, take);
+            }
             hv.clear();
             for (int i = 0; i < W; ++i) {
                 if (vl[i]) {

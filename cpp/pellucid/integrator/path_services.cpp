@@ -493,7 +493,10 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     ps.subsurface = !scene.subsurface.empty();
     make_triangle_table(scene, &ps);
     make_sphere_table(scene, &ps);
-    for (const TriangleMesh& m : scene.meshes) ps.prefetch_hits |= m.triangle_count() > kPrefetchTriangles;
+    for (size_t g = 0; g < scene.shapes.size(); ++g) {  // (the table's lanes read their rows instead)
+        const bool in_table = g < ps.tri_base.size() && ps.tri_base[g] >= 0;
+        ps.prefetch_hits |= !in_table && large_mesh(scene, uint32_t(g)) != nullptr;
+    }
     return ps;
 }
 

@@ -155,10 +155,11 @@ struct PathSetup {
     /// (0, 0), (1, 0), (1, 1) for a mesh without uvs; two unused; ∂p/∂u, ∂p/∂v as FlatTriangle has
     /// them; two unused), else empty.
     static constexpr int kTriUVStride = 16;
-    /// Some mesh has more than kPrefetchTriangles triangles: the kernel requests its hits' index
-    /// rows as soon as the hits are known (prefetch_index_rows, scene/hit_packets.h).
-    bool prefetch_hits = false;
     std::vector<float> tri_uv;
+    /// Some mesh outside the triangle table has more than kPrefetchTriangles triangles: the kernel
+    /// requests its hits' index rows as soon as the hits are known, and their vertices before the
+    /// records are made (prefetch_index_rows, prefetch_vertices in scene/hit_packets.h).
+    bool prefetch_hits = false;
     /// The spheres likewise (gathered by geometry): sphere_row[g] is sphere geometry g's row in
     /// sphere_table, or −1 (a mesh, an emitter, a scene with media or subsurface scattering). Each
     /// row is kSphereStride floats: centre, radius, rotation columns (ShapeRecord::rotation), 1
