@@ -36,6 +36,7 @@
 #pragma once
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -114,11 +115,27 @@ void rows_by_lane(const float* table, int stride, const IntT<F>& row, const Mask
 /// packet, and a test per lane mispredicts where a walk over the bits does not.
 /// (Templated on the lane type F, as every helper of the kernel is: one compiled for one instruction set
 /// must not stand in for another's at link time.)
+/// Eight lanes at a time: the bools' bytes b0 … b7 (each 0 or 1) as one word x = Σ b_i·2^(8i), times
+/// M = Σ 2^(56 − 7i), put b_i at bit 56 + i; every other product b_i·2^(56 + 8i − 7k) lands above
+/// bit 63 (i > k) or alone on a bit below 56 (i < k: the positions 56 + 8i − 7k are distinct), so no
+/// carry reaches bits 56–63, which the shift returns. (A loop over the lanes is a load, a shift and
+/// an or a lane.)
 template <class F>
 inline uint32_t lane_bits(const bool* b) {
     constexpr int W = kLaneWidth<F>;
     static_assert(W <= 32, "lanes fit a word");
+    static_assert(sizeof(bool) == 1, "one byte a bool");
     uint32_t m = 0;
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    if constexpr (W % 8 == 0 || W == 4) {
+        for (int i = 0; i < W; i += 8) {
+            uint64_t x = 0;
+            std::memcpy(&x, b + i, W == 4 ? 4 : 8);
+            m |= uint32_t((x * 0x0102040810204080ULL) >> 56) << i;
+        }
+        return m;
+    }
+#endif
     for (int i = 0; i < W; ++i) m |= uint32_t(b[i]) << i;
     return m;
 }
@@ -294,7 +311,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         // The lanes `go` take the chunk's next paths, in lane order, or go idle. The paths are dealt
         // out one lane at a time (a counter over the chunk's pixels and samples); with the
         // independent sampler and a splatting film, each sample's seeding and pixel offset are
-        // computed for all lanes at once, from PCG32's parts, four streams a vector (PCG32x4)
+        // computed for all lanes at once, from PCG32's parts, eight streams at a time (PCG32x8)
         // (the numbers path_services::start_sample gives); otherwise one lane at a time by it.
         const bool packet_seeding = ps.sampler == SamplerType::Independent && splat;
         auto start_lanes = [&](const bool* go) {
@@ -642,30 +659,32 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             };
             // The independent sampler's numbers u[draw0, draw1) of every lane, drawn from the lanes'
             // PCG32 streams side by side (Arrays::rs, ri): each step for all lanes (lanes outside
-            // their range keep theirs), four streams a vector (PCG32x4).
+            // their range keep theirs), eight streams at a time (PCG32x8).
             auto draw_independent = [&]() {
                 uint64_t* const st = a.rs;
                 const uint64_t* const inc = a.ri;
-                if constexpr (W % 4 == 0 && W >= 8) {  // four streams at a time (PCG32x4: the same bits)
-                    using X = PCG32x4;
-                    for (int b = 0; b < W; b += 4) {
-                        // Only the numbers some lane of the four draws: [lo, hi) (none for lanes
+                if constexpr (W % 8 == 0) {  // eight streams at a time (PCG32x8: the same bits)
+                    using X = PCG32x8;
+                    using X4 = PCG32x4;
+                    for (int b = 0; b < W; b += 8) {
+                        // Only the numbers some lane of the eight draws: [lo, hi) (none for lanes
                         // that do not go on, u0–u2 only where a lane takes a light sample, u6 only
                         // under roulette).
                         int lo = 7, hi = 0;
-                        for (int i = b; i < b + 4; ++i)
+                        for (int i = b; i < b + 8; ++i)
                             if (a.draw0[i] < a.draw1[i]) lo = std::min(lo, a.draw0[i]), hi = std::max(hi, a.draw1[i]);
                         if (lo >= hi) continue;
-                        X::State s = X::load<X::State>(st + b);
-                        const X::State c = X::load<X::State>(inc + b);
+                        X::State s0 = X4::load<X::State>(st + b), s1 = X4::load<X::State>(st + b + 4);
+                        const X::State c0 = X4::load<X::State>(inc + b), c1 = X4::load<X::State>(inc + b + 4);
                         const X::I32 d0 = X::load<X::I32>(a.draw0 + b), d1 = X::load<X::I32>(a.draw1 + b);
                         for (int k = lo; k < hi; ++k) {
                             const X::I32 kv = X::I32{} + k;
                             const X::I32 draw = (kv >= d0) & (kv < d1);
-                            X::store(a.u[k] + b, draw ? X::to_float(X::output(s)) : X::load<X::F32>(a.u[k] + b));
-                            s = __builtin_convertvector(draw, X::Mask64) ? X::step(s, c) : s;
+                            X::store(a.u[k] + b, draw ? X::to_float(X::output(s0, s1)) : X::load<X::F32>(a.u[k] + b));
+                            s0 = X::low_mask(draw) ? X4::step(s0, c0) : s0;
+                            s1 = X::high_mask(draw) ? X4::step(s1, c1) : s1;
                         }
-                        X::store(st + b, s);
+                        X4::store(st + b, s0), X4::store(st + b + 4, s1);
                     }
                 } else {
                     for (int k = 0; k < 7; ++k) {

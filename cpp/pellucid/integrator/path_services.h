@@ -208,8 +208,8 @@ namespace path_services {
 /// (PerspectiveCamera::direction).
 void start_sample(const PathSetup& ps, bool splat, int x, int y, int sample, const Sampler::PixelSeed& px, Sampler* sampler,
                   float* fx, float* fy);
-/// start_sample for n samples of the independent sampler on a splatting film, side by side (four
-/// streams a vector where N is a multiple of 4 and at least 8, PCG32x4; the path kernel starts a
+/// start_sample for n samples of the independent sampler on a splatting film, side by side (eight
+/// streams at a time where N is a multiple of 8, PCG32x8; the path kernel starts a
 /// packet's paths with it): sample `sample[i]`
 /// of the pixel whose stream is `stream[i]` (PixelSeed::stream) and whose centre is (cx[i],
 /// cy[i]) gets the film position (fx[i], fy[i]) and the PCG32 state and increment its sampler has
@@ -218,17 +218,21 @@ template <int N>
 [[gnu::always_inline]] inline void start_independent_samples(const uint64_t* stream, const uint64_t* sample, const float* cx,
                                                              const float* cy, uint64_t* state, uint64_t* inc, float* fx,
                                                              float* fy) {
-    if constexpr (N % 4 == 0 && N >= 8) {  // four streams at a time (PCG32x4: the same bits)
-        using X = PCG32x4;
-        for (int b = 0; b < N; b += 4) {
-            const X::State st = X::load<X::State>(stream + b), smp = X::load<X::State>(sample + b);
-            const X::State c = (st << 1u) | 1u;                   // increment_of
-            X::State s = X::mix_bits(smp ^ (st << 1u));           // sample_init
-            s = X::step(X::step(X::State{}, c) + s, c);           // seeded_state
-            const X::F32 u0 = X::to_float(X::output(s));
-            s = X::step(s, c);
-            const X::F32 u1 = X::to_float(X::output(s));
-            X::store(state + b, X::step(s, c)), X::store(inc + b, c);
+    if constexpr (N % 8 == 0) {  // eight streams at a time (PCG32x8: the same bits)
+        using X = PCG32x8;
+        using X4 = PCG32x4;
+        for (int b = 0; b < N; b += 8) {
+            X::State s[2], c[2];
+            for (int h = 0; h < 2; ++h) {
+                const X::State st = X4::load<X::State>(stream + b + 4 * h), smp = X4::load<X::State>(sample + b + 4 * h);
+                c[h] = (st << 1u) | 1u;                              // increment_of
+                s[h] = X4::mix_bits(smp ^ (st << 1u));               // sample_init
+                s[h] = X4::step(X4::step(X::State{}, c[h]) + s[h], c[h]);  // seeded_state
+            }
+            const X::F32 u0 = X::to_float(X::output(s[0], s[1]));
+            for (int h = 0; h < 2; ++h) s[h] = X4::step(s[h], c[h]);
+            const X::F32 u1 = X::to_float(X::output(s[0], s[1]));
+            for (int h = 0; h < 2; ++h) X4::store(state + b + 4 * h, X4::step(s[h], c[h])), X4::store(inc + b + 4 * h, c[h]);
             // film_position with a splatting film: the pixel's corner + 0.5 + (u - 0.5).
             X::store(fx + b, X::load<X::F32>(cx + b) + (u0 - 0.5f)), X::store(fy + b, X::load<X::F32>(cy + b) + (u1 - 0.5f));
         }

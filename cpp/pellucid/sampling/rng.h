@@ -179,6 +179,69 @@ struct PCG32x4 {
     /// mix_bits on four values.
     [[gnu::always_inline]] static State mix_bits(const State& v) { return rng_detail::mix_bits(v); }
 };
+
+/// PCG32's parts on eight streams: the states of two PCG32x4 (lanes 0–3 and 4–7), whose outputs are
+/// made as one vector of eight 32-bit values and converted to floats as one (the path kernel's AVX2
+/// and AVX-512 targets: on AVX2, PCG32x4's outputs fill half a register each, and its narrowing of
+/// 64-bit elements to 32 bits costs five shuffles where the pair's costs two). Every element is
+/// PCG32::output and to_float's, bit for bit (tests/cpp/sampling/test_rng.cpp).
+struct PCG32x8 {
+    typedef PCG32x4::State State;  ///< four streams: a PCG32x8 is two
+    typedef PCG32x4::Mask64 Mask64;
+    typedef uint32_t U32 __attribute__((vector_size(32)));
+    typedef int32_t I32 __attribute__((vector_size(32)));
+    typedef float F32 __attribute__((vector_size(32)));
+
+    template <class V, class T>
+    [[gnu::always_inline]] static V load(const T* p) {
+        static_assert(sizeof(V) == 32, "one 32-byte vector");
+        V v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    }
+    template <class V, class T>
+    [[gnu::always_inline]] static void store(T* p, const V& v) {
+        static_assert(sizeof(V) == 32, "one 32-byte vector");
+        std::memcpy(p, &v, sizeof v);
+    }
+    /// The outputs of steps from the states of lanes 0–3 (lo) and 4–7 (hi). XSH RR's rotation is
+    /// done on each state's 64-bit element: the 32 bits x of the xorshift, twice side by side
+    /// (x·2³² + x), shifted right by rot < 32, hold x rotated right by rot in their low half, which
+    /// is PCG32::output's (x >> rot) | (x << (−rot & 31)); the two vectors' low halves are then
+    /// gathered into one.
+    [[gnu::always_inline]] static U32 output(const State& lo, const State& hi) {
+        const State a = rotated(lo), b = rotated(hi);
+        typedef uint32_t U32x8 __attribute__((vector_size(32)));
+        const U32x8 a32 = (U32x8)a, b32 = (U32x8)b;
+#if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+        return __builtin_shufflevector(a32, b32, 0, 2, 4, 6, 8, 10, 12, 14);
+#else
+        return __builtin_shufflevector(a32, b32, 1, 3, 5, 7, 9, 11, 13, 15);
+#endif
+    }
+    /// PCG32::to_float on eight values, as PCG32x4::to_float (the same operations, element by element).
+    [[gnu::always_inline]] static F32 to_float(U32 v) {
+        const F32 hi = __builtin_convertvector((I32)(v >> 16u), F32);
+        const F32 lo = __builtin_convertvector((I32)(v & 0xffffu), F32);
+        const F32 f = (hi * 65536.f + lo) * 0x1p-32f;
+        return kOneMinusEpsilon < f ? F32{} + kOneMinusEpsilon : f;  // std::min(f, kOneMinusEpsilon)
+    }
+    /// Lanes 0–3 and 4–7 of a mask of eight, widened to masks of the two states' elements.
+    [[gnu::always_inline]] static Mask64 low_mask(const I32& m) {
+        typedef int32_t I32x4 __attribute__((vector_size(16)));
+        return __builtin_convertvector((I32x4)__builtin_shufflevector(m, m, 0, 1, 2, 3), Mask64);
+    }
+    [[gnu::always_inline]] static Mask64 high_mask(const I32& m) {
+        typedef int32_t I32x4 __attribute__((vector_size(16)));
+        return __builtin_convertvector((I32x4)__builtin_shufflevector(m, m, 4, 5, 6, 7), Mask64);
+    }
+
+private:
+    [[gnu::always_inline]] static State rotated(const State& state) {
+        const State x = ((state >> 18u) ^ state) >> 27u;
+        return ((x << 32u) | (x & 0xffffffffULL)) >> (state >> 59u);
+    }
+};
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop
 #endif

@@ -1,10 +1,10 @@
-// PCG32 on four streams side by side (sampling/rng.h, PCG32x4) against the scalar generator, bit
-// for bit: the path kernel draws its packets' numbers and seeds their samples with it, and every
+// PCG32 on four and eight streams side by side (sampling/rng.h, PCG32x4, PCG32x8) against the
+// scalar generator, bit for bit: the path kernel draws its packets' numbers and seeds their samples with it, and every
 // SIMD target must give the scalar target's image (the seeding itself:
 // SimdTargetRender.PacketStartedSamplesAreStartSamples).
 // SPDX-License-Identifier: Apache-2.0
 // (This file is built for the baseline instruction set, where GCC notes that a 32-byte vector
-// return would change the ABI; PCG32x4's functions are always inlined.)
+// return would change the ABI; PCG32x4's and PCG32x8's functions are always inlined.)
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
@@ -105,5 +105,56 @@ TEST(PCG32x4, ToFloatRoundsAsTheScalarConversion) {
         std::memcpy(&u, &v[b], sizeof u);
         const X::F32 f = X::to_float(u);
         for (int l = 0; l < 4; ++l) ASSERT_EQ(float_bits(f[l]), float_bits(PCG32::to_float(v[b + l]))) << v[b + l];
+    }
+}
+
+// PCG32x8's output, whose rotation is its own (on each state's 64-bit element), and its conversion
+// and masks, against the scalar parts: every rotation 0–31 occurs among the states (their top five
+// bits), and the masks are checked on every pattern of eight lanes.
+TEST(PCG32x8, PartsEqualTheScalarOnes) {
+    using X = PCG32x8;
+    std::vector<uint64_t> s = test_states();
+    for (uint64_t rot = 0; rot < 32; ++rot) s.push_back((rot << 59) | (s[rot] >> 5));
+    while (s.size() % 8) s.push_back(mix_bits(s.size()));
+    for (size_t b = 0; b + 8 <= s.size(); b += 8) {
+        X::State lo, hi;
+        std::memcpy(&lo, &s[b], sizeof lo);
+        std::memcpy(&hi, &s[b + 4], sizeof hi);
+        const X::U32 out = X::output(lo, hi);
+        const X::F32 f = X::to_float(out);
+        for (int l = 0; l < 8; ++l) {
+            ASSERT_EQ(out[l], PCG32::output(s[b + l])) << s[b + l];
+            ASSERT_EQ(float_bits(f[l]), float_bits(PCG32::to_float(out[l]))) << out[l];
+        }
+    }
+    for (uint32_t pattern = 0; pattern < 256; ++pattern) {
+        X::I32 m;
+        for (int l = 0; l < 8; ++l) m[l] = (pattern >> l) & 1u ? -1 : 0;
+        const X::Mask64 lo = X::low_mask(m), hi = X::high_mask(m);
+        for (int l = 0; l < 4; ++l) {
+            ASSERT_EQ(lo[l], int64_t(m[l])) << pattern;
+            ASSERT_EQ(hi[l], int64_t(m[4 + l])) << pattern;
+        }
+    }
+}
+
+// PCG32x8::to_float on the values of PCG32x4's test of the conversion.
+TEST(PCG32x8, ToFloatRoundsAsTheScalarConversion) {
+    using X = PCG32x8;
+    std::vector<uint32_t> v = {0u, 1u, 0xffffu, 0x10000u, 0xffffffffu, 0xffffff80u, 0xffffff7fu, 0x80000000u};
+    for (uint32_t e = 24; e < 32; ++e)
+        for (uint32_t m = 0; m < 64; ++m) {
+            const uint32_t base = (1u << e) + m * (1u << (e - 6)) * 3u;
+            const uint32_t half = 1u << (e - 24);
+            for (uint32_t d : {half - 1u, half, half + 1u, 2u * half, 3u * half}) v.push_back(base + d);
+        }
+    uint32_t x = 12345u;
+    for (int i = 0; i < 20000; ++i) v.push_back(x = x * 1664525u + 1013904223u);
+    while (v.size() % 8) v.push_back(0u);
+    for (size_t b = 0; b < v.size(); b += 8) {
+        X::U32 u;
+        std::memcpy(&u, &v[b], sizeof u);
+        const X::F32 f = X::to_float(u);
+        for (int l = 0; l < 8; ++l) ASSERT_EQ(float_bits(f[l]), float_bits(PCG32::to_float(v[b + l]))) << v[b + l];
     }
 }
