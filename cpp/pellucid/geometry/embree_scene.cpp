@@ -23,6 +23,8 @@ struct SphereData {
     double cx, cy, cz, r2;
     float lower[3], upper[3];
 };
+struct TraceCalls;  // the packet traces of one instruction-set variant (below)
+const TraceCalls& trace_calls(EmbreeScene::PacketVariant v);
 }  // namespace
 
 struct EmbreeScene::Impl {
@@ -38,6 +40,7 @@ struct EmbreeScene::Impl {
     // A scene of one sphere and no mesh is traced without Embree (commit(), DirectArgs): every ray
     // tests the sphere.
     bool direct = false;
+    const TraceCalls* trace = &trace_calls(EmbreeScene::packet_variants().back());
     void check() {
         if (!error.empty()) {
             std::string e = error;
@@ -388,20 +391,37 @@ namespace {
 /// included: Embree's 16-wide call on an AVX2 build, done as two 8-wide halves, asserts that every
 /// ray it carries is valid). mask[i] = −1 for a lane to trace, else 0.
 ///
-/// A full packet (n = K, every kernel's packets but the 4-lane one) is filled four lanes at a time
-/// in vectors of the baseline instruction set (GCC/Clang vector extensions: SSE2, NEON): each field
-/// a select between the caller's value and the empty ray's by the lane's mask, with no branch and
-/// no copy of run-time length. (Scalar loops over the lanes, which the compiler left unvectorised,
-/// cost more than the copies and fix-ups below.)
-template <int K, class RayK>
-void fill_lanes(RayK& r, int* mask, int n, const float* const soa[7], const bool* valid) {
+/// A full packet (n = K, every kernel's packets but the 4-lane one) is filled Vn lanes at a time in
+/// vectors (GCC/Clang vector extensions: Vn = 4 in the baseline instruction set, SSE2 or NEON, and 8
+/// in the AVX2 variant, trace_calls): each field a select between the caller's value and the empty
+/// ray's by the lane's mask, with no branch and no copy of run-time length; the mask from the Vn
+/// bools read as bytes and widened. (Scalar loops over the lanes, which the compiler left
+/// unvectorised, cost more than the copies and fix-ups below.)
+template <int Vn>
+struct FillVectors;  // Vn int32 lanes (V) and as many bytes (B)
+template <>
+struct FillVectors<4> {
+    typedef int32_t V __attribute__((vector_size(16)));
+    typedef uint8_t B __attribute__((vector_size(4)));
+};
+template <>
+struct FillVectors<8> {
+    typedef int32_t V __attribute__((vector_size(32)));
+    typedef uint8_t B __attribute__((vector_size(8)));
+};
+template <int K, int Vn, class RayK>
+[[gnu::always_inline]] inline void fill_lanes(RayK& r, int* mask, int n, const float* const soa[7], const bool* valid) {
     float* dst[7] = {r.org_x, r.org_y, r.org_z, r.dir_x, r.dir_y, r.dir_z, r.tfar};
     if (n == K) {
-        using V = int32_t __attribute__((vector_size(16)));
-        static_assert(K % 4 == 0, "packets of whole vectors");
+        using V = typename FillVectors<Vn>::V;
+        using B = typename FillVectors<Vn>::B;
+        static_assert(K % Vn == 0, "packets of whole vectors");
+        static_assert(sizeof(bool) == 1, "one byte a bool");
         const V neg_inf = V{} + int32_t(0xff800000u);  // −∞: the empty ray's tfar
-        for (int j = 0; j < K; j += 4) {
-            const V m = -V{valid[j], valid[j + 1], valid[j + 2], valid[j + 3]};
+        for (int j = 0; j < K; j += Vn) {
+            B bytes;
+            std::memcpy(&bytes, valid + j, sizeof bytes);
+            const V m = -__builtin_convertvector(bytes, V);  // (bools are 0 or 1)
             std::memcpy(mask + j, &m, sizeof m);
             for (int k = 0; k < 7; ++k) {
                 V v;
@@ -433,16 +453,17 @@ void fill_lanes(RayK& r, int* mask, int n, const float* const soa[7], const bool
 }
 /// The first n lanes of a packet's field into out (a copy of fixed length for a full packet).
 template <int K, class T>
-void copy_lanes(T* out, const T* field, int n) {
+[[gnu::always_inline]] inline void copy_lanes(T* out, const T* field, int n) {
     if (n == K) std::memcpy(out, field, sizeof(T) * size_t(K));
     else std::memcpy(out, field, sizeof(T) * size_t(n));
 }
 /// intersect_lanes on a K-wide packet (n ≤ K).
-template <int K, class RayHitK>
-void intersect_k(RTCScene scene, int n, const float* const soa[7], const bool* valid, HitLanes& out) {
+template <int K, int Vn, class RayHitK>
+[[gnu::always_inline]] inline void intersect_k(RTCScene scene, int n, const float* const soa[7], const bool* valid,
+                                               HitLanes& out) {
     alignas(64) RayHitK rh;
     alignas(64) int mask[K];
-    fill_lanes<K>(rh.ray, mask, n, soa, valid);
+    fill_lanes<K, Vn>(rh.ray, mask, n, soa, valid);
     static_assert(RTC_INVALID_GEOMETRY_ID == ~0u, "a miss is geom_id ~0u: every byte 0xff");
     std::memset(rh.hit.geomID, 0xff, sizeof rh.hit.geomID);
     std::memset(rh.hit.instID[0], 0xff, sizeof rh.hit.instID[0]);
@@ -457,11 +478,12 @@ void intersect_k(RTCScene scene, int n, const float* const soa[7], const bool* v
     copy_lanes<K>(out.v, rh.hit.v, n);
 }
 /// occluded_lanes on a K-wide packet (n ≤ K).
-template <int K, class RayK>
-void occluded_k(RTCScene scene, int n, const float* const soa[7], const bool* valid, bool* occluded) {
+template <int K, int Vn, class RayK>
+[[gnu::always_inline]] inline void occluded_k(RTCScene scene, int n, const float* const soa[7], const bool* valid,
+                                              bool* occluded) {
     alignas(64) RayK r;
     alignas(64) int mask[K];
-    fill_lanes<K>(r, mask, n, soa, valid);
+    fill_lanes<K, Vn>(r, mask, n, soa, valid);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     if constexpr (K == 16) rtcOccluded16(mask, scene, &ctx, &r);
@@ -472,7 +494,60 @@ void occluded_k(RTCScene scene, int n, const float* const soa[7], const bool* va
     }
     for (int i = 0; i < n; ++i) occluded[i] = mask[i] != 0 && r.tfar[i] < 0.f;
 }
+
+/// The packet traces, compiled for the baseline and, on x86-64 with GCC, for AVX2 (their filling and
+/// copying of the packets eight lanes a vector), the widest the CPU runs by default
+/// (EmbreeScene::set_packet_variant chooses another): Embree's calls are the same either way.
+struct TraceCalls {
+    void (*intersect8)(RTCScene, int, const float* const*, const bool*, HitLanes&);
+    void (*intersect16)(RTCScene, int, const float* const*, const bool*, HitLanes&);
+    void (*occluded8)(RTCScene, int, const float* const*, const bool*, bool*);
+    void (*occluded16)(RTCScene, int, const float* const*, const bool*, bool*);
+};
+#define PELLUCID_TRACE_CALLS(SUFFIX, ATTR, VN)                                                                   \
+    ATTR void intersect8_##SUFFIX(RTCScene s, int n, const float* const* soa, const bool* valid, HitLanes& h) {   \
+        intersect_k<8, VN, RTCRayHit8>(s, n, soa, valid, h);                                                      \
+    }                                                                                                             \
+    ATTR void intersect16_##SUFFIX(RTCScene s, int n, const float* const* soa, const bool* valid, HitLanes& h) {  \
+        intersect_k<16, VN, RTCRayHit16>(s, n, soa, valid, h);                                                    \
+    }                                                                                                             \
+    ATTR void occluded8_##SUFFIX(RTCScene s, int n, const float* const* soa, const bool* valid, bool* blocked) {  \
+        occluded_k<8, VN, RTCRay8>(s, n, soa, valid, blocked);                                                    \
+    }                                                                                                             \
+    ATTR void occluded16_##SUFFIX(RTCScene s, int n, const float* const* soa, const bool* valid, bool* blocked) { \
+        occluded_k<16, VN, RTCRay16>(s, n, soa, valid, blocked);                                                  \
+    }
+PELLUCID_TRACE_CALLS(baseline, , 4)
+#ifdef PELLUCID_SPHERE_X86_VARIANTS
+PELLUCID_TRACE_CALLS(avx2, __attribute__((target("avx2"))), 8)
+#endif
+#undef PELLUCID_TRACE_CALLS
+const TraceCalls& trace_calls(EmbreeScene::PacketVariant v) {
+    static const TraceCalls baseline{intersect8_baseline, intersect16_baseline, occluded8_baseline, occluded16_baseline};
+#ifdef PELLUCID_SPHERE_X86_VARIANTS
+    static const TraceCalls avx2{intersect8_avx2, intersect16_avx2, occluded8_avx2, occluded16_avx2};
+    if (v == EmbreeScene::PacketVariant::AVX2) return avx2;
+#endif
+    (void)v;
+    return baseline;
+}
 }  // namespace
+
+std::vector<EmbreeScene::PacketVariant> EmbreeScene::packet_variants() {
+    std::vector<PacketVariant> v{PacketVariant::Baseline};
+#ifdef PELLUCID_SPHERE_X86_VARIANTS
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2")) v.push_back(PacketVariant::AVX2);
+#endif
+    return v;
+}
+
+void EmbreeScene::set_packet_variant(PacketVariant v) {
+    const std::vector<PacketVariant> ok = packet_variants();
+    if (std::find(ok.begin(), ok.end(), v) == ok.end())
+        throw Error("EmbreeScene::set_packet_variant: variant " + std::to_string(int(v)) + " is not available on this CPU");
+    m_impl->trace = &trace_calls(v);
+}
 
 void EmbreeScene::intersect_lanes(int n, const float* const soa[7], const bool* valid, HitLanes& hits) const {
     static_assert(kPacketSize == 16, "the packet calls below are at most 16 wide");
@@ -485,8 +560,8 @@ void EmbreeScene::intersect_lanes(int n, const float* const soa[7], const bool* 
     }
     // Up to 8 rays go as Embree's 8-wide packet (the 8-lane kernels' packets; an AVX2 build of
     // Embree would split a 16-wide call into two 8-wide ones), more as a 16-wide one.
-    if (n <= 8) intersect_k<8, RTCRayHit8>(m_impl->scene, n, soa, valid, hits);
-    else intersect_k<16, RTCRayHit16>(m_impl->scene, n, soa, valid, hits);
+    if (n <= 8) m_impl->trace->intersect8(m_impl->scene, n, soa, valid, hits);
+    else m_impl->trace->intersect16(m_impl->scene, n, soa, valid, hits);
 }
 
 void EmbreeScene::occluded_lanes(int n, const float* const soa[7], const bool* valid, bool* occluded) const {
@@ -496,8 +571,8 @@ void EmbreeScene::occluded_lanes(int n, const float* const soa[7], const bool* v
                                        occluded);
         return;
     }
-    if (n <= 8) occluded_k<8, RTCRay8>(m_impl->scene, n, soa, valid, occluded);
-    else occluded_k<16, RTCRay16>(m_impl->scene, n, soa, valid, occluded);
+    if (n <= 8) m_impl->trace->occluded8(m_impl->scene, n, soa, valid, occluded);
+    else m_impl->trace->occluded16(m_impl->scene, n, soa, valid, occluded);
 }
 
 }  // namespace pellucid

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "pellucid/geometry/mesh.h"
 #include "pellucid/math/ray.h"
@@ -73,6 +74,13 @@ public:
     /// occluded() for n ≤ kPacketSize rays at once, given as arrays of n floats, soa = origin x, y,
     /// z, direction x, y, z, tmax; rays where valid[i] is false are not traced (occluded[i] false).
     void occluded_lanes(int n, const float* const soa[7], const bool* valid, bool* occluded) const;
+    /// The instruction-set variants of the code around intersect_lanes' and occluded_lanes' Embree
+    /// calls (the packets' filling and the results' copying; the same results either way): the
+    /// baseline, and AVX2 on x86-64 CPUs that have it. A scene uses the last this CPU runs; tests
+    /// choose each (an unavailable one is an Error).
+    enum class PacketVariant { Baseline, AVX2 };
+    static std::vector<PacketVariant> packet_variants();
+    void set_packet_variant(PacketVariant v);
 
 
 private:

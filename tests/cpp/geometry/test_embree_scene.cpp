@@ -8,6 +8,7 @@
 #include "pellucid/geometry/embree_scene.h"
 #include "pellucid/scene/build.h"
 #include "pellucid/scene/json_io.h"
+#include "pellucid/util/error.h"
 
 using namespace pellucid;
 
@@ -156,7 +157,8 @@ TEST(EmbreeScene, SphereRootsAreExactAndAgreeAcrossPacketsAndSingleRays) {
 }
 
 // Lanes left out of a shadow packet may hold anything, NaN included: they are ignored, and the others
-// are answered, by the 16-wide and the 8-wide packet calls.
+// are answered, by the 16-wide and the 8-wide packet calls, with each instruction-set variant of the
+// packets' filling (EmbreeScene::packet_variants).
 TEST(EmbreeScene, OccludedLanesIgnoreGarbageInMaskedLanes) {
     EmbreeScene s;
     for (int k = 0; k < 64; ++k) {  // enough triangles for a BVH with inner nodes
@@ -176,14 +178,19 @@ TEST(EmbreeScene, OccludedLanesIgnoreGarbageInMaskedLanes) {
         for (int k = 0; k < 7; ++k) soa[k][i] = valid[i] ? v[k] : (k == 6 ? 0.9f : nan);
     }
     const float* const p[7] = {soa[0], soa[1], soa[2], soa[3], soa[4], soa[5], soa[6]};
-    for (int m : {n, 8, 5}) {  // Embree's 16-wide call, and its 8-wide one (up to 8 rays)
-        s.occluded_lanes(m, p, valid, blocked);
-        for (int i = 0; i < m; ++i) EXPECT_EQ(blocked[i], valid[i] && i % 2 == 1) << m << " rays, lane " << i;
+    for (const EmbreeScene::PacketVariant variant : EmbreeScene::packet_variants()) {
+        s.set_packet_variant(variant);
+        for (int m : {n, 8, 5}) {  // Embree's 16-wide call, and its 8-wide one (up to 8 rays)
+            s.occluded_lanes(m, p, valid, blocked);
+            for (int i = 0; i < m; ++i)
+                EXPECT_EQ(blocked[i], valid[i] && i % 2 == 1) << m << " rays, lane " << i << ", variant " << int(variant);
+        }
     }
+    EXPECT_THROW(s.set_packet_variant(EmbreeScene::PacketVariant(99)), Error);
 }
 
 // intersect_lanes likewise: lanes left out (NaN included) report no hit, the others the hit a single
-// ray finds (t, ids, barycentrics), by the 16-wide and the 8-wide packet calls.
+// ray finds (t, ids, barycentrics), by the 16-wide and the 8-wide packet calls and each variant.
 TEST(EmbreeScene, IntersectLanesAgreeWithSingleRaysAndIgnoreMaskedLanes) {
     EmbreeScene s;
     for (int k = 0; k < 64; ++k) {
@@ -203,12 +210,14 @@ TEST(EmbreeScene, IntersectLanesAgreeWithSingleRaysAndIgnoreMaskedLanes) {
         for (int k = 0; k < 7; ++k) soa[k][i] = valid[i] ? v[k] : nan;
     }
     const float* const p[7] = {soa[0], soa[1], soa[2], soa[3], soa[4], soa[5], soa[6]};
+    for (const EmbreeScene::PacketVariant variant : EmbreeScene::packet_variants())
     for (int m : {16, 8, 5}) {
+        s.set_packet_variant(variant);
         HitLanes hl;
         s.intersect_lanes(m, p, valid, hl);
         for (int i = 0; i < m; ++i) {
             if (!valid[i]) {
-                EXPECT_FALSE(hl.hit(i)) << m << " rays, lane " << i;
+                EXPECT_FALSE(hl.hit(i)) << m << " rays, lane " << i << ", variant " << int(variant);
                 continue;
             }
             RayHit single;
