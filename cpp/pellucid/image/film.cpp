@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
 #include <type_traits>
 
 #include "pellucid/util/error.h"
@@ -200,9 +202,20 @@ void eval_filter_taps16(const Filter& f, const float x0[16], int n, float (*w)[1
     }, f);
 }
 
+namespace {
+/// The widest accumulation variant, or the baseline where the environment variable
+/// PELLUCID_FILM_ACCUMULATION is `baseline` (for instruction counts under valgrind 3.19, which does
+/// not decode the AVX2 variant's register-to-register VEX vmovq).
+Film::AccumulationVariant default_accumulation_variant() {
+    const char* env = std::getenv("PELLUCID_FILM_ACCUMULATION");
+    if (env && std::string(env) == "baseline") return Film::AccumulationVariant::Baseline;
+    return Film::accumulation_variants().back();
+}
+}  // namespace
+
 Film::Film(int width, int height, std::optional<Filter> splat, bool variance)
     : m_width(width), m_height(height), m_splat(std::move(splat)), m_variance(variance),
-      m_variant(accumulation_variants().back()) {
+      m_variant(default_accumulation_variant()) {
     if (m_splat && is_one_pixel_box(*m_splat)) m_splat.reset();
     if (m_splat) {
         // Pixel centres px + ½ within the radius r of a sample in [x, x + 1) satisfy

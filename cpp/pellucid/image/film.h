@@ -125,7 +125,9 @@ public:
     const std::optional<Filter>& splat_filter() const { return m_splat; }
 
     /// The instruction-set variants of the splatting accumulation (film.cpp). All give the same
-    /// sums, bit for bit; a film uses the widest this CPU runs.
+    /// sums, bit for bit; a film uses the widest this CPU runs, or the baseline where the
+    /// environment variable PELLUCID_FILM_ACCUMULATION is `baseline` (for profilers that do not
+    /// decode the AVX2 variant).
     enum class AccumulationVariant { Baseline, AVX2 };
     /// The variants this build and CPU run, narrowest first (Baseline always).
     static std::vector<AccumulationVariant> accumulation_variants();

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -343,6 +344,14 @@ TEST(FilmSplat, AccumulationVariantsAreChecked) {
     EXPECT_THROW(f.set_accumulation_variant(Film::AccumulationVariant(99)), Error);
     f.set_accumulation_variant(Film::AccumulationVariant::Baseline);
     EXPECT_EQ(f.accumulation_variant(), Film::AccumulationVariant::Baseline);
+    // A new film takes the widest, or the baseline where PELLUCID_FILM_ACCUMULATION says so.
+    ASSERT_EQ(std::getenv("PELLUCID_FILM_ACCUMULATION"), nullptr);
+    EXPECT_EQ(Film(3, 3, Filter(TentFilter{1.f})).accumulation_variant(), Film::accumulation_variants().back());
+    setenv("PELLUCID_FILM_ACCUMULATION", "baseline", 1);
+    EXPECT_EQ(Film(3, 3, Filter(TentFilter{1.f})).accumulation_variant(), Film::AccumulationVariant::Baseline);
+    setenv("PELLUCID_FILM_ACCUMULATION", "avx2", 1);  // anything else: the default
+    EXPECT_EQ(Film(3, 3, Filter(TentFilter{1.f})).accumulation_variant(), Film::accumulation_variants().back());
+    unsetenv("PELLUCID_FILM_ACCUMULATION");
 }
 
 TEST(FilmSplat, SplatsReachTheFilterRadiusOnly) {
