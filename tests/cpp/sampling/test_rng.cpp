@@ -1,6 +1,6 @@
 // PCG32 on four and eight streams side by side (sampling/rng.h, PCG32x4, PCG32x8) against the
-// scalar generator, bit for bit: the path kernel draws its packets' numbers and seeds their samples with it, and every
-// SIMD target must give the scalar target's image (the seeding itself:
+// scalar generator, bit for bit: the path kernel draws its packets' numbers and seeds their samples
+// with them, and every SIMD target must give the scalar target's image (the seeding itself:
 // SimdTargetRender.PacketStartedSamplesAreStartSamples).
 // SPDX-License-Identifier: Apache-2.0
 // (This file is built for the baseline instruction set, where GCC notes that a 32-byte vector
@@ -32,6 +32,35 @@ std::vector<uint64_t> test_states() {
     for (int i = 0; i < 4000; ++i) v.push_back(x = mix_bits(x + uint64_t(i)));
     while (v.size() % 4) v.push_back(mix_bits(v.size()));
     return v;
+}
+
+// 32-bit values for the conversions to float: every value whose rounding to 24 bits is a tie or next
+// to one, the values that round up to 2³² (clamped to 1 − ε), and values from a fixed generator; a
+// whole number of vectors of eight.
+std::vector<uint32_t> to_float_test_values() {
+    std::vector<uint32_t> v = {0u, 1u, 0xffffu, 0x10000u, 0xffffffffu, 0xffffff80u, 0xffffff7fu, 0x80000000u};
+    for (uint32_t e = 24; e < 32; ++e)
+        for (uint32_t m = 0; m < 64; ++m) {
+            const uint32_t base = (1u << e) + m * (1u << (e - 6)) * 3u;
+            const uint32_t half = 1u << (e - 24);  // half an ulp of a float at this exponent
+            for (uint32_t d : {half - 1u, half, half + 1u, 2u * half, 3u * half}) v.push_back(base + d);
+        }
+    uint32_t x = 12345u;
+    for (int i = 0; i < 20000; ++i) v.push_back(x = x * 1664525u + 1013904223u);
+    while (v.size() % 8) v.push_back(0u);
+    return v;
+}
+
+/// X::to_float (K values a vector) against PCG32::to_float, bit for bit, on to_float_test_values.
+template <class X, int K>
+void expect_to_float_as_scalar() {
+    const std::vector<uint32_t> v = to_float_test_values();
+    for (size_t b = 0; b < v.size(); b += K) {
+        typename X::U32 u;
+        std::memcpy(&u, &v[b], sizeof u);
+        const typename X::F32 f = X::to_float(u);
+        for (int l = 0; l < K; ++l) ASSERT_EQ(float_bits(f[l]), float_bits(PCG32::to_float(v[b + l]))) << v[b + l];
+    }
 }
 }  // namespace
 
@@ -86,27 +115,9 @@ TEST(PCG32x4, PartsEqualTheScalarOnes) {
     }
 }
 
-// to_float's conversion rounds as float(v) does: every 32-bit value whose rounding to 24 bits is a
-// tie or next to one, and the values that round up to 2³² (clamped to 1 − ε).
-TEST(PCG32x4, ToFloatRoundsAsTheScalarConversion) {
-    using X = PCG32x4;
-    std::vector<uint32_t> v = {0u, 1u, 0xffffu, 0x10000u, 0xffffffffu, 0xffffff80u, 0xffffff7fu, 0x80000000u};
-    for (uint32_t e = 24; e < 32; ++e)
-        for (uint32_t m = 0; m < 64; ++m) {
-            const uint32_t base = (1u << e) + m * (1u << (e - 6)) * 3u;
-            const uint32_t half = 1u << (e - 24);  // half an ulp of a float at this exponent
-            for (uint32_t d : {half - 1u, half, half + 1u, 2u * half, 3u * half}) v.push_back(base + d);
-        }
-    uint32_t x = 12345u;
-    for (int i = 0; i < 20000; ++i) v.push_back(x = x * 1664525u + 1013904223u);
-    while (v.size() % 4) v.push_back(0u);
-    for (size_t b = 0; b < v.size(); b += 4) {
-        X::U32 u;
-        std::memcpy(&u, &v[b], sizeof u);
-        const X::F32 f = X::to_float(u);
-        for (int l = 0; l < 4; ++l) ASSERT_EQ(float_bits(f[l]), float_bits(PCG32::to_float(v[b + l]))) << v[b + l];
-    }
-}
+// to_float's conversion rounds as float(v) does (to_float_test_values: ties, and the values that round
+// up to 2³²).
+TEST(PCG32x4, ToFloatRoundsAsTheScalarConversion) { expect_to_float_as_scalar<PCG32x4, 4>(); }
 
 // PCG32x8's output, whose rotation is its own (on each state's 64-bit element), and its conversion
 // and masks, against the scalar parts: every rotation 0–31 occurs among the states (their top five
@@ -138,23 +149,5 @@ TEST(PCG32x8, PartsEqualTheScalarOnes) {
     }
 }
 
-// PCG32x8::to_float on the values of PCG32x4's test of the conversion.
-TEST(PCG32x8, ToFloatRoundsAsTheScalarConversion) {
-    using X = PCG32x8;
-    std::vector<uint32_t> v = {0u, 1u, 0xffffu, 0x10000u, 0xffffffffu, 0xffffff80u, 0xffffff7fu, 0x80000000u};
-    for (uint32_t e = 24; e < 32; ++e)
-        for (uint32_t m = 0; m < 64; ++m) {
-            const uint32_t base = (1u << e) + m * (1u << (e - 6)) * 3u;
-            const uint32_t half = 1u << (e - 24);
-            for (uint32_t d : {half - 1u, half, half + 1u, 2u * half, 3u * half}) v.push_back(base + d);
-        }
-    uint32_t x = 12345u;
-    for (int i = 0; i < 20000; ++i) v.push_back(x = x * 1664525u + 1013904223u);
-    while (v.size() % 8) v.push_back(0u);
-    for (size_t b = 0; b < v.size(); b += 8) {
-        X::U32 u;
-        std::memcpy(&u, &v[b], sizeof u);
-        const X::F32 f = X::to_float(u);
-        for (int l = 0; l < 8; ++l) ASSERT_EQ(float_bits(f[l]), float_bits(PCG32::to_float(v[b + l]))) << v[b + l];
-    }
-}
+// PCG32x8::to_float likewise.
+TEST(PCG32x8, ToFloatRoundsAsTheScalarConversion) { expect_to_float_as_scalar<PCG32x8, 8>(); }
