@@ -155,13 +155,19 @@ def _cpu_flags() -> set:
 # kernel (1 spp, one thread): pellucid-render hands rtcIntersect16 a valid lane whose ray Embree
 # rejects, and Embree's assertion `all(valid, ray.valid())` aborts the process. Other kernels and
 # the same renders in-process from Python did not abort: the bad lane was an idle lane's
-# uninitialised ray. Idle lanes now pass no ray (path_services::trace_hits).
+# uninitialised ray. Idle lanes now pass no ray (path_services::trace_hits). Both scenes are small
+# enough to be traced without Embree, so each also runs with PELLUCID_TRACE=embree.
 @pytest.mark.skipif(not CLI.exists(), reason="pellucid-render is built by `make`")
+@pytest.mark.parametrize("trace", ["default", "embree"])
 @pytest.mark.parametrize("scene, simd, flag", [("packet_invalid_ray.xml", "avx512", "avx512bw"),
                                                ("packet_invalid_ray_1x4.xml", "avx2", "avx2")])
-def test_packet_kernel_passes_only_valid_rays(tmp_path, scene, simd, flag) -> None:
+def test_packet_kernel_passes_only_valid_rays(tmp_path, scene, simd, flag, trace) -> None:
     if flag not in _cpu_flags():
         pytest.skip(f"reproduces with the {simd} kernel only")
+    env = {**os.environ, "PELLUCID_SIMD": simd}
+    env.pop("PELLUCID_TRACE", None)
+    if trace == "embree":
+        env["PELLUCID_TRACE"] = "embree"
     r = subprocess.run([str(CLI), str(DATA / scene), "-o", str(tmp_path / "out.exr"), "--spp", "1", "--threads", "1",
-                        "-q"], capture_output=True, text=True, timeout=120, env={**os.environ, "PELLUCID_SIMD": simd})
+                        "-q"], capture_output=True, text=True, timeout=120, env=env)
     assert r.returncode == 0, r.stderr[-2000:]

@@ -6,23 +6,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <deque>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "pellucid/geometry/direct_trace.h"
 #include "pellucid/util/error.h"
 
 namespace pellucid {
 
 namespace {
-/// An analytic sphere as its user geometry's callbacks read it: centre and squared radius in
-/// double precision, and its padded bounds.
-struct SphereData {
-    double cx, cy, cz, r2;
-    float lower[3], upper[3];
-};
+using direct_trace::SphereData;
+using direct_trace::TriangleData;
+using direct_trace::sphere_first_root;
+/// Meshes' triangles are copied for the direct trace while the scene has at most this many.
+constexpr size_t kRecordedTriangles = 64;
+/// The direct trace is allowed unless PELLUCID_TRACE is `embree` (for comparisons of the two).
+bool direct_tracing_default() {
+    const char* env = std::getenv("PELLUCID_TRACE");
+    return !(env && std::string(env) == "embree");
+}
 struct TraceCalls;  // the packet traces of one instruction-set variant (below)
 const TraceCalls& trace_calls(EmbreeScene::PacketVariant v);
 }  // namespace
@@ -37,9 +43,21 @@ struct EmbreeScene::Impl {
     std::deque<SphereData> spheres;
     std::vector<uint32_t> sphere_ids;  // the geometry id of each entry of spheres
     uint32_t meshes = 0;
-    // A scene of one sphere and no mesh is traced without Embree (commit(), DirectArgs): every ray
-    // tests the sphere.
+    // A small scene is traced without Embree (commit(), direct_trace.h): every ray against every
+    // triangle (each mesh's, recorded while there are few) and sphere.
     bool direct = false;
+    bool allow_direct = direct_tracing_default();  // set_direct_tracing
+    bool committed = false;
+    void decide_direct() {
+        direct = committed && allow_direct && triangle_count <= kRecordedTriangles &&
+                 direct_trace::worth_tracing_directly(triangle_count, spheres.size());
+    }
+    std::vector<TriangleData> triangles;
+    size_t triangle_count = 0;
+    std::vector<const SphereData*> sphere_ptrs;
+    direct_trace::Scene direct_scene() const {
+        return {triangles.data(), int(triangles.size()), sphere_ptrs.data(), sphere_ids.data(), int(sphere_ptrs.size())};
+    }
     const TraceCalls* trace = &trace_calls(EmbreeScene::packet_variants().back());
     void check() {
         if (!error.empty()) {
@@ -88,6 +106,16 @@ uint32_t EmbreeScene::add_mesh(const TriangleMesh& mesh) {
     for (size_t i = 0; i < mesh.indices.size(); ++i) idx[i] = mesh.indices[i];
     rtcCommitGeometry(g);
     uint32_t id = m_impl->next_id++;
+    m_impl->triangle_count += mesh.triangle_count();
+    if (m_impl->triangle_count <= kRecordedTriangles)
+        for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+            TriangleData& d = m_impl->triangles.emplace_back();
+            const float* p0 = v + 3 * idx[3 * t];
+            const float* p1 = v + 3 * idx[3 * t + 1];
+            const float* p2 = v + 3 * idx[3 * t + 2];
+            for (int k = 0; k < 3; ++k) d.v0[k] = p0[k], d.e1[k] = p1[k] - p0[k], d.e2[k] = p2[k] - p0[k];
+            d.geom = id, d.prim = uint32_t(t);
+        }
     rtcAttachGeometryByID(m_impl->scene, g, id);
     rtcReleaseGeometry(g);
     m_impl->check();
@@ -104,28 +132,6 @@ namespace {
 #pragma GCC push_options
 #pragma GCC optimize("no-trapping-math")
 #endif
-/// One lane of a sphere test: the first root of |o + t·d − c|² = r² in (tnear, tfar], computed in
-/// double precision without cancellation (Numerical Recipes, 3rd ed., §5.6: with the half
-/// coefficient b, q = −(b + sign(b)√disc), the roots are q/a and c/q), rounded to float; `hit`
-/// tells whether there is one. Branch-free, so that the loops below vectorise; every operation is
-/// one IEEE operation in double, so scalar and vector code give the same bits.
-[[gnu::always_inline]] inline float sphere_first_root(const SphereData& s, float fox, float foy, float foz, float fdx,
-                                                      float fdy, float fdz, float tnear, float tfar, bool* hit) {
-    const double ox = double(fox) - s.cx, oy = double(foy) - s.cy, oz = double(foz) - s.cz;
-    const double dx = fdx, dy = fdy, dz = fdz;
-    const double a = dx * dx + dy * dy + dz * dz, b = ox * dx + oy * dy + oz * dz;
-    const double c = ox * ox + oy * oy + oz * oz - s.r2, disc = b * b - a * c;
-    const bool real = (disc >= 0.0) & (a > 0.0);
-    const double sq = std::sqrt(real ? disc : 0.0);
-    const double q = -(b + (b < 0.0 ? -sq : sq));  // −(b + sign(b)√disc), sign(±0) = +
-    // (Both divisions always run, on a safe divisor where their result is not used: no branch.)
-    const double r0 = q / (real ? a : 1.0), rc = c / (q != 0.0 ? q : 1.0), r1 = q != 0.0 ? rc : r0;
-    const float f0 = float(r0 < r1 ? r0 : r1), f1 = float(r0 < r1 ? r1 : r0);
-    const bool h0 = (f0 > tnear) & (f0 <= tfar), h1 = (f1 > tnear) & (f1 <= tfar);
-    *hit = real & (h0 | h1);
-    return h0 ? f0 : f1;
-}
-
 /// The callbacks for a packet of N rays, every lane computed and only valid hits written (called
 /// with N a constant for Embree's widths 1, 4, 8 and 16, so that the loops vectorise).
 [[gnu::always_inline]] inline void sphere_intersect_n(const RTCIntersectFunctionNArguments* args, const unsigned N) {
@@ -168,40 +174,6 @@ namespace {
 }
 static_assert(sizeof(float) == sizeof(unsigned), "RTCHitN mixes float and unsigned fields of one size");
 
-/// A scene of one sphere and no mesh is traced without Embree (EmbreeScene::traced_directly). In
-/// such a scene, Embree's packet call (its traversal of the two-level BVH, the ray packet's layout,
-/// the callback) costs about as much as the sphere test itself: testing the sphere directly rendered
-/// a sphere in a constant environment (bench/suite/env_diffuse.json, 1 thread) in 0.94-0.95 of the
-/// time. Two spheres side by side, each ray tested against both, took 1.04x the time, four 1.30x
-/// (the test in double precision for every ray and sphere against Embree's bounding-box culling), so
-/// only a lone sphere is traced so. Rays [0, n) as arrays (soa) where valid; the sphere's test is
-/// the callbacks' sphere_first_root, so the same hits.
-struct DirectArgs {
-    const SphereData* sphere;
-    uint32_t id;  ///< its geometry id
-    int n;
-    const float* const* soa;
-    const bool* valid;
-};
-[[gnu::always_inline]] inline void direct_intersect_n(const DirectArgs& A, float* t_out, uint32_t* geom_out) {
-    for (int i = 0; i < A.n; ++i) {
-        bool hit;
-        const float t = sphere_first_root(*A.sphere, A.soa[0][i], A.soa[1][i], A.soa[2][i], A.soa[3][i], A.soa[4][i],
-                                          A.soa[5][i], 0.f, A.soa[6][i], &hit);
-        const bool take = hit & A.valid[i];
-        t_out[i] = take ? t : A.soa[6][i];
-        geom_out[i] = take ? A.id : ~0u;
-    }
-}
-[[gnu::always_inline]] inline void direct_occluded_n(const DirectArgs& A, bool* blocked) {
-    for (int i = 0; i < A.n; ++i) {
-        bool hit;
-        sphere_first_root(*A.sphere, A.soa[0][i], A.soa[1][i], A.soa[2][i], A.soa[3][i], A.soa[4][i], A.soa[5][i], 0.f,
-                          A.soa[6][i], &hit);
-        blocked[i] = hit & A.valid[i];
-    }
-}
-
 
 #define PELLUCID_SPHERE_CALLBACKS(SUFFIX, ATTR)                                                        \
     ATTR void sphere_intersect_##SUFFIX(const RTCIntersectFunctionNArguments* args) {                  \
@@ -221,18 +193,8 @@ struct DirectArgs {
         case 1: return sphere_occluded_n(args, 1);                                                    \
         default: return sphere_occluded_n(args, args->N);                                              \
         }                                                                                             \
-    }                                                                                                 \
-    ATTR void direct_intersect_##SUFFIX(const DirectArgs& a, float* t, uint32_t* geom) {             \
-        if (a.n == 8) return direct_intersect_n(DirectArgs{a.sphere, a.id, 8, a.soa, a.valid}, t, geom); \
-        if (a.n == 16) return direct_intersect_n(DirectArgs{a.sphere, a.id, 16, a.soa, a.valid}, t, geom); \
-        direct_intersect_n(a, t, geom);                                                               \
-    }                                                                                                 \
-    ATTR void direct_occluded_##SUFFIX(const DirectArgs& a, bool* blocked) {                          \
-        if (a.n == 8) return direct_occluded_n(DirectArgs{a.sphere, a.id, 8, a.soa, a.valid}, blocked); \
-        if (a.n == 16) return direct_occluded_n(DirectArgs{a.sphere, a.id, 16, a.soa, a.valid}, blocked); \
-        direct_occluded_n(a, blocked);                                                                \
     }
-// The callbacks and the direct trace, compiled for the baseline and, on x86-64 with GCC, for AVX2
+// The callbacks, compiled for the baseline and, on x86-64 with GCC, for AVX2
 // (four doubles a vector, no FMA) and AVX-512 (eight), the widest the CPU runs chosen once
 // (sphere_calls); the same bits every way (sphere_first_root: IEEE operations in double, never
 // contracted).
@@ -254,23 +216,21 @@ void sphere_bounds(const RTCBoundsFunctionArguments* args) {
     b->upper_x = s.upper[0], b->upper_y = s.upper[1], b->upper_z = s.upper[2];
 }
 
-/// The callbacks and the direct trace of the widest variant this CPU runs.
+/// The callbacks of the widest variant this CPU runs.
 struct SphereCallbacks {
     RTCIntersectFunctionN intersect;
     RTCOccludedFunctionN occluded;
-    void (*direct_intersect)(const DirectArgs&, float*, uint32_t*);
-    void (*direct_occluded)(const DirectArgs&, bool*);
 };
 SphereCallbacks sphere_variant() {
 #ifdef PELLUCID_SPHERE_X86_VARIANTS
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"))
-        return {sphere_intersect_avx512, sphere_occluded_avx512, direct_intersect_avx512, direct_occluded_avx512};
+        return {sphere_intersect_avx512, sphere_occluded_avx512};
     if (__builtin_cpu_supports("avx2"))
-        return {sphere_intersect_avx2, sphere_occluded_avx2, direct_intersect_avx2, direct_occluded_avx2};
+        return {sphere_intersect_avx2, sphere_occluded_avx2};
 #endif
-    return {sphere_intersect_baseline, sphere_occluded_baseline, direct_intersect_baseline, direct_occluded_baseline};
+    return {sphere_intersect_baseline, sphere_occluded_baseline};
 }
 const SphereCallbacks& sphere_calls() {
     static const SphereCallbacks v = sphere_variant();
@@ -310,27 +270,21 @@ uint32_t EmbreeScene::add_sphere(const Point3f& c, float r) {
 void EmbreeScene::commit() {
     rtcCommitScene(m_impl->scene);
     m_impl->check();
-    m_impl->direct = m_impl->meshes == 0 && m_impl->spheres.size() == 1;
+    m_impl->sphere_ptrs.clear();
+    for (const SphereData& sd : m_impl->spheres) m_impl->sphere_ptrs.push_back(&sd);
+    m_impl->committed = true;
+    m_impl->decide_direct();
+}
+
+void EmbreeScene::set_direct_tracing(bool allow) {
+    m_impl->allow_direct = allow;
+    m_impl->decide_direct();
 }
 
 bool EmbreeScene::traced_directly() const { return m_impl->direct; }
 
 bool EmbreeScene::intersect(const Ray& ray, RayHit& hit) const {
-    if (m_impl->direct) {
-        const SphereData& s = m_impl->spheres.front();
-        const float ox = ray.o.x, oy = ray.o.y, oz = ray.o.z, dx = ray.d.x, dy = ray.d.y, dz = ray.d.z;
-        bool h;
-        const float t = sphere_first_root(s, ox, oy, oz, dx, dy, dz, 0.f, ray.tmax, &h);
-        if (!h) {
-            hit.geom_id = ~0u;
-            return false;
-        }
-        // As the callback reports it: Ng = p − c, unnormalised.
-        hit.t = t, hit.geom_id = m_impl->sphere_ids.front(), hit.prim_id = 0, hit.u = 0.f, hit.v = 0.f;
-        hit.ng = Vec3f(float(double(ox) + double(t) * dx - s.cx), float(double(oy) + double(t) * dy - s.cy),
-                       float(double(oz) + double(t) * dz - s.cz));
-        return true;
-    }
+    if (m_impl->direct) return direct_trace::intersect(m_impl->direct_scene(), ray, hit);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRayHit rh;
@@ -362,11 +316,7 @@ bool EmbreeScene::intersect(const Ray& ray, RayHit& hit) const {
 }
 
 bool EmbreeScene::occluded(const Ray& ray) const {
-    if (m_impl->direct) {
-        bool h;
-        sphere_first_root(m_impl->spheres.front(), ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z, 0.f, ray.tmax, &h);
-        return h;
-    }
+    if (m_impl->direct) return direct_trace::occluded(m_impl->direct_scene(), ray);
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay r;
@@ -552,12 +502,7 @@ void EmbreeScene::set_packet_variant(PacketVariant v) {
 void EmbreeScene::intersect_lanes(int n, const float* const soa[7], const bool* valid, HitLanes& hits) const {
     static_assert(kPacketSize == 16, "the packet calls below are at most 16 wide");
     if (n <= 0) return;
-    if (m_impl->direct) {
-        sphere_calls().direct_intersect(DirectArgs{&m_impl->spheres.front(), m_impl->sphere_ids.front(), n, soa, valid},
-                                        hits.t, hits.geom_id);
-        for (int i = 0; i < n; ++i) hits.prim_id[i] = 0, hits.u[i] = 0.f, hits.v[i] = 0.f;
-        return;
-    }
+    if (m_impl->direct) return direct_trace::intersect(m_impl->direct_scene(), n, soa, valid, hits);
     // Up to 8 rays go as Embree's 8-wide packet (the 8-lane kernels' packets; an AVX2 build of
     // Embree would split a 16-wide call into two 8-wide ones), more as a 16-wide one.
     if (n <= 8) m_impl->trace->intersect8(m_impl->scene, n, soa, valid, hits);
@@ -566,11 +511,7 @@ void EmbreeScene::intersect_lanes(int n, const float* const soa[7], const bool* 
 
 void EmbreeScene::occluded_lanes(int n, const float* const soa[7], const bool* valid, bool* occluded) const {
     if (n <= 0) return;
-    if (m_impl->direct) {
-        sphere_calls().direct_occluded(DirectArgs{&m_impl->spheres.front(), m_impl->sphere_ids.front(), n, soa, valid},
-                                       occluded);
-        return;
-    }
+    if (m_impl->direct) return direct_trace::occluded(m_impl->direct_scene(), n, soa, valid, occluded);
     if (n <= 8) m_impl->trace->occluded8(m_impl->scene, n, soa, valid, occluded);
     else m_impl->trace->occluded16(m_impl->scene, n, soa, valid, occluded);
 }

@@ -51,9 +51,13 @@ public:
     /// Add an analytic sphere. Returns the geometry id.
     uint32_t add_sphere(const Point3f& center, float radius);
     void commit();
-    /// Whether the committed scene is traced without Embree: a single sphere and no mesh, every ray
-    /// tested against the sphere (the same sphere test as Embree's callback, so the same hits).
+    /// Whether the committed scene is traced without Embree: a small scene (a few triangles and
+    /// spheres; direct_trace::worth_tracing_directly), every ray tested against every primitive,
+    /// spheres by the same test as Embree's callback, triangles by direct_trace's own.
     bool traced_directly() const;
+    /// Allow the direct trace of small scenes (the default, unless the environment variable
+    /// PELLUCID_TRACE is `embree`) or not: Embree then traces every scene. Takes effect at once.
+    void set_direct_tracing(bool allow);
 
     /// Closest hit in (0, ray.tmax]. Thread-safe after commit().
     bool intersect(const Ray& ray, RayHit& hit) const;

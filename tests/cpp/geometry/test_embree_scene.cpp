@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <limits>
+#include <string>
+#include <vector>
 
+#include "pellucid/geometry/direct_trace.h"
 #include "pellucid/geometry/embree_scene.h"
 #include "pellucid/scene/build.h"
 #include "pellucid/scene/json_io.h"
@@ -236,43 +239,66 @@ TEST(EmbreeScene, IntersectLanesAgreeWithSingleRaysAndIgnoreMaskedLanes) {
     }
 }
 
-// A scene of one sphere and no mesh is traced without Embree (traced_directly), every ray against
-// the sphere. It must give what Embree gives: the same scene with a mesh added far from every ray
-// (which makes it an Embree scene) must report the same hits bit for bit (t, ids, the single ray's
-// normal) and the same occlusion, for rays from outside and from inside, with finite tmax, and with
-// masked lanes holding NaN.
-TEST(EmbreeScene, SpheresTracedDirectlyGiveEmbreesHits) {
+// A small scene is traced without Embree (traced_directly), every ray against every triangle and
+// sphere. It must give what Embree gives on the same scene (set_direct_tracing(false)): on spheres
+// the same hits bit for bit (the same test: t, ids, the single ray's normal) and the same occlusion;
+// on triangles, which direct_trace tests by its own formula, the same triangle, with t, u and v to
+// float rounding. Rays from outside and inside the spheres, with finite tmax, and with masked lanes
+// holding NaN; one, two and four spheres, alone and with two or four walls (rectangles, 2 triangles
+// each) around them. Rays aimed at a wall aim at its inner part, so no ray passes within float
+// rounding of a triangle's edge, where the two tests may differ.
+TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
     const Point3f centres[4] = {Point3f(0, 0, 0), Point3f(1.2f, 0.3f, -0.4f), Point3f(-2, 1, 0.5f), Point3f(0.4f, -1.5f, 1)};
     const float radii[4] = {1.f, 0.7f, 0.5f, 1.3f};
-    {
-        const int count = 1;
+    // Walls: a rectangle of half-size 5 facing the origin at distance 6 along ±z, then ±x.
+    const Transform walls[4] = {Transform::translate(Vec3f(0, 0, -6)) * Transform::scale(Vec3f(5, 5, 1)),
+                                Transform::translate(Vec3f(0, 0, 6)) * Transform::scale(Vec3f(5, 5, 1)),
+                                Transform::translate(Vec3f(-6, 0, 0)) * Transform::rotate(Vec3f(0, 1, 0), 90.f) *
+                                    Transform::scale(Vec3f(5, 5, 1)),
+                                Transform::translate(Vec3f(6, 0, 0)) * Transform::rotate(Vec3f(0, 1, 0), -90.f) *
+                                    Transform::scale(Vec3f(5, 5, 1))};
+    for (const int spheres : {1, 2, 4})
+    for (const int n_walls : {0, 2, 4}) {
+        const std::string what = std::to_string(spheres) + " spheres, " + std::to_string(n_walls) + " walls";
         EmbreeScene direct, embree;
-        for (int k = 0; k < count; ++k) {
+        std::vector<TriangleMesh> meshes;
+        for (int k = 0; k < spheres; ++k) {
             EXPECT_EQ(direct.add_sphere(centres[k], radii[k]), uint32_t(k));
             EXPECT_EQ(embree.add_sphere(centres[k], radii[k]), uint32_t(k));
         }
-        TriangleMesh far = TriangleMesh::rectangle();
-        far.transform(Transform::translate(Vec3f(1e4f, 1e4f, 1e4f)));
-        embree.add_mesh(far);
+        for (int w = 0; w < n_walls; ++w) {
+            TriangleMesh m = TriangleMesh::rectangle();
+            m.transform(walls[w]);
+            direct.add_mesh(m), embree.add_mesh(m);
+            meshes.push_back(m);
+        }
+        embree.set_direct_tracing(false);
         direct.commit(), embree.commit();
-        ASSERT_TRUE(direct.traced_directly());
-        ASSERT_FALSE(embree.traced_directly());
-        uint64_t state = 777 + uint64_t(count);
+        ASSERT_TRUE(direct.traced_directly()) << what;
+        ASSERT_FALSE(embree.traced_directly()) << what;
+        uint64_t state = 777 + uint64_t(spheres) * 31 + uint64_t(n_walls);
         auto next = [&] {  // a fixed LCG: the same rays on every run
             state = state * 6364136223846793005ull + 1442695040888963407ull;
             return float(state >> 40) / float(1 << 24);
         };
         const float nan = std::numeric_limits<float>::quiet_NaN();
-        int hits = 0, blocked_count = 0;
+        int hits = 0, wall_hits = 0, blocked_count = 0;
         for (int packet = 0; packet < 64; ++packet) {
             float soa[7][16];
             bool valid[16];
             for (int i = 0; i < 16; ++i) {
-                // Origins in a box around the spheres (some inside one), each ray aimed at a point
-                // near one of the spheres (about half of them hit); every fourth ray a short one.
+                // Origins in a box around the spheres (some inside one); each ray aimed at a point
+                // near one of the spheres (about half of them hit) or, every third ray where there
+                // are walls, at the inner part of a wall; every fourth ray a short one.
                 const Vec3f o(6.f * next() - 3.f, 6.f * next() - 3.f, 6.f * next() - 3.f);
-                const int k = std::min(count - 1, int(next() * float(count)));
-                const Vec3f aim = Vec3f(centres[k]) + 1.5f * radii[k] * Vec3f(2.f * next() - 1.f, 2.f * next() - 1.f, 2.f * next() - 1.f);
+                Vec3f aim;
+                if (n_walls > 0 && i % 3 == 0) {
+                    const int w = std::min(n_walls - 1, int(next() * float(n_walls)));
+                    aim = walls[w].point(Vec3f(1.8f * next() - 0.9f, 1.8f * next() - 0.9f, 0.f));
+                } else {
+                    const int k = std::min(spheres - 1, int(next() * float(spheres)));
+                    aim = Vec3f(centres[k]) + 1.5f * radii[k] * Vec3f(2.f * next() - 1.f, 2.f * next() - 1.f, 2.f * next() - 1.f);
+                }
                 const Vec3f d = normalize(aim - o);
                 const float tmax = i % 4 == 3 ? 2.f * next() : kInfinity;
                 valid[i] = (packet + i) % 7 != 3;
@@ -280,7 +306,7 @@ TEST(EmbreeScene, SpheresTracedDirectlyGiveEmbreesHits) {
                 for (int k = 0; k < 7; ++k) soa[k][i] = valid[i] ? v[k] : nan;
             }
             const float* const p[7] = {soa[0], soa[1], soa[2], soa[3], soa[4], soa[5], soa[6]};
-            for (int m : {16, 8, 5}) {
+            for (int m : {16, 8, 5, 1}) {
                 HitLanes a, b;
                 direct.intersect_lanes(m, p, valid, a);
                 embree.intersect_lanes(m, p, valid, b);
@@ -288,41 +314,82 @@ TEST(EmbreeScene, SpheresTracedDirectlyGiveEmbreesHits) {
                 direct.occluded_lanes(m, p, valid, ba);
                 embree.occluded_lanes(m, p, valid, bb);
                 for (int i = 0; i < m; ++i) {
-                    ASSERT_EQ(a.hit(i), b.hit(i)) << count << " spheres, packet " << packet << ", lane " << i;
-                    EXPECT_EQ(ba[i], bb[i]) << count << " spheres, packet " << packet << ", lane " << i;
+                    const std::string at = what + ", packet " + std::to_string(packet) + " of " + std::to_string(m) +
+                                           ", lane " + std::to_string(i);
+                    ASSERT_EQ(a.hit(i), b.hit(i)) << at;
+                    EXPECT_EQ(ba[i], bb[i]) << at;
                     if (!valid[i]) {
-                        EXPECT_FALSE(a.hit(i));
-                        EXPECT_FALSE(ba[i]);
+                        EXPECT_FALSE(a.hit(i)) << at;
+                        EXPECT_FALSE(ba[i]) << at;
                         continue;
                     }
-                    blocked_count += ba[i];
+                    blocked_count += m == 16 && ba[i];
+                    EXPECT_EQ(ba[i], a.hit(i)) << at;  // a hit in (0, tmax] blocks
                     if (!a.hit(i)) continue;
                     hits += m == 16;  // (each of the 1024 rays counted once)
-                    EXPECT_EQ(a.t[i], b.t[i]) << count << " spheres, packet " << packet << ", lane " << i;
-                    EXPECT_EQ(a.geom_id[i], b.geom_id[i]);
-                    EXPECT_EQ(a.prim_id[i], b.prim_id[i]);
+                    EXPECT_EQ(a.geom_id[i], b.geom_id[i]) << at;
+                    EXPECT_EQ(a.prim_id[i], b.prim_id[i]) << at;
                     const Ray r{Vec3f(soa[0][i], soa[1][i], soa[2][i]), Vec3f(soa[3][i], soa[4][i], soa[5][i]), soa[6][i]};
                     RayHit sa, sb;
-                    ASSERT_TRUE(direct.intersect(r, sa));
-                    ASSERT_TRUE(embree.intersect(r, sb));
-                    EXPECT_EQ(sa.t, sb.t);
-                    EXPECT_EQ(sa.t, a.t[i]);
-                    EXPECT_EQ(sa.geom_id, sb.geom_id);
-                    EXPECT_EQ(sa.ng.x, sb.ng.x);
-                    EXPECT_EQ(sa.ng.y, sb.ng.y);
-                    EXPECT_EQ(sa.ng.z, sb.ng.z);
-                    EXPECT_EQ(direct.occluded(r), embree.occluded(r));
-                    EXPECT_TRUE(direct.occluded(r));  // a hit in (0, tmax] blocks
+                    ASSERT_TRUE(direct.intersect(r, sa)) << at;
+                    ASSERT_TRUE(embree.intersect(r, sb)) << at;
+                    EXPECT_EQ(sa.geom_id, sb.geom_id) << at;
+                    EXPECT_EQ(sa.prim_id, sb.prim_id) << at;
+                    EXPECT_EQ(sa.t, a.t[i]) << at;
+                    EXPECT_EQ(direct.occluded(r), embree.occluded(r)) << at;
+                    if (a.geom_id[i] < uint32_t(spheres)) {  // a sphere: bit for bit
+                        EXPECT_EQ(a.t[i], b.t[i]) << at;
+                        EXPECT_EQ(sa.t, sb.t) << at;
+                        EXPECT_EQ(sa.ng.x, sb.ng.x) << at;
+                        EXPECT_EQ(sa.ng.y, sb.ng.y) << at;
+                        EXPECT_EQ(sa.ng.z, sb.ng.z) << at;
+                        EXPECT_EQ(a.u[i], 0.f) << at;
+                        EXPECT_EQ(a.v[i], 0.f) << at;
+                        continue;
+                    }
+                    wall_hits += m == 16;
+                    // A triangle: t to a few float ulps of the distance, (u, v) to a few of 1, the
+                    // same normal direction.
+                    EXPECT_NEAR(a.t[i], b.t[i], 4e-6f * b.t[i]) << at;
+                    EXPECT_NEAR(a.u[i], b.u[i], 4e-6f) << at;
+                    EXPECT_NEAR(a.v[i], b.v[i], 4e-6f) << at;
+                    EXPECT_GT(dot(normalize(sa.ng), normalize(sb.ng)), 0.99999f) << at;
+                    // The hit point from (u, v) is the hit point from t.
+                    const TriangleMesh& mesh = meshes[size_t(a.geom_id[i]) - size_t(spheres)];
+                    const uint32_t* tri = &mesh.indices[3 * size_t(a.prim_id[i])];
+                    const Vec3f p0(mesh.positions[tri[0]]), p1(mesh.positions[tri[1]]), p2(mesh.positions[tri[2]]);
+                    const Vec3f from_uv = (1.f - a.u[i] - a.v[i]) * p0 + a.u[i] * p1 + a.v[i] * p2;
+                    EXPECT_LT(length(from_uv - (r.o + a.t[i] * r.d)), 1e-5f * (1.f + a.t[i])) << at;
                 }
             }
         }
-        EXPECT_GT(hits, 1024 / 4) << count << " spheres";  // the rays do reach the spheres
-        EXPECT_LT(hits, 1024 * 9 / 10) << count << " spheres";  // and do miss them
-        EXPECT_GT(blocked_count, 1024 / 4) << count << " spheres";
+        EXPECT_GT(hits, 1024 / 4) << what;  // the rays do reach the primitives
+        if (n_walls == 0) EXPECT_LT(hits, 1024 * 9 / 10) << what;  // and do miss them
+        else EXPECT_GT(wall_hits, 1024 / 8) << what;
+        EXPECT_GT(blocked_count, 1024 / 4) << what;
     }
-    // Two spheres, or a mesh, go to Embree.
-    EmbreeScene two;
-    for (int k = 0; k < 2; ++k) two.add_sphere(Point3f(float(3 * k), 0, 0), 1.f);
-    two.commit();
-    EXPECT_FALSE(two.traced_directly());
+    // A scene of many primitives goes to Embree, and direct tracing can be switched off and on.
+    EmbreeScene big;
+    for (int k = 0; k < 64; ++k) {
+        TriangleMesh quad = TriangleMesh::rectangle();
+        quad.transform(Transform::translate(Vec3f(float(k % 8) * 2.5f, float(k / 8) * 2.5f, -2.f)));
+        big.add_mesh(quad);
+    }
+    big.commit();
+    EXPECT_FALSE(big.traced_directly());
+    EmbreeScene many_spheres;  // like bench/suite/many_materials.json: 36 spheres on 2 rectangles
+    for (int k = 0; k < 2; ++k) many_spheres.add_mesh(TriangleMesh::rectangle());
+    for (int k = 0; k < 36; ++k) many_spheres.add_sphere(Point3f(float(k), 0, 0), 0.4f);
+    many_spheres.commit();
+    EXPECT_FALSE(many_spheres.traced_directly());
+    EXPECT_TRUE(direct_trace::worth_tracing_directly(12, 4));   // bench/suite/veach_mis.json
+    EXPECT_FALSE(direct_trace::worth_tracing_directly(36, 0));  // bench/suite/cornell_lambert.json
+    EmbreeScene one;
+    one.add_sphere(Point3f(0, 0, 0), 1.f);
+    one.commit();
+    EXPECT_TRUE(one.traced_directly());
+    one.set_direct_tracing(false);
+    EXPECT_FALSE(one.traced_directly());
+    one.set_direct_tracing(true);
+    EXPECT_TRUE(one.traced_directly());
 }

@@ -1,0 +1,83 @@
+// Rays traced without Embree: a small scene's rays tested against every one of its triangles and
+// spheres (EmbreeScene::traced_directly), and the sphere test that Embree's sphere callbacks share.
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "pellucid/geometry/embree_scene.h"
+
+namespace pellucid::direct_trace {
+
+/// An analytic sphere: centre and squared radius in double precision, and its padded bounds (for
+/// Embree's user geometry).
+struct SphereData {
+    double cx, cy, cz, r2;
+    float lower[3], upper[3];
+};
+/// A triangle as the direct trace reads it: its first corner and the edges to the other two (the
+/// float vertices Embree gets), and the ids a hit on it reports.
+struct TriangleData {
+    float v0[3], e1[3], e2[3];
+    uint32_t geom, prim;
+};
+
+// The sphere test computes every lane and selects the results, which GCC vectorises only when it
+// may evaluate floating-point operations whose results a lane does not use (their exceptions are
+// never read here); the values are the same either way.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC push_options
+#pragma GCC optimize("no-trapping-math")
+#endif
+/// One lane of a sphere test: the first root of |o + t·d − c|² = r² in (tnear, tfar], computed in
+/// double precision without cancellation (Numerical Recipes, 3rd ed., §5.6: with the half
+/// coefficient b, q = −(b + sign(b)√disc), the roots are q/a and c/q), rounded to float; `hit`
+/// tells whether there is one. Branch-free, so that loops over lanes vectorise; every operation is
+/// one IEEE operation in double, so scalar and vector code give the same bits.
+[[gnu::always_inline]] inline float sphere_first_root(const SphereData& s, float fox, float foy, float foz, float fdx,
+                                                      float fdy, float fdz, float tnear, float tfar, bool* hit) {
+    const double ox = double(fox) - s.cx, oy = double(foy) - s.cy, oz = double(foz) - s.cz;
+    const double dx = fdx, dy = fdy, dz = fdz;
+    const double a = dx * dx + dy * dy + dz * dz, b = ox * dx + oy * dy + oz * dz;
+    const double c = ox * ox + oy * oy + oz * oz - s.r2, disc = b * b - a * c;
+    const bool real = (disc >= 0.0) & (a > 0.0);
+    const double sq = std::sqrt(real ? disc : 0.0);
+    const double q = -(b + (b < 0.0 ? -sq : sq));  // −(b + sign(b)√disc), sign(±0) = +
+    // (Both divisions always run, on a safe divisor where their result is not used: no branch.)
+    const double r0 = q / (real ? a : 1.0), rc = c / (q != 0.0 ? q : 1.0), r1 = q != 0.0 ? rc : r0;
+    const float f0 = float(r0 < r1 ? r0 : r1), f1 = float(r0 < r1 ? r1 : r0);
+    const bool h0 = (f0 > tnear) & (f0 <= tfar), h1 = (f1 > tnear) & (f1 <= tfar);
+    *hit = real & (h0 | h1);
+    return h0 ? f0 : f1;
+}
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC pop_options
+#endif
+
+/// A small scene's primitives: every ray is tested against each of them.
+struct Scene {
+    const TriangleData* tris = nullptr;
+    int n_tris = 0;
+    const SphereData* const* spheres = nullptr;
+    const uint32_t* sphere_ids = nullptr;  ///< the geometry id of each sphere
+    int n_spheres = 0;
+};
+
+/// Whether a scene of this many triangles and spheres is traced directly rather than by Embree:
+/// where testing every ray against every primitive costs less than Embree's packet call
+/// (bench/README.md, "Small scenes without Embree").
+bool worth_tracing_directly(size_t triangles, size_t spheres);
+
+/// Rays [0, n ≤ 16) as arrays (soa: origin, direction, tmax) where valid[i]: the closest hit in
+/// (0, tmax] (t, geometry and primitive ids, a triangle's barycentrics u, v of vertices 1 and 2, 0
+/// on a sphere); lanes without one (and lanes not valid) report geom_id ~0u.
+void intersect(const Scene& s, int n, const float* const soa[7], const bool* valid, HitLanes& hits);
+/// Whether each ray has a hit in (0, tmax] (false where not valid).
+void occluded(const Scene& s, int n, const float* const soa[7], const bool* valid, bool* blocked);
+/// One ray, with the same tests (so the same hits as a lane of a packet), and the hit's
+/// unnormalised geometric normal as Embree reports it (a triangle's e1 × e2, a sphere's p − c).
+bool intersect(const Scene& s, const Ray& ray, RayHit& hit);
+bool occluded(const Scene& s, const Ray& ray);
+
+}  // namespace pellucid::direct_trace
