@@ -159,16 +159,24 @@ TEST(EmbreeScene, SphereRootsAreExactAndAgreeAcrossPacketsAndSingleRays) {
     EXPECT_LT(hits, kRays);
 }
 
+namespace {
+/// 64 rectangles ([−1, 1]² each) in an 8 x 8 grid at z = −2, their centres 2.5 apart: enough
+/// triangles for a BVH with inner nodes, and too many for the direct trace.
+void add_quad_grid(EmbreeScene& s) {
+    for (int k = 0; k < 64; ++k) {
+        TriangleMesh quad = TriangleMesh::rectangle();
+        quad.transform(Transform::translate(Vec3f(float(k % 8) * 2.5f, float(k / 8) * 2.5f, -2.f)));
+        s.add_mesh(quad);
+    }
+}
+}  // namespace
+
 // Lanes left out of a shadow packet may hold anything, NaN included: they are ignored, and the others
 // are answered, by the 16-wide and the 8-wide packet calls, with each instruction-set variant of the
 // packets' filling (EmbreeScene::packet_variants).
 TEST(EmbreeScene, OccludedLanesIgnoreGarbageInMaskedLanes) {
     EmbreeScene s;
-    for (int k = 0; k < 64; ++k) {  // enough triangles for a BVH with inner nodes
-        TriangleMesh quad = TriangleMesh::rectangle();
-        quad.transform(Transform::translate(Vec3f(float(k % 8) * 2.5f, float(k / 8) * 2.5f, -2.f)));
-        s.add_mesh(quad);
-    }
+    add_quad_grid(s);
     s.commit();
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const int n = EmbreeScene::kPacketSize;
@@ -196,11 +204,7 @@ TEST(EmbreeScene, OccludedLanesIgnoreGarbageInMaskedLanes) {
 // ray finds (t, ids, barycentrics), by the 16-wide and the 8-wide packet calls and each variant.
 TEST(EmbreeScene, IntersectLanesAgreeWithSingleRaysAndIgnoreMaskedLanes) {
     EmbreeScene s;
-    for (int k = 0; k < 64; ++k) {
-        TriangleMesh quad = TriangleMesh::rectangle();
-        quad.transform(Transform::translate(Vec3f(float(k % 8) * 2.5f, float(k / 8) * 2.5f, -2.f)));
-        s.add_mesh(quad);
-    }
+    add_quad_grid(s);
     s.commit();
     const float nan = std::numeric_limits<float>::quiet_NaN();
     float soa[7][16];
@@ -370,11 +374,7 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
     }
     // A scene of many primitives goes to Embree, and direct tracing can be switched off and on.
     EmbreeScene big;
-    for (int k = 0; k < 64; ++k) {
-        TriangleMesh quad = TriangleMesh::rectangle();
-        quad.transform(Transform::translate(Vec3f(float(k % 8) * 2.5f, float(k / 8) * 2.5f, -2.f)));
-        big.add_mesh(quad);
-    }
+    add_quad_grid(big);
     big.commit();
     EXPECT_FALSE(big.traced_directly());
     EmbreeScene many_spheres;  // like bench/suite/many_materials.json: 36 spheres on 2 rectangles
