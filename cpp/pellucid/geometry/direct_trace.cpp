@@ -7,17 +7,6 @@
 namespace pellucid::direct_trace {
 
 namespace {
-// The direct trace's cost grows with every primitive, Embree's hardly: measured in the instructions
-// of a render (bench/README.md, "Small scenes without Embree"), a triangle and a sphere cost about
-// the same, and scenes of up to 17 primitives rendered with 8 to 21 % fewer instructions traced
-// directly, while 36 triangles (the Cornell box) took 29 % more and 4 triangles with 36 spheres 24 %
-// more. The limit sits between the two.
-constexpr size_t kMaxPrimitives = 20;
-}  // namespace
-
-bool worth_tracing_directly(size_t triangles, size_t spheres) { return triangles + spheres <= kMaxPrimitives; }
-
-namespace {
 // Every lane is computed and the results selected (see sphere_first_root). The helpers that take
 // or return 32-byte vectors are always inlined, so no call passes one across the baseline
 // variant's ABI (which GCC's -Wpsabi note, silenced for this file, is about).
@@ -158,8 +147,6 @@ template <int N>
     }
     for (int i = 0; i < A.n; ++i) blocked[i] = b[i];
 }
-
-
 
 /// One ray (r: origin, direction) with the lanes' tests, so the same bits: the closest hit in
 /// (0, tmax] and the index of its primitive (spheres after triangles), or −1.

@@ -22,8 +22,6 @@ namespace {
 using direct_trace::SphereData;
 using direct_trace::TriangleData;
 using direct_trace::sphere_first_root;
-/// Meshes' triangles are copied for the direct trace while the scene has at most this many.
-constexpr size_t kRecordedTriangles = 64;
 /// The direct trace is allowed unless PELLUCID_TRACE is `embree` (for comparisons of the two).
 bool direct_tracing_default() {
     const char* env = std::getenv("PELLUCID_TRACE");
@@ -49,10 +47,9 @@ struct EmbreeScene::Impl {
     bool allow_direct = direct_tracing_default();  // set_direct_tracing
     bool committed = false;
     void decide_direct() {
-        direct = committed && allow_direct && triangle_count <= kRecordedTriangles &&
-                 direct_trace::worth_tracing_directly(triangle_count, spheres.size());
+        direct = committed && allow_direct && direct_trace::worth_tracing_directly(triangle_count, spheres.size());
     }
-    std::vector<TriangleData> triangles;
+    std::vector<TriangleData> triangles;  // every mesh's, while there are at most kMaxPrimitives
     size_t triangle_count = 0;
     std::vector<const SphereData*> sphere_ptrs;
     direct_trace::Scene direct_scene() const {
@@ -107,7 +104,7 @@ uint32_t EmbreeScene::add_mesh(const TriangleMesh& mesh) {
     rtcCommitGeometry(g);
     uint32_t id = m_impl->next_id++;
     m_impl->triangle_count += mesh.triangle_count();
-    if (m_impl->triangle_count <= kRecordedTriangles)
+    if (m_impl->triangle_count <= direct_trace::kMaxPrimitives)  // (more: never traced directly)
         for (size_t t = 0; t < mesh.triangle_count(); ++t) {
             TriangleData& d = m_impl->triangles.emplace_back();
             const float* p0 = v + 3 * idx[3 * t];
