@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "pellucid/geometry/direct_trace.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace pellucid::direct_trace {
@@ -72,15 +73,70 @@ template <int N>
     }
     for (int i = 0; i < N; ++i) tmax[i] = i < A.n && A.valid[i] ? A.soa[6][i] : -1.f;
 }
-/// Sphere s against N rays r (origin, direction; local arrays, so that the loop vectorises) in
-/// (0, tmax]: t and the hit mask (−1 or 0) per lane.
+[[gnu::always_inline]] inline VF8 fabs8(VF8 v) { return v < 0.f ? -v : v; }
+/// Whether any lane of a mask is set.
+[[gnu::always_inline]] inline bool any8(VI8 m) {
+    uint64_t w[4];
+    std::memcpy(w, &m, sizeof w);
+    return ((w[0] | w[1]) | (w[2] | w[3])) != 0;
+}
+/// Eight rays as the float pre-test reads them: origin × direction, |d|²·(1 + 10⁻⁵), the origin's
+/// L1 norm, and the lanes whose tmax is positive (or NaN).
+struct PreRays {
+    VF8 d[3], oxd[3], d2k, o_l1;
+    VI8 live;
+};
+[[gnu::always_inline]] inline PreRays pre_rays(const VF8* r, VF8 tmax) {
+    PreRays p;
+    for (int k = 0; k < 3; ++k) p.d[k] = r[3 + k];
+    p.oxd[0] = r[1] * r[5] - r[2] * r[4], p.oxd[1] = r[2] * r[3] - r[0] * r[5], p.oxd[2] = r[0] * r[4] - r[1] * r[3];
+    p.d2k = (r[3] * r[3] + r[4] * r[4] + r[5] * r[5]) * (1.f + 1e-5f);
+    p.o_l1 = fabs8(r[0]) + fabs8(r[1]) + fabs8(r[2]);
+    p.live = ~(tmax <= 0.f);
+    return p;
+}
+/// A conservative float pre-test of sphere s against eight rays: clear in a lane only where
+/// sphere_first_root cannot find a hit there (on s, or on any sphere inside it). A lane passes
+/// where it is live and the ray's line comes within s.r of the centre: |(c − o) × d|² ≤ r²|d|²,
+/// with (c − o) × d computed as c × d − o × d. The float operations round each term by a few ulps
+/// of |c||d| and |o||d|; the radius is widened by 10⁻⁵ of |c| + |o| (L1 norms), some hundred ulps
+/// of them, and the bound by a factor 1 + 10⁻⁵, far more than those errors and than
+/// sphere_first_root's rounding in double. The comparison is written as !(a > b), so that a NaN or
+/// an overflow passes the lane.
+[[gnu::always_inline]] inline VI8 sphere_may_hit(const FloatSphere& s, const PreRays& p) {
+    const VF8 cx = (s.c[1] * p.d[2] - s.c[2] * p.d[1]) - p.oxd[0];
+    const VF8 cy = (s.c[2] * p.d[0] - s.c[0] * p.d[2]) - p.oxd[1];
+    const VF8 cz = (s.c[0] * p.d[1] - s.c[1] * p.d[0]) - p.oxd[2];
+    const VF8 cross2 = cx * cx + cy * cy + cz * cz;
+    const VF8 rr = s.r + 1e-5f * (p.o_l1 + s.c_l1);
+    return ~(cross2 > (rr * rr) * p.d2k) & p.live;
+}
+/// Sphere s against the eight rays at lanes [c, c + 8) of r (origin, direction; local arrays, so
+/// that the loop vectorises) in (0, tmax]: t and the hit mask (−1 or 0) per lane.
 template <int N>
-[[gnu::always_inline]] inline void sphere_roots(const SphereData& s, const float (*r)[N], const float* tmax, float* t,
-                                                int32_t* hit) {
-    for (int i = 0; i < N; ++i) {
+[[gnu::always_inline]] inline void sphere_roots8(const SphereData& s, const float (*r)[N], int c, const float* tmax,
+                                                 float* t, int32_t* hit) {
+    for (int i = 0; i < 8; ++i) {
         bool h;
-        t[i] = sphere_first_root(s, r[0][i], r[1][i], r[2][i], r[3][i], r[4][i], r[5][i], 0.f, tmax[i], &h);
+        const int l = c + i;
+        t[i] = sphere_first_root(s, r[0][l], r[1][l], r[2][l], r[3][l], r[4][l], r[5][l], 0.f, tmax[l], &h);
         hit[i] = h ? -1 : 0;
+    }
+}
+/// Calls f(k), in the scene's order, for each sphere k whose float pre-tests (its cluster's where
+/// that holds others, then its own) pass in some lane of the eight-lane block at c. f returns the
+/// lanes it found blocked (occlusion) or none; those drop out of the later pre-tests.
+template <int N, class Fn>
+[[gnu::always_inline]] inline void for_spheres_near(const Args& A, const float (*r)[N], int c, const float* tmax,
+                                                    Fn&& f) {
+    VF8 r8[6];
+    for (int q = 0; q < 6; ++q) r8[q] = load8<VF8>(r[q] + c);
+    PreRays p = pre_rays(r8, load8<VF8>(tmax + c));
+    for (int g = 0; g < A.s.n_clusters && any8(p.live); ++g) {
+        const SphereCluster& cl = A.s.clusters[g];
+        if (cl.count > 1 && !any8(sphere_may_hit(cl.bound, p))) continue;
+        for (int k = cl.first; k < cl.first + cl.count; ++k)
+            if (any8(sphere_may_hit(A.s.spheres[k]->view, p))) p.live &= ~f(k);
     }
 }
 template <int N>
@@ -102,20 +158,20 @@ template <int N>
             gg = h ? VI8{} + int32_t(d.geom) : gg, pp = h ? VI8{} + int32_t(d.prim) : pp;
         }
         store8(tb + c, tt), store8(ub + c, uu), store8(vb + c, vv), store8(gb + c, gg), store8(pb + c, pp);
-    }
-    for (int k = 0; k < A.s.n_spheres; ++k) {
-        alignas(32) float t[N];
-        alignas(32) int32_t h[N];
-        sphere_roots<N>(*A.s.spheres[k], r, tb, t, h);
-        const VI8 id = VI8{} + int32_t(A.s.sphere_ids[k]);
-        for (int c = 0; c < N; c += 8) {
-            const VI8 m = load8<VI8>(h + c);
-            store8(tb + c, m ? load8<VF8>(t + c) : load8<VF8>(tb + c));
+        // The spheres in double, in the scene's order, on the blocks their pre-tests pass (which
+        // never fail a lane the double test hits: the same hits as testing every sphere).
+        for_spheres_near<N>(A, r, c, tb, [&](int k) {
+            alignas(32) float t[8];
+            alignas(32) int32_t h[8];
+            sphere_roots8<N>(*A.s.spheres[k], r, c, tb, t, h);
+            const VI8 m = load8<VI8>(h), id = VI8{} + int32_t(A.s.sphere_ids[k]);
+            store8(tb + c, m ? load8<VF8>(t) : load8<VF8>(tb + c));
             store8(ub + c, m ? VF8{} : load8<VF8>(ub + c));
             store8(vb + c, m ? VF8{} : load8<VF8>(vb + c));
             store8(gb + c, m ? id : load8<VI8>(gb + c));
             store8(pb + c, m ? VI8{} : load8<VI8>(pb + c));
-        }
+            return VI8{};
+        });
     }
     for (int i = 0; i < A.n; ++i) {
         out.t[i] = A.valid[i] ? tb[i] : A.soa[6][i];
@@ -124,26 +180,30 @@ template <int N>
 }
 template <int N>
 [[gnu::always_inline]] inline void occluded_n(const Args& A, bool* blocked) {
-    bool b[N];
     alignas(32) float r[6][N], tm[N];
+    bool b[N];
     load_rays<N>(A, r, tm);
-    for (int i = 0; i < N; ++i) b[i] = false;
     for (int c = 0; c < N; c += 8) {
         VF8 r8[6];
         for (int k = 0; k < 6; ++k) r8[k] = load8<VF8>(r[k] + c);
-        const VF8 tt = load8<VF8>(tm + c);
+        VF8 tt = load8<VF8>(tm + c);
         VI8 hit{};
         for (int k = 0; k < A.s.n_tris; ++k) {
             VF8 t, u, v;
             hit |= triangle_hit<VF8>(A.s.tris[k], r8, tt, &t, &u, &v);
         }
+        // A lane found blocked is not tested again: its tmax becomes −1, which no hit passes.
+        store8(tm + c, hit ? VF8{} - 1.f : tt);
+        for_spheres_near<N>(A, r, c, tm, [&](int k) {
+            alignas(32) float t[8];
+            alignas(32) int32_t h[8];
+            sphere_roots8<N>(*A.s.spheres[k], r, c, tm, t, h);
+            const VI8 m = load8<VI8>(h);
+            hit |= m;
+            store8(tm + c, m ? VF8{} - 1.f : load8<VF8>(tm + c));
+            return m;
+        });
         for (int i = 0; i < 8; ++i) b[c + i] = hit[i] != 0;
-    }
-    for (int k = 0; k < A.s.n_spheres; ++k) {
-        alignas(32) float t[N];
-        alignas(32) int32_t h[N];
-        sphere_roots<N>(*A.s.spheres[k], r, tm, t, h);
-        for (int i = 0; i < N; ++i) b[i] |= h[i] != 0;
     }
     for (int i = 0; i < A.n; ++i) blocked[i] = b[i];
 }
@@ -251,6 +311,57 @@ bool occluded(const Scene& s, const Ray& ray) {
         if (h) return true;
     }
     return false;
+}
+
+namespace {
+/// The bound of spheres [first, first + count): the middle of their centres' box, and the farthest
+/// member surface from it (in double), then in float rounded outward (float_sphere).
+FloatSphere bound_of(const std::vector<const SphereData*>& s, int first, int count, double* lo, double* hi) {
+    for (int a = 0; a < 3; ++a) lo[a] = INFINITY, hi[a] = -INFINITY;
+    for (int k = first; k < first + count; ++k) {
+        const double c[3] = {s[size_t(k)]->cx, s[size_t(k)]->cy, s[size_t(k)]->cz};
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+    }
+    const double m[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+    double r = 0.0;
+    for (int k = first; k < first + count; ++k) {
+        const SphereData& d = *s[size_t(k)];
+        const double dx = d.cx - m[0], dy = d.cy - m[1], dz = d.cz - m[2];
+        r = std::max(r, std::sqrt(dx * dx + dy * dy + dz * dz) + std::sqrt(d.r2));
+    }
+    return float_sphere(m[0], m[1], m[2], r * (1.0 + 1e-12));
+}
+void split(std::vector<const SphereData*>& s, std::vector<uint32_t>& ids, int first, int count,
+           std::vector<SphereCluster>& out) {
+    double lo[3], hi[3];
+    const FloatSphere bound = bound_of(s, first, count, lo, hi);
+    if (count <= kClusterSpheres) {
+        out.push_back({bound, first, count});
+        return;
+    }
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
+    auto key = [axis](const SphereData* d) { return axis == 0 ? d->cx : axis == 1 ? d->cy : d->cz; };
+    // The range sorted by the axis (ties in their order), the ids alike.
+    std::vector<int> order(static_cast<size_t>(count));
+    for (int k = 0; k < count; ++k) order[size_t(k)] = first + k;
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key(s[size_t(a)]) < key(s[size_t(b)]); });
+    std::vector<const SphereData*> s2;
+    std::vector<uint32_t> i2;
+    for (int k : order) s2.push_back(s[size_t(k)]), i2.push_back(ids[size_t(k)]);
+    std::copy(s2.begin(), s2.end(), s.begin() + first);
+    std::copy(i2.begin(), i2.end(), ids.begin() + first);
+    const int half = count / 2;
+    split(s, ids, first, half, out);
+    split(s, ids, first + half, count - half, out);
+}
+}  // namespace
+
+std::vector<SphereCluster> build_clusters(std::vector<const SphereData*>& spheres, std::vector<uint32_t>& ids) {
+    std::vector<SphereCluster> out;
+    if (!spheres.empty()) split(spheres, ids, 0, int(spheres.size()), out);
+    return out;
 }
 
 }  // namespace pellucid::direct_trace

@@ -5,16 +5,39 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "pellucid/geometry/embree_scene.h"
 
 namespace pellucid::direct_trace {
 
-/// An analytic sphere: centre and squared radius in double precision, and its padded bounds (for
-/// Embree's user geometry).
+/// A sphere in float for the direct trace's conservative pre-test: centre, a radius at least the
+/// true one, and the centre's L1 norm.
+struct FloatSphere {
+    float c[3], r, c_l1;
+};
+/// An analytic sphere: centre and squared radius in double precision, its padded bounds (for
+/// Embree's user geometry) and its float view (FloatSphere, set by set_float_view).
 struct SphereData {
     double cx, cy, cz, r2;
     float lower[3], upper[3];
+    FloatSphere view;
+};
+/// A sphere of centre (x, y, z) and radius r, all in double, in float: the radius rounded up and
+/// widened by 10⁻⁶ of the centre's L1 norm, more than the rounding of the centre moves it.
+inline FloatSphere float_sphere(double x, double y, double z, double r) {
+    FloatSphere f;
+    f.c[0] = float(x), f.c[1] = float(y), f.c[2] = float(z);
+    f.r = std::nextafter(float(r + 1e-6 * (std::fabs(x) + std::fabs(y) + std::fabs(z))), INFINITY);
+    f.c_l1 = std::fabs(f.c[0]) + std::fabs(f.c[1]) + std::fabs(f.c[2]);
+    return f;
+}
+inline void set_float_view(SphereData& s) { s.view = float_sphere(s.cx, s.cy, s.cz, std::sqrt(s.r2)); }
+/// Spheres [first, first + count) of a direct-trace scene, and a sphere around them all: a ray
+/// whose line misses it misses each of them (build_clusters).
+struct SphereCluster {
+    FloatSphere bound;
+    int first, count;
 };
 /// A triangle as the direct trace reads it: its first corner and the edges to the other two (the
 /// float vertices Embree gets), and the ids a hit on it reports.
@@ -55,25 +78,38 @@ struct TriangleData {
 #pragma GCC pop_options
 #endif
 
-/// A small scene's primitives: every ray is tested against each of them.
+/// A small scene's primitives: every ray is tested against each triangle, and against each
+/// sphere of each cluster its line comes near.
 struct Scene {
     const TriangleData* tris = nullptr;
     int n_tris = 0;
-    const SphereData* const* spheres = nullptr;
-    const uint32_t* sphere_ids = nullptr;  ///< the geometry id of each sphere
+    const SphereData* const* spheres = nullptr;  ///< in cluster order
+    const uint32_t* sphere_ids = nullptr;        ///< the geometry id of each sphere
     int n_spheres = 0;
+    const SphereCluster* clusters = nullptr;  ///< spheres [0, n_spheres) in order (build_clusters)
+    int n_clusters = 0;
 };
 
-/// The most triangles and spheres together that a scene traced directly has. The direct trace's
-/// cost grows with every primitive, Embree's hardly: measured in the instructions of a render
-/// (bench/README.md, "Small scenes without Embree"), a triangle and a sphere cost about the same, and
-/// scenes of up to 17 primitives rendered with 8 to 21 % fewer instructions traced directly, while 36
-/// triangles (the Cornell box) took 29 % more and 4 triangles with 36 spheres 24 % more. The limit
-/// sits between the two.
+/// The most spheres a cluster holds.
+constexpr int kClusterSpheres = 6;
+/// Orders spheres (and their ids alike) into clusters of nearby ones, at most kClusterSpheres each:
+/// halves the largest extent of their centres at its median, recursively, and returns the clusters.
+std::vector<SphereCluster> build_clusters(std::vector<const SphereData*>& spheres, std::vector<uint32_t>& ids);
+
+/// The most triangles a scene traced directly has (less a fifth of its spheres, below). The direct
+/// trace's cost grows with every triangle, Embree's hardly: measured in the instructions of a
+/// render (bench/README.md, "Small scenes without Embree"), scenes of up to 17 primitives rendered
+/// with 8 to 21 % fewer instructions traced directly, while 36 triangles (the Cornell box) took 29 %
+/// more. A sphere costs much less than a triangle once its cluster's pre-test culls it: 4 triangles
+/// with 36 spheres (bench/suite/many_materials.json) took 16 % fewer instructions traced directly,
+/// and with 100 spheres 10 % fewer.
 constexpr size_t kMaxPrimitives = 20;
 /// Whether a scene of this many triangles and spheres is traced directly rather than by Embree:
-/// where testing every ray against every primitive costs less than Embree's packet call.
-inline bool worth_tracing_directly(size_t triangles, size_t spheres) { return triangles + spheres <= kMaxPrimitives; }
+/// where testing every ray against every primitive costs less than Embree's packet call, a sphere
+/// counted as a fifth of a triangle (so at most 100 spheres).
+inline bool worth_tracing_directly(size_t triangles, size_t spheres) {
+    return 5 * triangles + spheres <= 5 * kMaxPrimitives;
+}
 
 /// Rays [0, n ≤ 16) as arrays (soa: origin, direction, tmax) where valid[i]: the closest hit in
 /// (0, tmax] (t, geometry and primitive ids, a triangle's barycentrics u, v of vertices 1 and 2, 0

@@ -51,9 +51,13 @@ struct EmbreeScene::Impl {
     }
     std::vector<TriangleData> triangles;  // every mesh's, while there are at most kMaxPrimitives
     size_t triangle_count = 0;
+    // The spheres in the direct trace's cluster order, their ids alike, and the clusters.
     std::vector<const SphereData*> sphere_ptrs;
+    std::vector<uint32_t> sphere_ptr_ids;
+    std::vector<direct_trace::SphereCluster> clusters;
     direct_trace::Scene direct_scene() const {
-        return {triangles.data(), int(triangles.size()), sphere_ptrs.data(), sphere_ids.data(), int(sphere_ptrs.size())};
+        return {triangles.data(),    int(triangles.size()),   sphere_ptrs.data(), sphere_ptr_ids.data(),
+                int(sphere_ptrs.size()), clusters.data(), int(clusters.size())};
     }
     const TraceCalls* trace = &trace_calls(EmbreeScene::packet_variants().back());
     void check() {
@@ -241,6 +245,7 @@ const SphereCallbacks& sphere_calls() {
 uint32_t EmbreeScene::add_sphere(const Point3f& c, float r) {
     SphereData& s = m_impl->spheres.emplace_back();
     s.cx = c.x, s.cy = c.y, s.cz = c.z, s.r2 = double(r) * double(r);
+    direct_trace::set_float_view(s);
     for (int k = 0; k < 3; ++k) {
         // Padded by a relative 1e-6 and by an ulp-scale absolute term, so that float rounding of
         // the bounds never cuts off the surface.
@@ -269,6 +274,8 @@ void EmbreeScene::commit() {
     m_impl->check();
     m_impl->sphere_ptrs.clear();
     for (const SphereData& sd : m_impl->spheres) m_impl->sphere_ptrs.push_back(&sd);
+    m_impl->sphere_ptr_ids = m_impl->sphere_ids;
+    m_impl->clusters = direct_trace::build_clusters(m_impl->sphere_ptrs, m_impl->sphere_ptr_ids);
     m_impl->committed = true;
     m_impl->decide_direct();
 }

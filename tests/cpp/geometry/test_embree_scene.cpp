@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -251,9 +252,76 @@ TEST(EmbreeScene, IntersectLanesAgreeWithSingleRaysAndIgnoreMaskedLanes) {
 // holding NaN; one, two and four spheres, alone and with two or four walls (rectangles, 2 triangles
 // each) around them. Rays aimed at a wall aim at its inner part, so no ray passes within float
 // rounding of a triangle's edge, where the two tests may differ.
+// The direct trace's float pre-test never drops a hit that the double-precision sphere test finds:
+// rays passing within a few ulps of tangent to spheres near and far from the origin (where float
+// rounding of c − o is largest), in clusters of several, give the hits Embree's callbacks give.
+TEST(EmbreeScene, DirectTracePreTestKeepsGrazingHits) {
+    for (const float offset : {0.f, 100.f, 1e4f})
+    for (const float radius : {1e-3f, 1.f, 50.f}) {
+        const std::string what = "offset " + std::to_string(offset) + ", radius " + std::to_string(radius);
+        EmbreeScene direct, embree;
+        std::vector<Point3f> centres;
+        for (int k = 0; k < 12; ++k) {  // a row of 12 spheres: two clusters
+            centres.emplace_back(offset + 3.f * radius * float(k), offset * 0.5f, -offset);
+            direct.add_sphere(centres.back(), radius), embree.add_sphere(centres.back(), radius);
+        }
+        embree.set_direct_tracing(false);
+        direct.commit(), embree.commit();
+        ASSERT_TRUE(direct.traced_directly()) << what;
+        uint64_t state = 99;
+        auto next = [&] {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            return float(state >> 40) / float(1 << 24);
+        };
+        int hits = 0, misses = 0;
+        for (int packet = 0; packet < 256; ++packet) {
+            float soa[7][8];
+            bool valid[8];
+            for (int i = 0; i < 8; ++i) {
+                // Aim at a point on a sphere's silhouette as seen from the origin, the distance
+                // from the centre 1 ± a few float ulps of the radius.
+                const Point3f& c = centres[size_t(std::min(11, int(next() * 12.f)))];
+                const Vec3f o = Vec3f(c) + Vec3f(20.f * radius * (next() - 0.5f), 20.f * radius * (next() - 0.5f),
+                                                 10.f * radius + 5.f * radius * next());
+                const Vec3f to_c = Vec3f(c) - o;
+                Vec3f side = normalize(cross(to_c, Vec3f(next() - 0.5f, next() - 0.5f, next() - 0.5f)));
+                // The line at distance R = r·scale from the centre: d at angle asin(R/|c − o|) from c − o.
+                const double scale = 1.0 + double(int(next() * 9.f) - 4) * 1e-7, dist = double(length(to_c));
+                const double sin_a = double(radius) * scale / dist, cos_a = std::sqrt(1.0 - sin_a * sin_a);
+                const Vec3f d = normalize(to_c * float(cos_a) + side * float(dist * sin_a));
+                const float v[7] = {o.x, o.y, o.z, d.x, d.y, d.z, kInfinity};
+                for (int k = 0; k < 7; ++k) soa[k][i] = v[k];
+                valid[i] = true;
+            }
+            const float* const p[7] = {soa[0], soa[1], soa[2], soa[3], soa[4], soa[5], soa[6]};
+            HitLanes a, b;
+            direct.intersect_lanes(8, p, valid, a);
+            embree.intersect_lanes(8, p, valid, b);
+            bool ba[8], bb[8];
+            direct.occluded_lanes(8, p, valid, ba);
+            embree.occluded_lanes(8, p, valid, bb);
+            for (int i = 0; i < 8; ++i) {
+                const std::string at = what + ", packet " + std::to_string(packet) + ", lane " + std::to_string(i);
+                ASSERT_EQ(a.hit(i), b.hit(i)) << at;
+                EXPECT_EQ(ba[i], bb[i]) << at;
+                if (a.hit(i)) {
+                    EXPECT_EQ(a.t[i], b.t[i]) << at;
+                    EXPECT_EQ(a.geom_id[i], b.geom_id[i]) << at;
+                }
+                hits += a.hit(i), misses += !a.hit(i);
+            }
+        }
+        // Both outcomes occur: the rays do straddle the silhouettes.
+        EXPECT_GT(hits, 256) << what;
+        EXPECT_GT(misses, 256) << what;
+    }
+}
+
 TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
-    const Point3f centres[4] = {Point3f(0, 0, 0), Point3f(1.2f, 0.3f, -0.4f), Point3f(-2, 1, 0.5f), Point3f(0.4f, -1.5f, 1)};
-    const float radii[4] = {1.f, 0.7f, 0.5f, 1.3f};
+    // Up to four spheres of their own sizes, or a grid of many (which the direct trace sorts into
+    // clusters, each culled as a whole by a float pre-test).
+    const Point3f four[4] = {Point3f(0, 0, 0), Point3f(1.2f, 0.3f, -0.4f), Point3f(-2, 1, 0.5f), Point3f(0.4f, -1.5f, 1)};
+    const float four_radii[4] = {1.f, 0.7f, 0.5f, 1.3f};
     // Walls: a rectangle of half-size 5 facing the origin at distance 6 along ±z, then ±x.
     const Transform walls[4] = {Transform::translate(Vec3f(0, 0, -6)) * Transform::scale(Vec3f(5, 5, 1)),
                                 Transform::translate(Vec3f(0, 0, 6)) * Transform::scale(Vec3f(5, 5, 1)),
@@ -261,14 +329,27 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
                                     Transform::scale(Vec3f(5, 5, 1)),
                                 Transform::translate(Vec3f(6, 0, 0)) * Transform::rotate(Vec3f(0, 1, 0), -90.f) *
                                     Transform::scale(Vec3f(5, 5, 1))};
-    for (const int spheres : {1, 2, 4})
+    for (const int spheres : {1, 2, 4, 36, 60})
     for (const int n_walls : {0, 2, 4}) {
         const std::string what = std::to_string(spheres) + " spheres, " + std::to_string(n_walls) + " walls";
+        std::vector<Point3f> centres;
+        std::vector<float> radii;
+        for (int k = 0; k < spheres; ++k) {
+            if (spheres <= 4) {
+                centres.push_back(four[k]), radii.push_back(four_radii[k]);
+                continue;
+            }
+            // A grid of n × n across [−3, 3]² in x and z, the heights and sizes varied.
+            const int n = spheres == 36 ? 6 : 8;
+            const float step = 6.f / float(n), x = -3.f + step * (float(k % n) + 0.5f), z = -3.f + step * (float(k / n) + 0.5f);
+            centres.emplace_back(x, 0.3f * float(k % 3) - 0.3f, z);
+            radii.push_back(step * (0.3f + 0.05f * float(k % 4)));
+        }
         EmbreeScene direct, embree;
         std::vector<TriangleMesh> meshes;
         for (int k = 0; k < spheres; ++k) {
-            EXPECT_EQ(direct.add_sphere(centres[k], radii[k]), uint32_t(k));
-            EXPECT_EQ(embree.add_sphere(centres[k], radii[k]), uint32_t(k));
+            EXPECT_EQ(direct.add_sphere(centres[size_t(k)], radii[size_t(k)]), uint32_t(k));
+            EXPECT_EQ(embree.add_sphere(centres[size_t(k)], radii[size_t(k)]), uint32_t(k));
         }
         for (int w = 0; w < n_walls; ++w) {
             TriangleMesh m = TriangleMesh::rectangle();
@@ -301,7 +382,8 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
                     aim = walls[w].point(Vec3f(1.8f * next() - 0.9f, 1.8f * next() - 0.9f, 0.f));
                 } else {
                     const int k = std::min(spheres - 1, int(next() * float(spheres)));
-                    aim = Vec3f(centres[k]) + 1.5f * radii[k] * Vec3f(2.f * next() - 1.f, 2.f * next() - 1.f, 2.f * next() - 1.f);
+                    aim = Vec3f(centres[size_t(k)]) +
+                          1.5f * radii[size_t(k)] * Vec3f(2.f * next() - 1.f, 2.f * next() - 1.f, 2.f * next() - 1.f);
                 }
                 const Vec3f d = normalize(aim - o);
                 const float tmax = i % 4 == 3 ? 2.f * next() : kInfinity;
@@ -381,9 +463,18 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
     for (int k = 0; k < 2; ++k) many_spheres.add_mesh(TriangleMesh::rectangle());
     for (int k = 0; k < 36; ++k) many_spheres.add_sphere(Point3f(float(k), 0, 0), 0.4f);
     many_spheres.commit();
+    EXPECT_TRUE(many_spheres.traced_directly());
+    for (int k = 36; k < 81; ++k) many_spheres.add_sphere(Point3f(float(k), 0, 0), 0.4f);
+    many_spheres.commit();  // 4 triangles and 81 spheres: more than 20 triangles' worth
     EXPECT_FALSE(many_spheres.traced_directly());
     EXPECT_TRUE(direct_trace::worth_tracing_directly(12, 4));   // bench/suite/veach_mis.json
     EXPECT_FALSE(direct_trace::worth_tracing_directly(36, 0));  // bench/suite/cornell_lambert.json
+    EXPECT_TRUE(direct_trace::worth_tracing_directly(20, 0));
+    EXPECT_FALSE(direct_trace::worth_tracing_directly(21, 0));
+    EXPECT_TRUE(direct_trace::worth_tracing_directly(0, 100));
+    EXPECT_FALSE(direct_trace::worth_tracing_directly(0, 101));
+    EXPECT_TRUE(direct_trace::worth_tracing_directly(16, 20));
+    EXPECT_FALSE(direct_trace::worth_tracing_directly(16, 21));
     EmbreeScene one;
     one.add_sphere(Point3f(0, 0, 0), 1.f);
     one.commit();
