@@ -124,9 +124,12 @@ template <int N>
     }
 }
 /// Calls f(k), in the scene's order, for each sphere k whose float pre-tests (its cluster's where
-/// that holds others, then its own) pass in some lane of the eight-lane block at c. f returns the
-/// lanes it found blocked (occlusion) or none; those drop out of the later pre-tests.
-template <int N, class Fn>
+/// that holds others, then its own) pass in some lane of the eight-lane block at c. f may set a
+/// lane's tmax to −1 where Blocks (occlusion: the lane is blocked), which drops it from the later
+/// pre-tests.
+/// (f passes no vector by value: a lambda does not take the target attribute of the function it is
+/// written in, so a call to it that is not inlined would pass one under another ABI.)
+template <int N, bool Blocks, class Fn>
 [[gnu::always_inline]] inline void for_spheres_near(const Args& A, const float (*r)[N], int c, const float* tmax,
                                                     Fn&& f) {
     VF8 r8[6];
@@ -136,7 +139,10 @@ template <int N, class Fn>
         const SphereCluster& cl = A.s.clusters[g];
         if (cl.count > 1 && !any8(sphere_may_hit(cl.bound, p))) continue;
         for (int k = cl.first; k < cl.first + cl.count; ++k)
-            if (any8(sphere_may_hit(A.s.spheres[k]->view, p))) p.live &= ~f(k);
+            if (any8(sphere_may_hit(A.s.spheres[k]->view, p))) {
+                f(k);
+                if (Blocks) p.live &= ~(load8<VF8>(tmax + c) <= 0.f);
+            }
     }
 }
 template <int N>
@@ -160,7 +166,7 @@ template <int N>
         store8(tb + c, tt), store8(ub + c, uu), store8(vb + c, vv), store8(gb + c, gg), store8(pb + c, pp);
         // The spheres in double, in the scene's order, on the blocks their pre-tests pass (which
         // never fail a lane the double test hits: the same hits as testing every sphere).
-        for_spheres_near<N>(A, r, c, tb, [&](int k) {
+        for_spheres_near<N, false>(A, r, c, tb, [&](int k) {
             alignas(32) float t[8];
             alignas(32) int32_t h[8];
             sphere_roots8<N>(*A.s.spheres[k], r, c, tb, t, h);
@@ -170,7 +176,6 @@ template <int N>
             store8(vb + c, m ? VF8{} : load8<VF8>(vb + c));
             store8(gb + c, m ? id : load8<VI8>(gb + c));
             store8(pb + c, m ? VI8{} : load8<VI8>(pb + c));
-            return VI8{};
         });
     }
     for (int i = 0; i < A.n; ++i) {
@@ -194,16 +199,14 @@ template <int N>
         }
         // A lane found blocked is not tested again: its tmax becomes −1, which no hit passes.
         store8(tm + c, hit ? VF8{} - 1.f : tt);
-        for_spheres_near<N>(A, r, c, tm, [&](int k) {
+        for (int i = 0; i < 8; ++i) b[c + i] = hit[i] != 0;
+        for_spheres_near<N, true>(A, r, c, tm, [&](int k) {
             alignas(32) float t[8];
             alignas(32) int32_t h[8];
             sphere_roots8<N>(*A.s.spheres[k], r, c, tm, t, h);
-            const VI8 m = load8<VI8>(h);
-            hit |= m;
-            store8(tm + c, m ? VF8{} - 1.f : load8<VF8>(tm + c));
-            return m;
+            for (int i = 0; i < 8; ++i) b[c + i] |= h[i] != 0;
+            store8(tm + c, load8<VI8>(h) ? VF8{} - 1.f : load8<VF8>(tm + c));
         });
-        for (int i = 0; i < 8; ++i) b[c + i] = hit[i] != 0;
     }
     for (int i = 0; i < A.n; ++i) blocked[i] = b[i];
 }

@@ -99,7 +99,7 @@ std::vector<SphereCluster> build_clusters(std::vector<const SphereData*>& sphere
 /// The most triangles a scene traced directly has (less a fifth of its spheres, below). The direct
 /// trace's cost grows with every triangle, Embree's hardly: measured in the instructions of a
 /// render (bench/README.md, "Small scenes without Embree"), scenes of up to 17 primitives rendered
-/// with 8 to 21 % fewer instructions traced directly, while 36 triangles (the Cornell box) took 29 %
+/// with 9 to 21 % fewer instructions traced directly, while 36 triangles (the Cornell box) took 29 %
 /// more. A sphere costs much less than a triangle once its cluster's pre-test culls it: 4 triangles
 /// with 36 spheres (bench/suite/many_materials.json) took 16 % fewer instructions traced directly,
 /// and with 100 spheres 10 % fewer.
