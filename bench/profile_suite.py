@@ -39,9 +39,10 @@ STAGES: List[Tuple[str, str, str]] = [
     ("loading", r"libembree", r"(?i)build|morton|split|heuristic|bvh.*builder|refit|createLeaf|rtcCommit|parallel_"),
     ("loading", r"", r"(?i)json|mesh_io|load_|read_|parse|tinyobj|pugi|Mesh::|build_scene|scene_from|build\(|"
                          r"integrate_unit_square|interface_energy|coat_table"),
-    ("ray traversal (Embree)", r"libembree", r""),
-    # Our spheres' intersection callbacks, which Embree's traversal calls (geometry/embree_scene.cpp).
-    ("ray traversal (Embree)", r"", r"sphere_intersect|sphere_occluded|sphere_first_root"),
+    ("ray traversal (Embree or direct)", r"libembree", r""),
+    # Our spheres' intersection callbacks, which Embree's traversal calls (geometry/embree_scene.cpp),
+    # and the direct trace of small scenes (geometry/direct_trace.cpp).
+    ("ray traversal (Embree or direct)", r"", r"sphere_intersect|sphere_occluded|sphere_first_root|direct_trace::"),
     ("textures", r"OpenImageIO|libOpenImageIO", r""),
     ("textures", r"", r"(?i)texture|bump|perturbed_shading_frame|normal_map|lane_bilinear"),
     ("film", r"", r"Film::|film_add|FilmSample|filter_taps|gaussian_taps|accumulate_(avx2|any|baseline)"),
