@@ -124,16 +124,14 @@ template <int N>
     }
 }
 /// Calls f(k), in the scene's order, for each sphere k whose float pre-tests (its cluster's where
-/// that holds others, then its own) pass in some lane of the eight-lane block at c. f may set a
+/// that holds others, then its own) pass in some lane of the eight-lane block at c, whose rays are
+/// r8 (origin, direction) and whose tmax the block's lanes of tmax hold. f may set a
 /// lane's tmax to −1 where Blocks (occlusion: the lane is blocked), which drops it from the later
 /// pre-tests.
 /// (f passes no vector by value: a lambda does not take the target attribute of the function it is
 /// written in, so a call to it that is not inlined would pass one under another ABI.)
-template <int N, bool Blocks, class Fn>
-[[gnu::always_inline]] inline void for_spheres_near(const Args& A, const float (*r)[N], int c, const float* tmax,
-                                                    Fn&& f) {
-    VF8 r8[6];
-    for (int q = 0; q < 6; ++q) r8[q] = load8<VF8>(r[q] + c);
+template <bool Blocks, class Fn>
+[[gnu::always_inline]] inline void for_spheres_near(const Args& A, const VF8* r8, int c, const float* tmax, Fn&& f) {
     PreRays p = pre_rays(r8, load8<VF8>(tmax + c));
     for (int g = 0; g < A.s.n_clusters && any8(p.live); ++g) {
         const SphereCluster& cl = A.s.clusters[g];
@@ -166,7 +164,7 @@ template <int N>
         store8(tb + c, tt), store8(ub + c, uu), store8(vb + c, vv), store8(gb + c, gg), store8(pb + c, pp);
         // The spheres in double, in the scene's order, on the blocks their pre-tests pass (which
         // never fail a lane the double test hits: the same hits as testing every sphere).
-        for_spheres_near<N, false>(A, r, c, tb, [&](int k) {
+        for_spheres_near<false>(A, r8, c, tb, [&](int k) {
             alignas(32) float t[8];
             alignas(32) int32_t h[8];
             sphere_roots8<N>(*A.s.spheres[k], r, c, tb, t, h);
@@ -191,7 +189,7 @@ template <int N>
     for (int c = 0; c < N; c += 8) {
         VF8 r8[6];
         for (int k = 0; k < 6; ++k) r8[k] = load8<VF8>(r[k] + c);
-        VF8 tt = load8<VF8>(tm + c);
+        const VF8 tt = load8<VF8>(tm + c);
         VI8 hit{};
         for (int k = 0; k < A.s.n_tris; ++k) {
             VF8 t, u, v;
@@ -200,7 +198,7 @@ template <int N>
         // A lane found blocked is not tested again: its tmax becomes −1, which no hit passes.
         store8(tm + c, hit ? VF8{} - 1.f : tt);
         for (int i = 0; i < 8; ++i) b[c + i] = hit[i] != 0;
-        for_spheres_near<N, true>(A, r, c, tm, [&](int k) {
+        for_spheres_near<true>(A, r8, c, tm, [&](int k) {
             alignas(32) float t[8];
             alignas(32) int32_t h[8];
             sphere_roots8<N>(*A.s.spheres[k], r, c, tm, t, h);
