@@ -456,6 +456,27 @@ def media_glass_sphere() -> dict:
     return d
 
 
+def subsurface() -> dict:
+    """Two translucent spheres (the `subsurface` material's random walk: the same light transport as
+    Mitsuba's volpath through a dielectric over a homogeneous interior) on a floor, lit by a rectangle
+    light and a dim constant environment. One interior is grey-free and dense (a 0.05 mean free path,
+    albedo 0.9/0.8/0.7, g 0.3), the other chromatic (its mean free path differs per channel). Depth is
+    unlimited, as the walk's events count as bounces in volpath."""
+    d = base((0, 1.1, 3.2), (0, 0.45, 0), fov=40, max_depth=-1)
+    d["integrator"]["rr_depth"] = 16
+    d["materials"] = {"ground": {"type": "lambertian", "reflectance": 0.5},
+                      "wax": {"type": "subsurface", "model": "random_walk", "sigma_a": [2, 4, 6],
+                              "sigma_s": [18, 16, 14], "g": 0.3, "int_ior": 1.4, "ext_ior": 1.0},
+                      "jade": {"type": "subsurface", "model": "random_walk", "sigma_a": [3, 0.5, 2.5],
+                               "sigma_s": [12, 14, 9], "g": 0.0, "int_ior": 1.5, "ext_ior": 1.0},
+                      "black": {"type": "lambertian", "reflectance": 0.0}}
+    d["shapes"] = [floor("ground", size=4), sphere((-0.3, 0.5, 0), 0.5, "wax"), sphere((0.62, 0.3, 0.45), 0.3, "jade"),
+                   {"type": "rectangle", "material": "black", "emitter": {"type": "area", "radiance": 10.0},
+                    "to_world": [{"scale": 0.5}] + look_at((-1.6, 2.4, 1.2), (0, 0.4, 0))}]
+    d["lights"] = [{"type": "constant", "radiance": 0.3}]
+    return d
+
+
 # ----------------------------------------------------------------------------------- Mitsuba XML twins
 def _xml_vec(v) -> str:
     v = [v] * 3 if isinstance(v, (int, float)) else list(v)
@@ -494,7 +515,24 @@ def _xml_bsdf(m: dict, ind: str) -> List[str]:
                 f"{ind}</bsdf>"]
     if m["type"] == "null":
         return [f'{ind}<bsdf type="null"/>']
+    if m["type"] == "subsurface":  # the boundary; the interior is the medium _xml_subsurface_medium writes
+        return [f'{ind}<bsdf type="dielectric">', f'{ind}    <float name="int_ior" value="{m["int_ior"]:g}"/>',
+                f'{ind}    <float name="ext_ior" value="{m.get("ext_ior", 1.0):g}"/>', f"{ind}</bsdf>"]
     raise ValueError(f"XML twin: material {m['type']!r} not supported")
+
+
+def _subsurface_media(d: dict) -> Dict[str, dict]:
+    """The interior of each `subsurface` material (coefficients given as sigma_a, sigma_s) as a Mitsuba
+    homogeneous medium: sigma_t = sigma_a + sigma_s, albedo sigma_s/sigma_t, per channel."""
+    out = {}
+    for name, m in d["materials"].items():
+        if m["type"] != "subsurface":
+            continue
+        sa, ss = m["sigma_a"], m["sigma_s"]
+        st = [a + b for a, b in zip(sa, ss)]
+        out[f"{name}_interior"] = {"sigma_t": st, "albedo": [b / t for b, t in zip(ss, st)],
+                                   "phase": {"g": m.get("g", 0.0)}}
+    return out
 
 
 def mitsuba_twin(d: dict, comment: str) -> str:
@@ -514,7 +552,7 @@ def mitsuba_twin(d: dict, comment: str) -> str:
          '        <film type="hdrfilm">', '            <integer name="width" value="$width"/>',
          '            <integer name="height" value="$height"/>', '            <rfilter type="gaussian"/>',
          "        </film>", "    </sensor>"]
-    for name, m in d.get("media", {}).items():
+    for name, m in {**d.get("media", {}), **_subsurface_media(d)}.items():
         st = m["sigma_t"]  # Mitsuba reads an RGB sigma_t as a reflectance (in [0, 1]): scale it there
         top = st if isinstance(st, (int, float)) else max(st)
         L += [f'    <medium type="homogeneous" id="{name}">',
@@ -536,6 +574,8 @@ def mitsuba_twin(d: dict, comment: str) -> str:
         else:
             L += _xml_transform(s["to_world"], "        ")
         L += _xml_bsdf(d["materials"][s["material"]], "        ")
+        if d["materials"][s["material"]]["type"] == "subsurface":
+            L.append(f'        <ref name="interior" id="{s["material"]}_interior"/>')
         for side in ("interior", "exterior"):
             if side in s:
                 L.append(f'        <ref name="{side}" id="{s[side]}"/>')
@@ -567,10 +607,13 @@ SCENES = {
                       "Mitsuba twin: media_fog_box.xml (volpath)"),
     "media_glass_sphere": (media_glass_sphere, "same", "chromatic scattering medium in a smooth glass sphere, "
                            "area light, constant environment; Mitsuba twin: media_glass_sphere.xml (volpath)"),
+    "subsurface": (subsurface, "same", "subsurface scattering (random walk) in two spheres, one chromatic; area light, "
+                   "constant environment; Mitsuba twin: subsurface.xml (volpath, dielectric over a homogeneous medium)"),
 }
 # Scenes with media: Mitsuba renders the XML twin (volpath) that mitsuba_twin() writes, since the JSON
 # converter of bench/peers/mitsuba_runner.py has no media.
-TWINS = {"media_fog_box": "fog box", "media_glass_sphere": "glass sphere filled with a medium"}
+TWINS = {"media_fog_box": "fog box", "media_glass_sphere": "glass sphere filled with a medium",
+         "subsurface": "two subsurface spheres: a dielectric boundary over a homogeneous interior medium"}
 SCENE_ASSETS = {"big_mesh": ["torus_knot_1m.ply"]}
 
 

@@ -56,6 +56,9 @@ def bxdf_of(m: dict) -> str:
         return "RoughConductorBeckmann" if dist == "Beckmann" else "RoughConductor"
     if t in ("rough_dielectric", "rough_plastic"):
         return {"rough_dielectric": "RoughDielectric", "rough_plastic": "RoughPlastic"}[t] + f"<{dist}>"
+    if t == "subsurface":  # its boundary: smooth, or rough where it has a roughness
+        rough = any(k in m for k in ("alpha", "alpha_u", "roughness"))
+        return f"RoughDielectric<{dist}>" if rough else "SmoothDielectric"
     if t == "principled":
         return "PrincipledBSDF" if m.get("variant", "2012") == "2015" else "Principled"
     return {"lambertian": "Lambertian", "oren_nayar": "OrenNayar", "conductor": "SmoothConductor<ConductorFresnel>",
@@ -193,13 +196,18 @@ print(json.dumps(out))
     assert got == {e["name"]: e["peer"] for e in MANIFEST if not e.get("assets") and not e.get("twin")}
 
 
-def test_media_scenes_have_xml_twins_that_mitsuba_renders(tmp_path):
-    """Scenes with media name a Mitsuba XML twin (the JSON converter has no media); each renders a few
-    samples with every value finite, and pellucid loads the twin too."""
+def _has_subsurface(scene: dict) -> bool:
+    return any(m["type"] == "subsurface" for m in _materials(scene))
+
+
+def test_media_and_subsurface_scenes_have_xml_twins_that_mitsuba_renders(tmp_path):
+    """Scenes with media or a subsurface material name a Mitsuba XML twin (the JSON converter has
+    neither); each renders a few samples with every value finite, and pellucid loads the twin too."""
     twins = [e for e in MANIFEST if e.get("twin")]
-    assert {e["name"] for e in twins} >= {"media_fog_box", "media_glass_sphere"}
+    assert {e["name"] for e in twins} >= {"media_fog_box", "media_glass_sphere", "subsurface"}
+    assert {e["name"] for e in MANIFEST if SCENES[e["name"]].get("media") or _has_subsurface(SCENES[e["name"]])} \
+        == {e["name"] for e in twins}
     for e in twins:
-        assert SCENES[e["name"]].get("media"), e["name"]
         pellucid.load_file(SUITE / e["twin"], spp=4, width=8, height=8)
     py = bench.mitsuba_python()
     if py is None:
@@ -212,6 +220,35 @@ def test_media_scenes_have_xml_twins_that_mitsuba_renders(tmp_path):
         assert res.returncode == 0, res.stderr[-3000:]
         st = json.loads(rep.read_text())
         assert st["nonfinite"] == 0 and (st["width"], st["height"], st["spp"]) == (8, 8, 4)
+
+
+def test_subsurface_twin_is_the_materials_interior():
+    """The subsurface scene's twin gives each `subsurface` material (the random walk, whose transport
+    volpath shares) a dielectric boundary of the same IORs over a homogeneous medium of sigma_t =
+    sigma_a + sigma_s and albedo sigma_s/sigma_t, per channel, with the material's g."""
+    import xml.etree.ElementTree as ET
+    scene = SCENES["subsurface"]
+    root = ET.parse(SUITE / "subsurface.xml").getroot()
+    media = {m.get("id"): m for m in root.iter("medium")}
+    shapes = [s for s in root.iter("shape")]
+    subsurface = [(s, scene["materials"][s["material"]]) for s in scene["shapes"]
+                  if scene["materials"][s["material"]]["type"] == "subsurface"]
+    assert len(subsurface) == 2
+    for s, m in subsurface:
+        assert m["model"] == "random_walk"
+        (x,) = [x for x in shapes if x.get("type") == "sphere" and
+                [float(x.find("point").get(k)) for k in "xyz"] == s["center"]]
+        bsdf = x.find("bsdf")
+        assert bsdf.get("type") == "dielectric"
+        assert float(bsdf.find("float[@name='int_ior']").get("value")) == m["int_ior"]
+        assert float(bsdf.find("float[@name='ext_ior']").get("value")) == m["ext_ior"]
+        med = media[x.find("ref[@name='interior']").get("id")]
+        st = np.array([a + b for a, b in zip(m["sigma_a"], m["sigma_s"])])
+        rgb = lambda name: np.array([float(v) for v in med.find(f"rgb[@name='{name}']").get("value").split(",")])
+        scale = float(med.find("float[@name='scale']").get("value"))
+        np.testing.assert_allclose(rgb("sigma_t") * scale, st, rtol=1e-5)
+        np.testing.assert_allclose(rgb("albedo"), np.array(m["sigma_s"]) / st, rtol=1e-5)
+        assert float(med.find("phase/float[@name='g']").get("value")) == m["g"]
 
 
 def test_equal_time_relmse_and_geomean():
