@@ -167,8 +167,8 @@ def run_ours(scene: dict, base_dir: pathlib.Path, seed: int, threads: int, workd
 def run_peer(py: pathlib.Path, scene: dict, base_dir: pathlib.Path, seed: int, threads: int, passes: int,
              substitute: bool, workdir: pathlib.Path, twin: Optional[pathlib.Path] = None) -> Run:
     """Mitsuba 3 llvm_ad_rgb through bench/peers/mitsuba_runner.py (the same converter as pellucid.bench),
-    or, for a scene whose manifest entry names a Mitsuba XML `twin` (scenes with media), that XML through
-    bench/suite/mitsuba_twin.py at the scene's spp and film size."""
+    or, for a scene whose manifest entry names a Mitsuba XML `twin` (scenes with media or subsurface
+    scattering), that XML through bench/suite/mitsuba_twin.py at the scene's spp and film size."""
     import pellucid
 
     d = json.loads(json.dumps(scene))

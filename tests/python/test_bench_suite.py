@@ -249,6 +249,13 @@ def test_subsurface_twin_is_the_materials_interior():
         np.testing.assert_allclose(rgb("sigma_t") * scale, st, rtol=1e-5)
         np.testing.assert_allclose(rgb("albedo"), np.array(m["sigma_s"]) / st, rtol=1e-5)
         assert float(med.find("phase/float[@name='g']").get("value")) == m["g"]
+    # A subsurface material the twin cannot translate is an error, not a twin of another scene.
+    gen = _generator()
+    for change in ({"scale": 2.0}, {"roughness": 0.3}, {"model": "dipole"}):
+        bad = json.loads(json.dumps(scene))
+        bad["materials"]["wax"].update(change)
+        with pytest.raises(ValueError, match="wax"):
+            gen.mitsuba_twin(bad, "x")
 
 
 def test_equal_time_relmse_and_geomean():
