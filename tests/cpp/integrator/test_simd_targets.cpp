@@ -115,8 +115,7 @@ TEST_P(SimdTargetRender, EveryTargetGivesTheScalarImage) {
     // Lambertian lanes), plastics (smooth, and GGX rough with the smooth coat in material_balls;
     // with two rough coat tables, linear and coupled, beside a Beckmann one on the BSDF lanes in
     // the suite's plastics; thin dielectrics beside the rough ones in the suite's glass, classic and
-    // EON Oren–Nayar in its no_twin; the caustic-chain proposals toward the glossy glass sphere of
-    // its principled, integrator/glint.h).
+    // EON Oren–Nayar in its no_twin).
     auto scene = load_scene(GetParam(), 64, 48);
     expect_every_target_gives_the_scalar_image(*scene, GetParam());
 }
@@ -216,8 +215,7 @@ TEST(SimdTargetRender, SuitePlasticsAreAllPacketForms) {
 INSTANTIATE_TEST_SUITE_P(Scenes, SimdTargetRender,
                          ::testing::Values("cornell_box.json", "veach_mis.json", "env_spheres.json",
                                            "material_balls.json", "textured_bump.json", "bench/suite/plastics.json",
-                                           "bench/suite/glass.json", "bench/suite/no_twin.json",
-                                           "bench/suite/principled.json"),
+                                           "bench/suite/glass.json", "bench/suite/no_twin.json"),
                          [](const auto& info) {
                              const std::string name = info.param.substr(info.param.rfind('/') + 1);
                              return name.substr(0, name.find('.'));
@@ -589,10 +587,7 @@ TEST(SimdTargetRender, PacketFormsEqualBSDFLanes) {
     for (const char* file : {"bench/suite/principled.json", "bench/suite/cornell_spheres.json", "bench/suite/no_twin.json",
                              "bench/suite/env_spheres.json", "bench/suite/glass.json"}) {
         auto scene = load_scene(file, 40, 32);
-        PathSetup with = make_path_setup(*scene, 8, 5, true, true, SamplerType::Independent);
-        // Without the caustic-chain proposals (principled.json's glossy glass sphere): they run on
-        // packet-form lanes only (integrator/glint.h), so they would change one image and not the other.
-        with.glints = GlintSetup{};
+        const PathSetup with = make_path_setup(*scene, 8, 5, true, true, SamplerType::Independent);
         PathSetup without = with;
         int forms = 0;
         for (auto& k : without.packet_kind) forms += k != kBSDFLane, k = kBSDFLane;
