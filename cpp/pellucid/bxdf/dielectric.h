@@ -411,8 +411,6 @@ public:
     std::string to_string() const;
     bool is_smooth() const { return m_d.effectively_smooth() || m_eta == 1.f; }
     bool multiscatter() const { return m_ms; }
-    const Distribution& distribution() const { return m_d; }
-    float eta() const { return m_eta; }
     /// The single-scattering lobes' packet form (RoughDielectricT<float>).
     using Lanes = std::conditional_t<std::is_same_v<Distribution, GGX>, RoughDielectricT<GGXT, float>,
                                      RoughDielectricT<BeckmannT, float>>;

@@ -8,7 +8,6 @@
 // | strategy  | string | "mis"   | "mis": light + BSDF sampling, power heuristic; "nee": light sampling (BSDF sampling only through delta lobes); "bsdf": BSDF sampling only; "direct": one bounce (mis, max_depth 2) |
 // | light_selection | string | "balanced" | how NEE picks a light: "balanced" (each light at infinity as often as all finite lights together; finite lights ∝ power), "power" or "uniform" (light/light.h) |
 // | medium_nee | bool | true | next-event estimation at collisions in media (docs/media.md) |
-// | glints | bool | true | caustic-chain proposals toward glossy glass spheres lit by delta lights (integrator/glint.h) |
 // | channel_sampling | string | "throughput" | which colour channel distance sampling in a medium follows: ∝ the path throughput, or "uniform" (1/3 each); either way with the one-sample MIS weight over channels |
 // JSON: "integrator": {"type": "path", "max_depth": 8}
 #pragma once

@@ -225,7 +225,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
         bool tl[W];
         float tu[W], tv[W], dux[W], duy[W], duz[W], dvx[W], dvy[W], dvz[W];
         bool fast[W], goes_on[W], nee[W];
-        bool nd[W];  // a packet form's lane whose material has no delta lobe (glint proposals, glint.h)
         bool esc[W];                   // the ray escaped: the lights at infinity, as a packet
         float edx[W], edy[W], edz[W];  // its direction
         bool soft[W], est[W];          // a packet form's terminator is softened (Estevez's, else Chiang's)
@@ -729,7 +728,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             // their packet form then shades them.
             auto shade_tex_lanes = [&](const PathSetup::TexLaneMaterial& t, const M& in) {
                 SM(a.fast, in || LM(a.fast));
-                SM(a.nd, in || LM(a.nd));  // (a Lambertian or a rough plastic)
                 M goes = in;
                 // On the lanes of a FormLanes c (run_on_lanes): the textures' gathers, the bump and
                 // the frame on 8 lanes where at most 8 take part.
@@ -815,7 +813,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             };
             // One lane at a time: what has no packet form yet.
             for (bool* f : {a.fast, a.goes_on, a.nee, a.nee_ok, a.s_ok, a.delta, a.plight, a.in_medium, a.crossing, a.at_exit,
-                            a.to_exit, a.esc, a.soft, a.tl, a.nd})
+                            a.to_exit, a.esc, a.soft, a.tl})
                 SM(f, M(false));
             for (float* f : {a.Ler, a.Leg, a.Leb, a.le_pdf, a.kind}) ST(f, F(0.f));
             lane::store(a.draw0, IntT<F>(0)), lane::store(a.draw1, IntT<F>(0));
@@ -988,7 +986,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 if (flags == BxDFFlags::None) continue;
                 a.goes_on[i] = true;
                 a.nee[i] = ps.use_nee && is_non_specular(flags);
-                a.nd[i] = a.fast[i] && !is_specular(flags);
                 draw_randoms(i, depth);
             }
             if (lane::any(vl_m)) {
@@ -1000,7 +997,6 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                 const I kind = lane::gather(ps.packet_kind.data(), vl_mat);
                 const I flags = lane::gather(reinterpret_cast<const int32_t*>(ps.packet_flags.data()), vl_mat);
                 SM(a.fast, fast || LM(a.fast));
-                SM(a.nd, (fast && lane::float_mask((flags & I(int32_t(BxDFFlags::Specular))) == I(0))) || LM(a.nd));
                 ST(a.kind, lane::select(fast, lane::to_float(kind), LD(a.kind)));
                 const I qrow = vl_mat * I(kPacketParams);
                 const int nq = ps.max_packet_count;
@@ -1320,9 +1316,11 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     return f * lane::select(soft, terminator_factor<F>(LM(a.est), wo, wi, wi_w, n0, frame.n), F(1.f));
                 };
 
-                // The packet forms' f·|cos θi| and pdf toward the world directions wi_w, on the lanes of
-                // `lanes` (0 where the shading and geometric hemispheres disagree).
-                auto forms_eval = [&](const M& lanes, const V3<F>& wi_w) {
+                // Next-event estimation: the BSDF toward the sampled light point, the MIS weight, and
+                // what the shadow ray carries if it is unoccluded.
+                {
+                    const M nee = LM(a.nee_ok) && goes_on;
+                    const V3<F> wi_w(LD(a.lwx), LD(a.lwy), LD(a.lwz));
                     const V3<F> wi = frame.to_local(wi_w);
                     const M leak = wo.z == F(0.f) || shading_leaks<F>(ng, wo_w, wi_w, wo, wi);
                     // (Of the packet forms the Lambertian, Oren–Nayar, the rough conductors, the
@@ -1338,7 +1336,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     // torrance_sparrow_cos_pdf), as do the dielectrics and the principled BSDFs (one
                     // half vector, in double: bxdf/dielectric.h, principled_bsdf.h; on the lanes given).
                     auto nee_form = [&](int kind, const M& where, const auto& eval) {
-                        const M on = where && lanes;
+                        const M on = where && nee;
                         if (!lane::any(on)) return;
                         (void)kind;
                         run_form(on, [&](const auto& c) {
@@ -1364,76 +1362,10 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
 #undef PELLUCID_NEE_FORM_SPLIT
 #undef PELLUCID_NEE_FORM_PAIR
 #undef PELLUCID_NEE_FORM_MASKED
-                    return EvalPdfT<F>{lane::select(off, RGB<F>(F(0.f)), soften(f_fast, wi, wi_w)), lane::select(off, F(0.f), pdf_fast)};
-                };
-
-                // Caustic-chain proposals (glint.h), on the lanes of packet forms without a delta lobe
-                // outside a pair's sphere: each pair's two proposals where they are valid and leave on
-                // wo's side of the surface, and the lanes (`g_pick`) whose direction comes from one,
-                // drawn with u3 < q; the others sample their BSDF with u3 rescaled to [0, 1).
-                // (Where no lane is eligible the pairs are not read: n_pairs is then 0.)
-                int n_pairs = int(ps.glints.pairs.size());
-                GlintFrameT<F> gfr[2 * GlintSetup::kMaxPairs];  // pair k's two proposals at 2k, 2k + 1
-                M g_on(false), g_pick(false);
-                F g_share(0.f);  // q over the lane's number of valid proposals
-                V3<F> g_dir(F(0.f), F(0.f), F(1.f));
-                const F wo_ng = dot(wo_w, ng);
-                if (n_pairs > 0) {
-                    const M elig = goes_on && fast && LM(a.nd);
-                    if (!lane::any(elig)) n_pairs = 0;
-                    if (n_pairs > 0) {
-                        F count(0.f);
-                        for (int k = 0; k < n_pairs; ++k) {
-                            const GlintPair& gp = ps.glints.pairs[size_t(k)];
-                            const V3<F> cp = p - V3<F>(F(gp.cx), F(gp.cy), F(gp.cz));
-                            const M outside = elig && dot(cp, cp) > F(1.002f * gp.r * gp.r);
-                            if (!lane::any(outside)) {
-                                gfr[2 * k] = gfr[2 * k + 1] = GlintFrameT<F>::none();
-                                continue;
-                            }
-                            glint_frames<F>(gp, ps.glints.tables.data(), p, &gfr[2 * k]);
-                            for (int b = 2 * k; b < 2 * k + 2; ++b) {
-                                gfr[b].valid = gfr[b].valid && outside && dot(gfr[b].w, ng) * wo_ng > F(0.f);
-                                count = count + lane::select(gfr[b].valid, F(1.f), F(0.f));
-                            }
-                        }
-                        g_on = count > F(0.f);
-                        const F q = lane::select(g_on, F(ps.glints.q), F(0.f));
-                        g_share = q / lane::select(g_on, count, F(1.f));
-                        const F u3 = LD(a.u[3]);
-                        g_pick = g_on && u3 < q;
-                        ST(a.u[3], lane::select(g_on && !g_pick, lane::min((u3 - q) / (F(1.f) - q), F(0x1.fffffep-1f)), u3));
-                        if (lane::any(g_pick)) {
-                            // The proposal: the ⌊u3/q · count⌋-th valid one.
-                            const F j = lane::floor(u3 / lane::select(g_pick, g_share, F(1.f)));
-                            F seen(0.f);
-                            GlintFrameT<F> sel = gfr[0];
-                            for (int k = 0; k < 2 * n_pairs; ++k) {
-                                const M take = gfr[k].valid && seen == j;
-                                sel.w = lane::select(take, gfr[k].w, sel.w), sel.e1 = lane::select(take, gfr[k].e1, sel.e1);
-                                sel.e2 = lane::select(take, gfr[k].e2, sel.e2), sel.sigma = lane::select(take, gfr[k].sigma, sel.sigma);
-                                sel.sigma2 = lane::select(take, gfr[k].sigma2, sel.sigma2);
-                                seen = seen + lane::select(gfr[k].valid, F(1.f), F(0.f));
-                            }
-                            g_dir = glint_sample<F>(sel, V2<F>{LD(a.u[4]), LD(a.u[5])});
-                        }
-                    }
-                }
-                // The proposals' density at world directions w: q_k pdf_k summed over the valid
-                // proposals, 0 on the other side of the surface than wo.
-                auto glint_density = [&](const V3<F>& w) {
-                    F sum(0.f);
-                    for (int k = 0; k < 2 * n_pairs; ++k) sum = sum + glint_pdf<F>(gfr[k], w);
-                    return lane::select(dot(w, ng) * wo_ng > F(0.f), sum * g_share, F(0.f));
-                };
-
-                // Next-event estimation: the BSDF toward the sampled light point, the MIS weight, and
-                // what the shadow ray carries if it is unoccluded.
-                {
-                    const M nee = LM(a.nee_ok) && goes_on;
-                    const EvalPdfT<F> fe = forms_eval(nee, V3<F>(LD(a.lwx), LD(a.lwy), LD(a.lwz)));
-                    const RGB<F> f = lane::select(fast, fe.f, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
-                    const F bsdf_pdf = lane::select(fast, fe.pdf, LD(a.gpdf));
+                    f_fast = lane::select(off, RGB<F>(F(0.f)), soften(f_fast, wi, wi_w));
+                    pdf_fast = lane::select(off, F(0.f), pdf_fast);
+                    const RGB<F> f = lane::select(fast, f_fast, RGB<F>(LD(a.gfr), LD(a.gfg), LD(a.gfb)));
+                    const F bsdf_pdf = lane::select(fast, pdf_fast, LD(a.gpdf));
                     const F light_pdf = lane::select(nee, LD(a.lpdf), F(1.f));
                     const F w = lane::select(LM(a.delta) || M(!ps.use_mis), F(1.f), power_heuristic<F>(light_pdf, bsdf_pdf));
                     const RGB<F> Ld = beta0 * f * RGB<F>(LD(a.lLr), LD(a.lLg), LD(a.lLb)) * (w / light_pdf);
@@ -1495,27 +1427,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const IntT<F> lobe = lane::select(lane::int_mask(fast), s.lobe, lane::load_int_as<IntT<F>>(a.slobe));
                     specular = lane::float_mask((lobe & IntT<F>(int32_t(BxDFFlags::Specular))) != IntT<F>(0));
                     transmission = lane::float_mask((lobe & IntT<F>(int32_t(BxDFFlags::Transmission))) != IntT<F>(0));
-                    V3<F> nw = lane::select(fast, wi_w, V3<F>(LD(a.swx), LD(a.swy), LD(a.swz)));
-                    if (lane::any(g_on)) {
-                        // The mixture (1 − q) BSDF + q glint: the BSDF's samples reweighted by
-                        // pdf/mixture; the proposals' directions weighted f/mixture, and their pdf for
-                        // MIS at the emission they find the BSDF's (glint.h).
-                        const EvalPdfT<F> ge = lane::any(g_pick) ? forms_eval(g_pick, g_dir) : EvalPdfT<F>{RGB<F>(F(0.f)), F(0.f)};
-                        const F q = lane::select(g_on, F(ps.glints.q), F(0.f));
-                        const V3<F> dir = lane::select(g_pick, g_dir, nw);
-                        const F bsdf_pdf = lane::select(g_pick, ge.pdf, pdf);
-                        const F mix = (F(1.f) - q) * bsdf_pdf + glint_density(dir);
-                        const M g_ok = g_pick && mix > F(0.f) && dot(g_dir, ng) * wo_ng > F(0.f) && !is_black(ge.f);
-                        const M b_on = g_on && !g_pick && sampled && !specular;
-                        weight = lane::select(b_on, weight * (pdf / lane::select(b_on, mix, F(1.f))), weight);
-                        weight = lane::select(g_pick, ge.f / lane::select(g_ok, mix, F(1.f)), weight);
-                        sampled = lane::select(g_pick, g_ok, sampled);
-                        pdf = lane::select(g_pick, ge.pdf, pdf);
-                        eta = lane::select(g_pick, F(1.f), eta);
-                        specular = specular && !g_pick;
-                        transmission = transmission && !g_pick;
-                        nw = dir;
-                    }
+                    const V3<F> nw = lane::select(fast, wi_w, V3<F>(LD(a.swx), LD(a.swy), LD(a.swz)));
                     ST(a.nwx, nw.x), ST(a.nwy, nw.y), ST(a.nwz, nw.z);
                 }
                 RGB<F> beta = lane::select(sampled, beta0 * weight, beta0);

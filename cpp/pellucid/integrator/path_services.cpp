@@ -489,7 +489,6 @@ PathSetup make_path_setup(const Scene& scene, int max_depth, int rr_depth, bool 
     }
     ps.camera_medium = scene.camera_medium;
     ps.medium_nee = scene.integrator.medium_nee;
-    if (ps.use_nee) ps.glints = make_glint_setup(scene);
     ps.uniform_channels = scene.integrator.channel_sampling == "uniform";
     ps.subsurface = !scene.subsurface.empty();
     make_triangle_table(scene, &ps);

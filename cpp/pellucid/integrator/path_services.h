@@ -13,7 +13,6 @@
 #include "pellucid/bxdf/bsdf.h"
 #include "pellucid/geometry/interaction.h"
 #include "pellucid/image/film.h"
-#include "pellucid/integrator/glint.h"
 #include "pellucid/integrator/render_loop.h"
 #include "pellucid/light/area.h"
 #include "pellucid/light/light_table.h"
@@ -190,8 +189,6 @@ struct PathSetup {
     std::vector<float> medium_rows;
     bool any_homogeneous = false;
     bool medium_nee = true;        ///< NEE at medium collisions (integrator.medium_nee)
-    /// Glint proposals (integrator/glint.h): none unless NEE is on and integrator.glints is true.
-    GlintSetup glints;
     bool uniform_channels = false; ///< channel_sampling "uniform": each colour channel 1/3, else ∝ throughput
     /// Some shape renders with a diffusion BSSRDF (Scene::subsurface): paths that refract into it
     /// leave at an exit point found by probe rays (bssrdf/separable.h).

@@ -126,7 +126,6 @@ private:
             p.fail("light_selection",
                    "unknown light selection '" + s.light_selection + "' (known: balanced, power, uniform)");
         s.medium_nee = p.get_bool("medium_nee", true);
-        s.glints = p.get_bool("glints", true);
         s.channel_sampling = p.get_string("channel_sampling", "throughput");
         if (s.channel_sampling != "throughput" && s.channel_sampling != "uniform")
             p.fail("channel_sampling",

@@ -56,8 +56,6 @@ struct IntegratorSettings {
     std::string light_selection = "balanced";  ///< "balanced", "power" or "uniform" (light/light.h)
     std::string aov;  ///< type "aov": "albedo", "normal" or "depth" (integrator/aov.h)
     bool medium_nee = true;  ///< next-event estimation at medium collisions (docs/media.md)
-    /// Glint proposals toward near-specular spheres' highlights of delta lights (integrator/glint.h).
-    bool glints = true;
     std::string channel_sampling = "throughput";  ///< which colour channel tracks a medium: "throughput" or "uniform"
     /// Whether the strategy weighs light and BSDF samples by MIS ("mis" and "direct"); the path
     /// tracer and the scene's light selection (nee_under_mis) both ask here.
