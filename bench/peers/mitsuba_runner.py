@@ -5,7 +5,7 @@ Run with the dedicated venv (see setup_mitsuba.sh); this script never imports pe
 
     bench/.venv-mitsuba/bin/python bench/peers/mitsuba_runner.py SCENE.json \
         --variant {scalar_rgb,llvm_ad_rgb} --spp N --seed S --out OUT.exr \
-        [--threads T] [--passes K] [--max-depth D] [--json-report REPORT.json]
+        [--threads T] [--passes K] [--max-depth D] [--json-report REPORT.json] [--each-dir DIR]
 
 `to_mitsuba_dict(scene_json)` converts a parsed pellucid scene into a Mitsuba scene
 dict; a Mitsuba variant must be set before calling it (it builds ScalarTransform4f
@@ -570,6 +570,8 @@ def main(argv=None):
     ap.add_argument("--passes", type=int, default=1)
     ap.add_argument("--max-depth", type=int, default=None)
     ap.add_argument("--json-report", default=None)
+    ap.add_argument("--each-dir", default=None,
+                    help="also write each pass's image as EACH_DIR/<k>.exr (k = 0 .. passes-1)")
     ap.add_argument("--base-dir", default=None, help="folder for relative file names (default: the scene's)")
     ap.add_argument("--warmup", choices=["auto", "full", "tiny", "none"], default="auto",
                     help="auto: 'full' for llvm (same spp/pass + film, untimed), 'none' for scalar; "
@@ -645,6 +647,10 @@ def main(argv=None):
     out_dir = os.path.dirname(os.path.abspath(a.out))
     os.makedirs(out_dir, exist_ok=True)
     _write_exr(a.out, mean)
+    if a.each_dir:
+        os.makedirs(a.each_dir, exist_ok=True)
+        for k, im in enumerate(imgs):
+            _write_exr(os.path.join(a.each_dir, f"{k}.exr"), im)
     var_path = None
     if K > 1:
         var_path = (a.out[:-4] if a.out.lower().endswith(".exr") else a.out) + ".var.exr"

@@ -3,7 +3,7 @@
 cannot convert from JSON). Same command line subset and JSON report as the runner:
 
     bench/.venv-mitsuba/bin/python bench/suite/mitsuba_twin.py SCENE.xml --spp N --width W --height H \
-        --seed S --out OUT.exr [--passes K] [--threads T] [--json-report REPORT.json]
+        --seed S --out OUT.exr [--passes K] [--threads T] [--json-report REPORT.json] [--each-dir DIR]
 
 The twin takes `spp`, `width` and `height` as XML parameters. Importing the runner sets up Dr.Jit's
 LLVM library; as the runner does, one untimed render with the timed configuration compiles the kernel
@@ -35,6 +35,7 @@ def main(argv=None) -> int:
     ap.add_argument("--passes", type=int, default=1)
     ap.add_argument("--threads", type=int, default=0, help="0: all cores")
     ap.add_argument("--json-report", default=None)
+    ap.add_argument("--each-dir", default=None, help="also write each pass's image as EACH_DIR/<k>.exr")
     a = ap.parse_args(argv)
     K = a.passes
     if K < 1 or a.spp < 1 or a.spp % K:
@@ -61,10 +62,14 @@ def main(argv=None) -> int:
     runner._write_exr(a.out, stack.mean(axis=0))
     if K > 1:
         runner._write_exr(os.path.splitext(a.out)[0] + ".var.exr", stack.var(axis=0, ddof=1) / K)
+    if a.each_dir:
+        os.makedirs(a.each_dir, exist_ok=True)
+        for k, im in enumerate(imgs):
+            runner._write_exr(os.path.join(a.each_dir, f"{k}.exr"), im)
     if a.json_report:
         with open(a.json_report, "w") as f:
             json.dump({"variant": a.variant, "spp": a.spp, "passes": K, "width": a.width, "height": a.height,
-                       "seconds": float(sum(secs)), "load_seconds": load_s, "peak_rss_mb": runner._peak_rss_mb(),
+                       "seconds": float(sum(secs)), "pass_seconds": secs, "load_seconds": load_s, "peak_rss_mb": runner._peak_rss_mb(),
                        "nonfinite": int((~np.isfinite(stack)).sum())}, f)
     return 0
 

@@ -2,7 +2,7 @@
 SPDX-License-Identifier: Apache-2.0
 
     python -m pellucid bench --suite [--scenes a,b] [--spp N] [--threads 2] [--quick] [--repeats R]
-        [--error-repeats E] [--reference-spp 1024] [--reference-renderer ours|mitsuba] [--no-peer] [--no-agreement]
+        [--error-repeats E] [--undecided-images N] [--reference-spp 1024] [--reference-renderer ours|mitsuba] [--no-peer] [--no-agreement]
         [--out-dir bench/results/suite] [--cache-dir bench/cache] [--mitsuba-python PY]
 
 For each scene of the manifest (bench/suite/suite.json, written with the scenes by
@@ -14,7 +14,12 @@ is the median run's, relMSE the mean over the R images. ``--error-repeats E`` ad
 each renderer, each with its own seed, whose images count in relMSE only: where a few rare bright
 paths dominate an image's error (caustics through near-specular glass, say), the ratio of a handful
 of images can land far from that of many, either way, so the ratio is given with a 90 % bootstrap
-interval over the images. Mitsuba 3 is optional
+interval over the images. Where that interval still contains 1 (the images cannot tell which
+renderer has less error), ``--undecided-images N`` (default 160) renders more images of that scene, for
+relMSE only, until each renderer has N: each renderer's in one process, one seed an image (their render
+seconds are not used: the time scale below comes from the other images, each rendered in a fresh
+process as the timed ones are). The rule is the same for every scene and both renderers, and the
+count is fixed in advance, so it never stops on a lucky image. Mitsuba 3 is optional
 (bench/peers/setup_mitsuba.sh); without it the suite reports pellucid alone. Per scene it reports:
 
 * samples/s of each renderer and their ratio (pellucid / Mitsuba), and the geometric mean of the ratio;
@@ -165,7 +170,8 @@ def run_ours(scene: dict, base_dir: pathlib.Path, seed: int, threads: int, workd
 
 
 def run_peer(py: pathlib.Path, scene: dict, base_dir: pathlib.Path, seed: int, threads: int, passes: int,
-             substitute: bool, workdir: pathlib.Path, twin: Optional[pathlib.Path] = None) -> Run:
+             substitute: bool, workdir: pathlib.Path, twin: Optional[pathlib.Path] = None,
+             each_dir: Optional[pathlib.Path] = None) -> Run:
     """Mitsuba 3 llvm_ad_rgb through bench/peers/mitsuba_runner.py (the same converter as pellucid.bench),
     or, for a scene whose manifest entry names a Mitsuba XML `twin` (scenes with media or subsurface
     scattering), that XML through bench/suite/mitsuba_twin.py at the scene's spp and film size."""
@@ -188,12 +194,47 @@ def run_peer(py: pathlib.Path, scene: dict, base_dir: pathlib.Path, seed: int, t
                    "--out", str(out), "--passes", str(passes), "--json-report", str(rep), "--threads", str(threads)]
         elif substitute:
             cmd.append("--substitute")
+        if each_dir is not None:
+            cmd += ["--each-dir", str(each_dir)]
         run_child(cmd, "Mitsuba llvm_ad_rgb")
         st = json.loads(rep.read_text())
         img = pellucid.read_image(out).copy()
         var = pellucid.read_image(tmp / "out.var.exr").copy() if passes > 1 else None
     return Run(img, var, spp, float(st["seconds"]), float(st["width"] * st["height"] * spp),
                float(st["load_seconds"]), st.get("peak_rss_mb"))
+
+
+def run_ours_images(scene: dict, base_dir: pathlib.Path, seed: int, n: int, threads: int,
+                    workdir: pathlib.Path) -> List[Run]:
+    """`n` images of pellucid in one worker process, seeds seed * n + k (k < n), each as a Run."""
+    import pellucid
+
+    with tempfile.TemporaryDirectory(dir=workdir) as td:
+        tmp = pathlib.Path(td)
+        (tmp / "scene.json").write_text(json.dumps(scene))
+        run_child([sys.executable, "-m", "pellucid.bench_suite", "--worker", str(tmp / "scene.json"),
+                   "--base-dir", str(base_dir), "--seed", str(seed), "--threads", str(threads), "--images", str(n),
+                   "--out", str(tmp / "each"), "--report", str(tmp / "report.json")], "pellucid")
+        st = json.loads((tmp / "report.json").read_text())
+        return [Run(pellucid.read_image(tmp / "each" / f"{k}.exr").copy(), None, int(st["spp"]), sec,
+                    float(st["samples"]), float(st["load_seconds"]), st.get("peak_rss_mb"))
+                for k, sec in enumerate(st["pass_seconds"])]
+
+
+def run_peer_images(py: pathlib.Path, scene: dict, base_dir: pathlib.Path, seed: int, n: int, threads: int,
+                    substitute: bool, workdir: pathlib.Path, twin: Optional[pathlib.Path] = None) -> List[Run]:
+    """`n` images of Mitsuba 3 in one process (the runner's or the twin's `--passes n --each-dir`, each
+    pass at the scene's spp), seeds seed * n + k (k < n), each as a Run."""
+    import pellucid
+
+    d = json.loads(json.dumps(scene))
+    spp = int(d["sampler"]["sample_count"])
+    d["sampler"]["sample_count"] = spp * n
+    with tempfile.TemporaryDirectory(dir=workdir) as td:
+        each = pathlib.Path(td) / "each"
+        run = run_peer(py, d, base_dir, seed, threads, n, substitute, workdir, twin, each_dir=each)
+        return [Run(pellucid.read_image(each / f"{k}.exr").copy(), None, spp, run.seconds / n, run.samples / n,
+                    run.load_seconds, run.peak_rss_mb) for k in range(n)]
 
 
 def worker(argv: Sequence[str]) -> int:
@@ -209,12 +250,26 @@ def worker(argv: Sequence[str]) -> int:
     ap.add_argument("--out", required=True)
     ap.add_argument("--report", required=True)
     ap.add_argument("--variance", action="store_true", help="keep and write each pixel's variance")
+    ap.add_argument("--images", type=int, default=0,
+                    help="render this many images instead, seeds seed * images + k, as <out>/<k>.exr")
     a = ap.parse_args(argv)
     d = json.loads(pathlib.Path(a.scene).read_text())
     t0 = time.perf_counter()
     sc = pellucid.load_dict(d, pathlib.Path(a.base_dir))
     load_s = time.perf_counter() - t0
     pellucid.render_with_stats(sc, spp=1, seed=a.seed + 1_000_003, threads=a.threads, variance=a.variance)
+    if a.images > 0:
+        out_dir, secs, invalid = pathlib.Path(a.out), [], 0
+        out_dir.mkdir(parents=True, exist_ok=True)
+        for k in range(a.images):
+            img, _, st = pellucid.render_with_stats(sc, seed=a.seed * a.images + k, threads=a.threads, variance=False)
+            pellucid.write_image(out_dir / f"{k}.exr", img)
+            secs.append(float(st["seconds"]))
+            invalid += int(st["invalid_samples"])
+        pathlib.Path(a.report).write_text(json.dumps({"spp": int(st["spp"]), "pass_seconds": secs,
+                                                      "samples": float(st["samples"]), "load_seconds": load_s,
+                                                      "invalid_samples": invalid, "peak_rss_mb": peak_rss_mb()}))
+        return 0
     img, var, st = pellucid.render_with_stats(sc, seed=a.seed, threads=a.threads, variance=a.variance)
     out = pathlib.Path(a.out)
     pellucid.write_image(out, img)
@@ -245,6 +300,8 @@ class Result:
     mitsuba_all: List[Run] = dataclasses.field(default_factory=list)
     ours_err: List[Run] = dataclasses.field(default_factory=list)  # --error-repeats: images for relMSE only
     mitsuba_err: List[Run] = dataclasses.field(default_factory=list)
+    ours_more: List[Run] = dataclasses.field(default_factory=list)  # --undecided-images: relMSE only, not time
+    mitsuba_more: List[Run] = dataclasses.field(default_factory=list)
 
     @property
     def ratio(self) -> Optional[float]:
@@ -298,6 +355,17 @@ def measure_scene(entry: Dict[str, Any], folder: pathlib.Path, args, mi_py: Opti
     res = Result(entry["name"], entry["peer"], W, H, spp, args.threads, ours, mi, ref_desc,
                  _bench.ref_relmse_floor(ref, ref_var), ours_all=ours_runs, mitsuba_all=mi_runs, ours_err=ours_err,
                  mitsuba_err=mi_err)
+    if mi_py is not None and args.undecided_images:
+        first = row(res, ref)
+        have = min(len(ours_runs) + len(ours_err), len(mi_runs) + len(mi_err))
+        if undecided(first) and args.undecided_images > have:
+            n = args.undecided_images - have
+            log(f"{entry['name']}: relMSE ratio {first['relmse_ratio']:.2f} ({first['relmse_ratio_lo']:.2f}-"
+                f"{first['relmse_ratio_hi']:.2f}) over {have} images a side contains 1: {n} more a side")
+            # seeds (B + seed) * n + k, k < n: apart from the timed and error images' for n >= 1
+            res.ours_more = run_ours_images(scene, folder, 900_000 + args.seed, n, args.threads, workdir)
+            res.mitsuba_more = run_peer_images(mi_py, scene, folder, 900_001 + args.seed, n, args.threads,
+                                               substitute, workdir, twin)
     if mi_py is not None and entry["peer"] == "same" and not args.no_agreement:
         agree = json.loads(json.dumps(scene))
         agree["sampler"]["sample_count"] = -(-spp // AGREEMENT_PASSES) * AGREEMENT_PASSES
@@ -307,6 +375,11 @@ def measure_scene(entry: Dict[str, Any], folder: pathlib.Path, args, mi_py: Opti
         mine = run_ours(agree, folder, 20_000 + args.seed, args.threads, workdir, variance=True)
         res.ztest = _bench.z_test(mine.image, mine.variance, theirs.image, theirs.variance)
     return res, {"ref": ref}
+
+
+def undecided(r: Dict[str, Any]) -> bool:
+    """Whether a row's equal-time relMSE ratio has a 90 % interval that contains 1."""
+    return "relmse_ratio_lo" in r and r["relmse_ratio_lo"] <= 1.0 <= r["relmse_ratio_hi"]
 
 
 def _relmse_and_time(runs: Sequence[Run], ref: np.ndarray) -> Tuple[List[float], float]:
@@ -340,10 +413,12 @@ def row(res: Result, ref: np.ndarray) -> Dict[str, Any]:
     """One CSV row. Samples/s: the median timed repeat. relMSE: the mean over the images (the timed
     repeats' and the error repeats'). relMSE above the reference's noise floor scales as 1/time, so
     Mitsuba's is scaled to pellucid's render time: ``mitsuba_eqtime_relmse = (relMSE - floor) *
-    t_mitsuba / t_ours`` (t: mean seconds of the images)."""
+    t_mitsuba / t_ours`` (t: mean seconds of the images). The --undecided-images images count in
+    relMSE, not in t: they are rendered in one process a renderer, the others each in a fresh one."""
     o, m = res.ours, res.mitsuba
     ours_imgs = (res.ours_all or [o]) + res.ours_err
     ours_each, ours_t = _relmse_and_time(ours_imgs, ref)
+    ours_each += [_bench.rel_mse(r.image, ref) for r in res.ours_more]
     ours_rel = float(np.mean(ours_each))
     d: Dict[str, Any] = {
         "scene": res.scene, "peer": res.peer, "width": res.width, "height": res.height, "spp": res.spp,
@@ -351,10 +426,12 @@ def row(res: Result, ref: np.ndarray) -> Dict[str, Any]:
         "ours_load_seconds": o.load_seconds, "ours_peak_rss_mb": o.peak_rss_mb, "ours_relmse": ours_rel,
         "ours_invalid_samples": sum(r.invalid_samples for r in res.ours_all or [o]),
         "ref_relmse_floor": res.ref_floor, "ours_eqtime_relmse": max(ours_rel - res.ref_floor, 0.0),
-        "reference": res.reference, "relmse_images": len(ours_imgs)}
+        "reference": res.reference, "relmse_images": len(ours_each),
+        "relmse_more": len(res.ours_more)}
     if m is not None:
         mi_imgs = (res.mitsuba_all or [m]) + res.mitsuba_err
         mi_each, mi_t = _relmse_and_time(mi_imgs, ref)
+        mi_each += [_bench.rel_mse(r.image, ref) for r in res.mitsuba_more]
         mi_rel = float(np.mean(mi_each))
         eq = max(mi_rel - res.ref_floor, 0.0) * mi_t / ours_t
         iv = relmse_ratio_interval(ours_each, mi_each, res.ref_floor, mi_t / ours_t)
@@ -429,6 +506,15 @@ def invalid_note(rows: Sequence[Dict[str, Any]]) -> str:
             + ", ".join(f"{n} in {s}" for s, n in bad))
 
 
+def more_note(rows: Sequence[Dict[str, Any]]) -> List[str]:
+    """A line for the summary naming the scenes whose relMSE took --undecided-images images."""
+    more = [r for r in rows if r.get("relmse_more")]
+    if not more:
+        return []
+    return ["- relMSE over more images, where the interval over the first ones contained 1: " + ", ".join(
+        f"{r['scene']} ({r['relmse_images']} a side, {r['relmse_images'] - r['relmse_more']} before)" for r in more)]
+
+
 def summary(rows: Sequence[Dict[str, Any]], argv: Sequence[str], machine: Tuple[str, str], wall: float,
             peer: Optional[str], loads: Sequence[Optional[float]] = ()) -> str:
     has_peer = any("ratio" in r for r in rows)
@@ -442,7 +528,7 @@ def summary(rows: Sequence[Dict[str, Any]], argv: Sequence[str], machine: Tuple[
              f"- peer: {peer or 'none (Mitsuba 3 not set up: bench/peers/setup_mitsuba.sh); pellucid only'}",
              f"- threads: {rows[0]['threads'] if rows else '?'} for both renderers; both warm; only the render is "
              "timed", f"- reference: {rows[0]['reference'].split(' (')[0] if rows else '?'}, per scene, cached",
-             f"- wall time of the whole run: {wall:.0f} s", invalid_note(rows), ""]
+             f"- wall time of the whole run: {wall:.0f} s", invalid_note(rows)] + more_note(rows) + [""]
     if has_peer:
         lines += [f"**Geometric mean of samples/s pellucid / Mitsuba llvm_ad_rgb: {g:.2f}x** over "
                   f"{sum(1 for r in rows if 'ratio' in r)} scenes; scenes at >= 1.0x: "
@@ -475,7 +561,7 @@ def summary(rows: Sequence[Dict[str, Any]], argv: Sequence[str], machine: Tuple[
               "averaged over the images (the timed repeats' and the --error-repeats'), minus the reference's own "
               "noise floor; Mitsuba's is scaled by its render time over pellucid's (the images' mean seconds), so "
               "both are at pellucid's time; in brackets, the ratio's 90 % bootstrap interval over the images "
-              "(with 3 or more a side). Agreement: share of pixel channels whose |z| between pellucid and a 16-pass Mitsuba render "
+              "(with 3 or more a side); where that interval contained 1, over --undecided-images images a side. Agreement: share of pixel channels whose |z| between pellucid and a 16-pass Mitsuba render "
               "is within the Sidak-corrected critical value (alpha = 0.01), PASS at >= 99 %; 'models differ' "
               "scenes are timed against Mitsuba's nearest models. Mean ratio: image mean pellucid / Mitsuba. "
               "Peak MB: maximum resident memory of each renderer's process (Mitsuba's includes its LLVM JIT).", ""]
@@ -550,6 +636,8 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--repeats", type=int, default=1, help="timed runs per renderer, alternated; median speed")
     p.add_argument("--error-repeats", type=int, default=0,
                    help="more renders per renderer, each its own seed, for relMSE only (default 0)")
+    p.add_argument("--undecided-images", type=int, default=160,
+                   help="images a side for relMSE where the ratio's 90 %% interval contains 1 (default 160; 0: never)")
     p.add_argument("--quick", action="store_true",
                    help=f"films of at most {QUICK_SIZE} pixels a side, {QUICK_SPP} spp, {QUICK_REF_SPP}-spp references")
     p.add_argument("--reference-spp", type=int, default=None, help="reference spp (default 1024; quick 64)")
@@ -581,8 +669,8 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     try:
         if args.threads < 1 or args.repeats < 1 or (args.spp is not None and args.spp < 1):
             raise ValueError("--threads, --repeats and --spp must be >= 1")
-        if args.error_repeats < 0:
-            raise ValueError("--error-repeats must be >= 0")
+        if args.error_repeats < 0 or args.undecided_images < 0:
+            raise ValueError("--error-repeats and --undecided-images must be >= 0")
         entries = load_manifest(folder)
         if args.scenes:
             wanted = [s.strip() for s in args.scenes.split(",") if s.strip()]

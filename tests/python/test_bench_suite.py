@@ -328,6 +328,101 @@ def test_error_repeats_and_the_ratio_interval(tmp_path):
     assert (tmp_path / "suite.png").stat().st_size > 0
 
 
+def test_undecided_images_count_in_relmse_not_in_time():
+    ref = np.ones((2, 2, 3))
+    mk = lambda v, s: bench_suite.Run(np.full((2, 2, 3), v), None, 4, s, 16.0 * s, 0.0, None)
+    res = bench_suite.Result("x", "same", 2, 2, 4, 2, ours=mk(1.1, 1.0), mitsuba=mk(1.2, 2.0), reference="r",
+                             ref_floor=0.0)
+    res.ours_all, res.mitsuba_all = [mk(1.1, 1.0)] * 3, [mk(1.2, 2.0)] * 3
+    r = bench_suite.row(res, ref)
+    assert r["relmse_more"] == 0 and not bench_suite.more_note([r])
+    assert not bench_suite.undecided(r)  # every image alike: the interval is 0.125 alone
+    # Images of another speed: their relMSE counts, their seconds do not (the scale stays 2).
+    res.ours_more = [mk(1.3, 50.0)]
+    res.mitsuba_more = [mk(1.0, 0.1)]
+    r = bench_suite.row(res, ref)
+    assert r["relmse_images"] == 4 and r["relmse_more"] == 1
+    assert r["ours_eqtime_relmse"] == pytest.approx((3 * 0.01 + 0.09) / 4 / 1.01)
+    assert r["mitsuba_eqtime_relmse"] == pytest.approx((3 * 0.04 + 0.0) / 4 / 1.01 * 2.0)
+    assert bench_suite.more_note([r]) == ["- relMSE over more images, where the interval over the first ones "
+                                          "contained 1: x (4 a side, 3 before)"]
+    assert bench_suite.undecided({"relmse_ratio_lo": 0.5, "relmse_ratio_hi": 1.0})
+    assert not bench_suite.undecided({"relmse_ratio_lo": 1.01, "relmse_ratio_hi": 3.0})
+    assert not bench_suite.undecided({"relmse_ratio": 1.0})  # no interval: nothing to decide
+
+
+def _fake_suite(monkeypatch, ours_values, mi_values):
+    """measure_scene with the renderers and the reference replaced: each timed or error render returns
+    the next value of its list as a flat image; the --undecided-images renders are recorded."""
+    ref = np.ones((2, 2, 3))
+    mk = lambda v: bench_suite.Run(np.full((2, 2, 3), v), None, 4, 1.0, 16.0, 0.0, None)
+    it_o, it_m, calls = iter(ours_values), iter(mi_values), []
+    monkeypatch.setattr(bench_suite, "run_ours", lambda *a, **k: mk(next(it_o)))
+    monkeypatch.setattr(bench_suite, "run_peer", lambda *a, **k: mk(next(it_m)))
+    monkeypatch.setattr(bench_suite, "run_ours_images", lambda sc, f, seed, n, *a: calls.append(("ours", seed, n))
+                        or [mk(1.0)] * n)
+    monkeypatch.setattr(bench_suite, "run_peer_images", lambda py, sc, f, seed, n, *a: calls.append(("mi", seed, n))
+                        or [mk(1.5)] * n)
+    monkeypatch.setattr(bench_suite._bench, "cached_reference", lambda *a, **k: (ref, None, "ref.exr"))
+    return calls
+
+
+@pytest.mark.parametrize("decided", [False, True])
+def test_measure_scene_adds_images_only_where_the_interval_contains_1(monkeypatch, tmp_path, decided):
+    import argparse
+    # undecided: pellucid's images 0.01, 0.04, 0.25 against Mitsuba's 0.04 each (the ratio's
+    # interval spans 1); decided: pellucid's 0.01 each
+    ours = [1.1, 1.1, 1.1] if decided else [1.1, 1.2, 1.5]
+    calls = _fake_suite(monkeypatch, ours, [1.2, 1.2, 1.2])
+    args = argparse.Namespace(spp=None, quick=True, repeats=2, error_repeats=1, seed=3, threads=2,
+                              reference_spp=None, reference_renderer="ours", cache_dir=tmp_path,
+                              no_agreement=True, undecided_images=10)
+    entry = {"name": "cornell_lambert", "file": "cornell_lambert.json", "peer": "same"}
+    res, extra = bench_suite.measure_scene(entry, SUITE, args, pathlib.Path("py"), tmp_path, log=lambda *a: None)
+    r = bench_suite.row(res, extra["ref"])
+    if decided:
+        assert calls == [] and r["relmse_images"] == 3
+    else:
+        assert calls == [("ours", 900_003, 7), ("mi", 900_004, 7)]
+        assert r["relmse_images"] == 10 and r["relmse_more"] == 7
+        assert r["ours_relmse"] == pytest.approx((0.01 + 0.04 + 0.25) / 1.01 / 10)
+    args.undecided_images = 0
+    calls.clear()
+    _fake_suite(monkeypatch, ours, [1.2, 1.2, 1.2])
+    bench_suite.measure_scene(entry, SUITE, args, pathlib.Path("py"), tmp_path, log=lambda *a: None)
+    assert calls == []
+
+
+def test_worker_renders_several_images_with_their_own_seeds(tmp_path):
+    """--images n renders seeds seed * n + k in one process: each image is the single render of that seed."""
+    scene = bench_suite.prepare(SCENES["cornell_lambert"], 2, True)
+    (tmp_path / "s.json").write_text(json.dumps(scene))
+    runs = bench_suite.run_ours_images(scene, SUITE, 5, 3, 2, tmp_path)
+    assert len(runs) == 3 and all(r.seconds > 0 and r.spp == 2 for r in runs)
+    sc = pellucid.load_dict(scene, SUITE)
+    for k, r in enumerate(runs):
+        np.testing.assert_array_equal(r.image, np.asarray(pellucid.render(sc, seed=5 * 3 + k, threads=2)))
+    assert not np.array_equal(runs[0].image, runs[1].image)
+
+
+def test_peer_images_are_the_single_renders_of_their_seeds(tmp_path):
+    """Mitsuba's --undecided-images renders (the runner's and the twin's --each-dir): image k is the
+    single render of seed seed * n + k (another seed differs by far more than rounding)."""
+    py = bench.mitsuba_python()
+    if py is None:
+        pytest.skip("Mitsuba 3 is not set up (bench/peers/setup_mitsuba.sh)")
+    for e in [x for x in MANIFEST if x["name"] in ("principled", "subsurface")]:
+        scene = bench_suite.prepare(SCENES[e["name"]], 4, True)
+        twin = SUITE / e["twin"] if e.get("twin") else None
+        runs = bench_suite.run_peer_images(py, scene, SUITE, 7, 3, 2, False, tmp_path, twin)
+        assert len(runs) == 3 and all(r.spp == 4 and r.image.shape == (32, 32, 3) for r in runs)
+        for k in (0, 2):
+            one = bench_suite.run_peer(py, scene, SUITE, 7 * 3 + k, 2, 1, False, tmp_path, twin)
+            # the same seed: equal up to float rounding (Mitsuba's sums are not bit-reproducible)
+            np.testing.assert_allclose(runs[k].image, one.image, rtol=1e-5, atol=1e-6)
+        assert not np.array_equal(runs[0].image, runs[1].image)
+
+
 def test_runner_quick_without_peer(tmp_path):
     out, cache = tmp_path / "out", tmp_path / "cache"
     cmd = [sys.executable, "-m", "pellucid", "bench", "--suite", "--quick", "--no-peer",
@@ -353,5 +448,8 @@ def test_runner_rejects_unknown_scenes(capsys, tmp_path):
     assert "--scenes: unknown scene(s) nosuch" in capsys.readouterr().err
     assert not any(tmp_path.iterdir())
     assert bench.main(["--suite", "--no-peer", "--error-repeats", "-1", "--out-dir", str(tmp_path)]) == 2
-    assert "--error-repeats must be >= 0" in capsys.readouterr().err
+    assert "--error-repeats and --undecided-images must be >= 0" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())
+    assert bench.main(["--suite", "--no-peer", "--undecided-images", "-1", "--out-dir", str(tmp_path)]) == 2
+    assert "--undecided-images must be >= 0" in capsys.readouterr().err
     assert not any(tmp_path.iterdir())
