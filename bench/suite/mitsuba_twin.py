@@ -69,7 +69,7 @@ def main(argv=None) -> int:
     if a.json_report:
         with open(a.json_report, "w") as f:
             json.dump({"variant": a.variant, "spp": a.spp, "passes": K, "width": a.width, "height": a.height,
-                       "seconds": float(sum(secs)), "pass_seconds": secs, "load_seconds": load_s, "peak_rss_mb": runner._peak_rss_mb(),
+                       "seconds": float(sum(secs)), "load_seconds": load_s, "peak_rss_mb": runner._peak_rss_mb(),
                        "nonfinite": int((~np.isfinite(stack)).sum())}, f)
     return 0
 

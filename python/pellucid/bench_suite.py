@@ -259,16 +259,15 @@ def worker(argv: Sequence[str]) -> int:
     load_s = time.perf_counter() - t0
     pellucid.render_with_stats(sc, spp=1, seed=a.seed + 1_000_003, threads=a.threads, variance=a.variance)
     if a.images > 0:
-        out_dir, secs, invalid = pathlib.Path(a.out), [], 0
+        out_dir, secs = pathlib.Path(a.out), []
         out_dir.mkdir(parents=True, exist_ok=True)
         for k in range(a.images):
             img, _, st = pellucid.render_with_stats(sc, seed=a.seed * a.images + k, threads=a.threads, variance=False)
             pellucid.write_image(out_dir / f"{k}.exr", img)
             secs.append(float(st["seconds"]))
-            invalid += int(st["invalid_samples"])
         pathlib.Path(a.report).write_text(json.dumps({"spp": int(st["spp"]), "pass_seconds": secs,
                                                       "samples": float(st["samples"]), "load_seconds": load_s,
-                                                      "invalid_samples": invalid, "peak_rss_mb": peak_rss_mb()}))
+                                                      "peak_rss_mb": peak_rss_mb()}))
         return 0
     img, var, st = pellucid.render_with_stats(sc, seed=a.seed, threads=a.threads, variance=a.variance)
     out = pathlib.Path(a.out)

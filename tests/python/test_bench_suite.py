@@ -386,9 +386,8 @@ def test_measure_scene_adds_images_only_where_the_interval_contains_1(monkeypatc
         assert calls == [("ours", 900_003, 7), ("mi", 900_004, 7)]
         assert r["relmse_images"] == 10 and r["relmse_more"] == 7
         assert r["ours_relmse"] == pytest.approx((0.01 + 0.04 + 0.25) / 1.01 / 10)
-    args.undecided_images = 0
-    calls.clear()
-    _fake_suite(monkeypatch, ours, [1.2, 1.2, 1.2])
+    args.undecided_images = 0  # off: no more images, even where the interval contains 1
+    calls = _fake_suite(monkeypatch, ours, [1.2, 1.2, 1.2])
     bench_suite.measure_scene(entry, SUITE, args, pathlib.Path("py"), tmp_path, log=lambda *a: None)
     assert calls == []
 
@@ -396,7 +395,6 @@ def test_measure_scene_adds_images_only_where_the_interval_contains_1(monkeypatc
 def test_worker_renders_several_images_with_their_own_seeds(tmp_path):
     """--images n renders seeds seed * n + k in one process: each image is the single render of that seed."""
     scene = bench_suite.prepare(SCENES["cornell_lambert"], 2, True)
-    (tmp_path / "s.json").write_text(json.dumps(scene))
     runs = bench_suite.run_ours_images(scene, SUITE, 5, 3, 2, tmp_path)
     assert len(runs) == 3 and all(r.seconds > 0 and r.spp == 2 for r in runs)
     sc = pellucid.load_dict(scene, SUITE)
