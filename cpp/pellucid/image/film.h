@@ -44,9 +44,9 @@
 // the same bits). A variant with AVX-512 vectors (a target's pair sums in one register) measured
 // slower than AVX2 on our Zen 5 machine, so none is built. Trimming a pair's block to its nonzero
 // taps (4 or 5 columns and rows with σ = ½, nine fixed-size variants chosen per pair) also measured
-// slower: the choice depends on each pair's positions and mispredicts. The renderer splats up to 8
+// slower: the choice depends on each pair's positions and mispredicts. The renderer splats up to 16
 // samples per pixel and pass (splat_pass_spp, render_loop.cpp), so splat_pixel receives up to
-// four pairs at a time. Tests:
+// eight pairs at a time, two batches of four. Tests:
 // tests/cpp/image/test_film_splat.cpp, tests/cpp/image/test_filter.cpp.
 // SPDX-License-Identifier: Apache-2.0
 #pragma once

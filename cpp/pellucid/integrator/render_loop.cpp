@@ -49,18 +49,19 @@ private:
 
 namespace {
 constexpr double kPassSeconds = 0.1;   ///< aimed-for duration of a filter-sampling pass
-/// The samples a splatting pass adds to the whole film: passes take 2–8 spp, the most (in steps of
+/// The samples a splatting pass adds to the whole film: passes take 2–16 spp, the most (in steps of
 /// two, so that every pass holds whole variance pairs) that stays within this. Each pass costs its
 /// tiles' setup, P² synchronisations (one per tile colour) and the partly filled packets at the end of
 /// each tile, so small films gain from longer passes: a 256×256 film took 5–9 % less time with 8 spp
-/// a pass than with 2 (bench/suite, 2 threads); the bound keeps passes of large films, which an
-/// interrupt may discard, short.
-constexpr int64_t kSplatPassSamples = int64_t(1) << 20;
+/// a pass than with 2, and 2–4 % less with 16 than with 8, but no less with 32 (bench/suite, 2
+/// threads, bench/README.md); the bound keeps passes of large films, which an interrupt may discard,
+/// short.
+constexpr int64_t kSplatPassSamples = int64_t(1) << 21;
 
 /// Samples per pixel of every splatting pass of a W×H film: fixed for the film, not by the speed.
 int splat_pass_spp(int W, int H) {
     const int64_t n = kSplatPassSamples / std::max<int64_t>(1, int64_t(W) * H);
-    return int(std::clamp<int64_t>(n / 2 * 2, 2, 8));
+    return int(std::clamp<int64_t>(n / 2 * 2, 2, 16));
 }
 constexpr double kUndoSeconds = 0.25;  ///< passes expected to be longer keep a copy to cancel into
 
