@@ -53,7 +53,8 @@ constexpr double kPassSeconds = 0.1;   ///< aimed-for duration of a filter-sampl
 /// two, so that every pass holds whole variance pairs) that stays within this. Each pass costs its
 /// tiles' setup, P² synchronisations (one per tile colour) and the partly filled packets at the end of
 /// each tile, so small films gain from longer passes: a 256×256 film took 5–9 % less time with 8 spp
-/// a pass than with 2, and 2–4 % less with 16 than with 8, but no less with 32 (bench/suite, 2
+/// a pass than with 2, and 2–6 % less with 16 than with 8 on four of five suite scenes (the fifth 3 %
+/// more, within the noise), but no less with 32 (bench/suite, 2
 /// threads, bench/README.md); the bound keeps passes of large films, which an interrupt may discard,
 /// short.
 constexpr int64_t kSplatPassSamples = int64_t(1) << 21;

@@ -79,7 +79,8 @@ using TileFn = std::function<uint64_t(const TileJob&, Film&)>;
 /// (scene.film_splatting) writes past a tile's edge, so each pass runs in P×P colour groups of tiles
 /// at least one splat radius apart: no two tiles running together touch the same pixel. The order
 /// in which a pixel receives its neighbours' splats then depends on where passes begin, so those
-/// passes are fixed: samples [2k, 2k + 2), one pair (film.h) per pixel, the same for every thread
+/// passes are fixed by the film's size: samples [nk, nk + n), n from 2 to 16 and even, so whole
+/// variance pairs (film.h) per pixel (render_loop.cpp, splat_pass_spp), the same for every thread
 /// count and every run. With target_rel_error, passes also end at spp 2, 4, 8, ..., 64 and every
 /// multiple of 64, where the error is tested, so where the render stops does not depend on speed.
 ///
