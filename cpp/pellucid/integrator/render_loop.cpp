@@ -59,11 +59,6 @@ constexpr double kPassSeconds = 0.1;   ///< aimed-for duration of a filter-sampl
 /// short.
 constexpr int64_t kSplatPassSamples = int64_t(1) << 21;
 
-/// Samples per pixel of every splatting pass of a W×H film: fixed for the film, not by the speed.
-int splat_pass_spp(int W, int H) {
-    const int64_t n = kSplatPassSamples / std::max<int64_t>(1, int64_t(W) * H);
-    return int(std::clamp<int64_t>(n / 2 * 2, 2, 16));
-}
 constexpr double kUndoSeconds = 0.25;  ///< passes expected to be longer keep a copy to cancel into
 
 bool same_filter(const Filter& a, const Filter& b) {
@@ -109,6 +104,11 @@ int next_error_test(int done) {
     return (done / 64 + 1) * 64;
 }
 }  // namespace
+
+int splat_pass_spp(int W, int H) {
+    const int64_t n = kSplatPassSamples / std::max<int64_t>(1, int64_t(W) * H);
+    return int(std::clamp<int64_t>(n / 2 * 2, 2, kMaxSplatPassSpp));
+}
 
 RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const TileFn& tile_fn) {
     const int W = scene.width, H = scene.height;

@@ -96,6 +96,13 @@ using TileFn = std::function<uint64_t(const TileJob&, Film&)>;
 /// the state's spp to be even, as it is for every cancelled render).
 RenderResult render_loop(const Scene& scene, const RenderOptions& opts, const TileFn& tile_fn);
 
+/// The most samples per pixel a splatting pass takes.
+constexpr int kMaxSplatPassSpp = 16;
+
+/// Samples per pixel of every splatting pass of a W×H film (without a time budget): even, from 2 to
+/// kMaxSplatPassSpp, fixed by the film's size and never by the speed (render_loop.cpp).
+int splat_pass_spp(int W, int H);
+
 /// Which estimates the film accepts: radiance must be finite and non-negative; signed outputs
 /// (normals, for the AOV integrator) only finite.
 enum class SampleValues { NonNegative, Signed };

@@ -127,10 +127,10 @@ TEST_P(ResumeBitIdentical, FinishedThenContinued) {
 
 // Cancelled at whatever point a timer hits (during a render far too long to finish), then continued
 // a few samples past that point: bit-identical to an uninterrupted render of that length.
-// The timer fires 0.25 s in, but never before 8 spp of samples have been taken: a first pass is at
-// most 8 spp (1 with filter sampling, 2-8 with splatting: render_loop.cpp), so at least one pass is
-// whole however slow the build. (A sanitizer build on a loaded machine took longer than 0.25 s for
-// the first pass, which a cancellation midway discards.)
+// The timer fires 0.25 s in, but never before a splatting pass's samples (splat_pass_spp: 16 spp at
+// this size) have been taken: a first pass is at most that (1 spp with filter sampling), so at least
+// one pass is whole however slow the build. (A sanitizer build on a loaded machine took longer than
+// 0.25 s for the first pass, which a cancellation midway discards.)
 TEST_P(ResumeBitIdentical, CancelledThenContinued) {
     const auto [film, sampler] = GetParam();
     const int w = 48, h = 36;
@@ -143,7 +143,8 @@ TEST_P(ResumeBitIdentical, CancelledThenContinued) {
     o.progress_out = &progress;
     std::thread timer([&] {
         std::this_thread::sleep_for(std::chrono::milliseconds(250));
-        while (progress.samples.load() < uint64_t(8 * w * h)) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        const uint64_t first_pass = uint64_t(splat_pass_spp(w, h)) * w * h;
+        while (progress.samples.load() < first_pass) std::this_thread::sleep_for(std::chrono::milliseconds(1));
         cancel = true;
     });
     const RenderResult part = render(*scene, o);
