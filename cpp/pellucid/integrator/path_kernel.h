@@ -195,6 +195,7 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
     // Hit records: the kernel's hits, and which lanes have a full SurfaceInteraction in si (the
     // others only their vertex, as packets: scene/hit_packets.h), with each hit's material and light.
     HitLanes hl;
+    HitLanes sh_hl;  // the first hits of the shadow rays in media
     bool full[W];
     uint32_t mat_of[W]{};
     int32_t light_of[W]{};
@@ -1504,14 +1505,21 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             bool any_shadow = false;
             for (int i = 0; i < W; ++i) any_shadow |= a.has_shadow[i];
             if (any_shadow && ps.media) {
-                // Through media and null boundaries: each shadow ray carries a transmittance.
+                // Through media and null boundaries: each shadow ray carries a transmittance. Their
+                // first segments are traced as one packet; a lane goes on alone only past a null
+                // boundary (shadow_transmittance).
+                const float* const soa[7] = {a.sh[0], a.sh[1], a.sh[2], a.sh[3], a.sh[4], a.sh[5], a.sh[6]};
+                alignas(64) bool sh_hit[W];
+                path_services::trace_lanes(scene, W, soa, a.has_shadow, sh_hl, sh_hit);
                 for (uint32_t sb = lane_bits<F>(a.has_shadow); sb; sb &= sb - 1) {
                     const int i = lowest_lane<F>(sb);
+                    if (sh_hit[i] && !scene.shapes[sh_hl.geom_id[i]].null_surface) continue;  // blocked
                     const Ray sray{Vec3f(a.sh[0][i], a.sh[1][i], a.sh[2][i]), Vec3f(a.sh[3][i], a.sh[4][i], a.sh[5][i]),
                                    a.sh[6][i]};
                     const int32_t m = a.in_medium[i] ? medium[i] : path_services::medium_after(ps, si[i], sray.d, medium[i]);
+                    const RayHit first = sh_hl.lane(i);
                     const Spectrum tr = path_services::shadow_transmittance(ps, m, sray, Spectrum(a.br[i], a.bg[i], a.bb[i]),
-                                                                            medium_rng[i]);
+                                                                            medium_rng[i], &first);
                     a.Lr[i] += a.Ldr[i] * tr.r;
                     a.Lg[i] += a.Ldg[i] * tr.g;
                     a.Lb[i] += a.Ldb[i] * tr.b;

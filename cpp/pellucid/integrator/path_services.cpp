@@ -685,7 +685,8 @@ bool phase_sample(const PathSetup& ps, int32_t m, const Vec3f& wo, Vec2f u, BxDF
     return true;
 }
 
-Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow, const Spectrum& beta, PCG32& rng) {
+Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow, const Spectrum& beta, PCG32& rng,
+                              const RayHit* first) {
     const Scene& scene = *ps.scene;
     auto u = [&] { return rng.next_float(); };
     Spectrum tr(1.f);
@@ -698,7 +699,7 @@ Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow,
         // blocks it, and its record would be of no use (nor does a texture read it: no uv).
         RayHit h;
         h.t = r.tmax;
-        const bool hit = scene.accel.intersect(r, h);
+        const bool hit = crossings == 0 && first ? (h = *first).hit() : scene.accel.intersect(r, h);
         if (hit && !scene.shapes[h.geom_id].null_surface) return Spectrum(0.f);
         SurfaceInteraction si;
         if (hit) scene.fill_hit(r, h, si, false);

@@ -311,8 +311,10 @@ RayDifferential cross_boundary(const SurfaceInteraction& si, const Vec3f& d);
 Spectrum phase_eval(const PathSetup& ps, int32_t m, const Vec3f& wo, const Vec3f& wi, float* pdf);
 bool phase_sample(const PathSetup& ps, int32_t m, const Vec3f& wo, Vec2f u, BxDFSample* out);
 /// Transmittance of a shadow ray that starts in medium m (-1: none): through `null` boundaries,
-/// where the medium changes, and 0 at any other surface.
-Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow, const Spectrum& beta, PCG32& rng);
+/// where the medium changes, and 0 at any other surface. `first`, where given, is the ray's first
+/// hit (or miss: geom_id ~0u) as the kernel's packet traced it, in place of tracing it here.
+Spectrum shadow_transmittance(const PathSetup& ps, int32_t m, const Ray& shadow, const Spectrum& beta, PCG32& rng,
+                              const RayHit* first = nullptr);
 
 // ---- subsurface scattering (bssrdf/separable.h, docs/subsurface.md) ---------------------------
 /// The diffusion BSSRDF (index into Scene::subsurface) that a BSDF sample s at si enters: s refracts
