@@ -26,7 +26,8 @@
 // (with NEE and MIS as at a surface), or passes to the surface with the throughput reweighted. A
 // `null` boundary is crossed without a vertex, changing only the medium. Leaving a surface that
 // bounds media enters its interior or exterior by the side, and shadow rays carry the
-// transmittance of the media and null boundaries they cross (path_services::shadow_transmittance).
+// transmittance of the media and null boundaries they cross: the packet traces their first segments,
+// and a lane goes on alone only past a null boundary (path_services::shadow_transmittance).
 //
 // Subsurface scattering (bssrdf/separable.h, docs/subsurface.md), when a shape renders with a
 // diffusion BSSRDF: a BSDF sample that refracts into it becomes a probe for an exit point, with the
