@@ -1507,10 +1507,13 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
             for (int i = 0; i < W; ++i) any_shadow |= a.has_shadow[i];
             if (any_shadow && ps.media) {
                 // Through media and null boundaries: each shadow ray carries a transmittance. Their
-                // first segments are traced as one packet; a lane goes on alone only past a null
-                // boundary (shadow_transmittance).
+                // first segments are traced as one packet. A lane whose ray reaches its end in one
+                // homogeneous medium, or in none, takes its Beer–Lambert transmittance in the packet
+                // below (transmittance(HomogeneousMedium) as packets: detail::beer_channel); a lane
+                // goes on alone only past a null boundary or in a grid (shadow_transmittance).
                 const float* const soa[7] = {a.sh[0], a.sh[1], a.sh[2], a.sh[3], a.sh[4], a.sh[5], a.sh[6]};
-                alignas(64) bool sh_hit[W];
+                alignas(64) bool sh_hit[W], sh_hm[W]{};
+                alignas(64) int32_t sh_row[W]{};
                 path_services::trace_lanes(scene, W, soa, a.has_shadow, sh_hl, sh_hit);
                 for (uint32_t sb = lane_bits<F>(a.has_shadow); sb; sb &= sb - 1) {
                     const int i = lowest_lane<F>(sb);
@@ -1518,12 +1521,38 @@ uint64_t render_tile_kernel(const PathSetup& ps_in, const TileJob& job, Film& fi
                     const Ray sray{Vec3f(a.sh[0][i], a.sh[1][i], a.sh[2][i]), Vec3f(a.sh[3][i], a.sh[4][i], a.sh[5][i]),
                                    a.sh[6][i]};
                     const int32_t m = a.in_medium[i] ? medium[i] : path_services::medium_after(ps, si[i], sray.d, medium[i]);
+                    if (!sh_hit[i] && (m < 0 || ps.homogeneous_media[size_t(m)])) {
+                        sh_hm[i] = true;
+                        sh_row[i] = m < 0 ? -1 : m * PathSetup::kMediumStride;
+                        continue;
+                    }
                     const RayHit first = sh_hl.lane(i);
                     const Spectrum tr = path_services::shadow_transmittance(ps, m, sray, Spectrum(a.br[i], a.bg[i], a.bb[i]),
                                                                             medium_rng[i], &first);
                     a.Lr[i] += a.Ldr[i] * tr.r;
                     a.Lg[i] += a.Ldg[i] * tr.g;
                     a.Lb[i] += a.Ldb[i] * tr.b;
+                }
+                const M hm = LM(sh_hm);
+                if (lane::any(hm)) {
+                    // exp(−σt·|d|·tmax) per channel, σt = 0 outside media (the medium's row, as
+                    // transmittance(HomogeneousMedium) multiplies it out).
+                    using I = IntT<F>;
+                    const I row_i = lane::load_int_as<I>(sh_row);
+                    const auto in_m = lane::int_mask(hm) && row_i >= I(0);
+                    F row[PathSetup::kMediumStride];
+                    std::fill(row, row + PathSetup::kMediumStride, F(0.f));
+                    if (!ps.medium_rows.empty())  // (none in a scene of null boundaries only)
+                        lane::gather_rows<PathSetup::kMediumStride>(ps.medium_rows.data(), lane::select(in_m, row_i, I(0)), row);
+                    const F len = length(V3<F>(LD(a.sh[3]), LD(a.sh[4]), LD(a.sh[5])));
+                    const F t = LD(a.sh[6]);
+                    const M in_mf = lane::float_mask(in_m);
+                    float* const Ls[3] = {a.Lr, a.Lg, a.Lb};
+                    const float* const Lds[3] = {a.Ldr, a.Ldg, a.Ldb};
+                    for (int c = 0; c < 3; ++c) {
+                        const F tr = detail::beer_channel<F>(lane::select(in_mf, row[c], F(0.f)) * len, t);
+                        ST(Ls[c], lane::select(hm, LD(Ls[c]) + LD(Lds[c]) * tr, LD(Ls[c])));
+                    }
                 }
             } else if (any_shadow) {
                 const float* const soa[7] = {a.sh[0], a.sh[1], a.sh[2], a.sh[3], a.sh[4], a.sh[5], a.sh[6]};
