@@ -5,7 +5,7 @@
 // libm's on float and xsimd's on packets. Accuracy against double-precision libm is measured in
 // tests/cpp/bxdf/test_microfacet.cpp (BeckmannMath*).
 // Used by the Beckmann microfacet model (bxdf/microfacet.h), the filter taps' reference and the
-// homogeneous media's distance sampling (medium/medium.h).
+// homogeneous media's distance sampling and transmittance (medium/medium.h).
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include "pellucid/math/lane_types.h"

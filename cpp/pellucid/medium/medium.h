@@ -116,7 +116,6 @@ inline Spectrum channel_mis_weights(const Spectrum& pmf, const Spectrum& pdfs) {
 
 namespace detail {
 inline float draw(float u) { return std::min(u, kOneMinusEpsilon); }
-/// exp(−σ·t) with exp(−0·∞) = 1.
 /// One channel of Beer–Lambert, exp(−σ·t), 1 where σ ≤ 0 (t = ∞ included: the exponent is taken
 /// as 0 there, never 0·∞): by lane_math::exp_t, so that the path kernel's packets of shadow rays
 /// (path_kernel.h) give the float instantiation's bits.
@@ -125,6 +124,7 @@ inline F beer_channel(const F& sigma, const F& t) {
     const auto has = sigma > F(0.f);
     return lane::select(has, lane_math::exp_t(lane::neg(sigma) * lane::select(has, t, F(0.f))), F(1.f));
 }
+/// exp(−σ·t) per channel, with exp(−0·∞) = 1.
 inline Spectrum beer(const Spectrum& sigma, float t) {
     Spectrum r;
     for (int c = 0; c < 3; ++c) r[c] = beer_channel<float>(sigma[c], t);
