@@ -117,8 +117,8 @@ inline Spectrum channel_mis_weights(const Spectrum& pmf, const Spectrum& pdfs) {
 namespace detail {
 inline float draw(float u) { return std::min(u, kOneMinusEpsilon); }
 /// One channel of Beer–Lambert, exp(−σ·t), 1 where σ ≤ 0 (t = ∞ included: the exponent is taken
-/// as 0 there, never 0·∞): by lane_math::exp_t, so that the path kernel's packets of shadow rays
-/// (path_kernel.h) give the float instantiation's bits.
+/// as 0 there, never 0·∞): by lane_math::exp_t, so that packets (homogeneous_step, the path
+/// kernel's shadow rays) give the float instantiation's bits.
 template <class F>
 inline F beer_channel(const F& sigma, const F& t) {
     const auto has = sigma > F(0.f);
@@ -174,8 +174,7 @@ inline HomogeneousStepT<F> homogeneous_step(const F* st, const F* ss, const F* l
     const F d = lane::select(e.scattered, t, tmax);
     F tr[3], p[3], m[3];
     for (int c = 0; c < 3; ++c) {
-        const auto has = st[c] > F(0.f);
-        tr[c] = lane::select(has, lane_math::exp_t(lane::neg(st[c]) * lane::select(has, d, F(0.f))), F(1.f));
+        tr[c] = detail::beer_channel<F>(st[c], d);
         p[c] = lane::select(e.scattered, st[c] * tr[c], tr[c]);
         m[c] = pmf[c] * p[c];
     }

@@ -37,6 +37,34 @@ TEST(MediaRender, SlabTransmittanceIsBeerLambert) {
     expect_constant_image(render(*scene), std::exp(-1.2), "slab");
 }
 
+TEST(MediaRender, PointLightInsideAnAbsorbingSphereIsDimmedByBeerLambert) {
+    // The camera and a point light of intensity I at the centre of a sphere of radius R, Lambertian
+    // (albedo ρ) inside, filled with a purely absorbing medium of σa per channel; the camera itself is
+    // in no medium, so only the shadow rays cross the medium. Every visible point is at distance R
+    // from the light with the light on its normal, so every pixel is exactly
+    //   L = ρ/π · I/R² · exp(−σa R)
+    // (max_depth 2: direct light only; no randomness reaches the estimate). The shadow rays end in
+    // one homogeneous medium, the case the path kernel takes as packets (Beer–Lambert per channel).
+    const double rho = 0.6, I = 10, R = 2, sa[3] = {0.2, 0.5, 1.0};
+    auto scene = scene_from(R"({"camera": {"type": "perspective", "fov": 60,
+            "to_world": [{"look_at": {"origin": [0, 0, 0], "target": [0, 0, -1], "up": [0, 1, 0]}}]},
+        "film": {"width": 12, "height": 12}, "sampler": {"sample_count": 4, "seed": 3},
+        "integrator": {"type": "path", "max_depth": 2},
+        "media": {"ink": {"type": "homogeneous", "sigma_a": [0.2, 0.5, 1.0], "sigma_s": 0}},
+        "shapes": [{"type": "sphere", "radius": 2, "interior": "ink",
+                    "material": {"type": "lambertian", "reflectance": 0.6}}],
+        "lights": [{"type": "point", "position": [0, 0, 0], "intensity": 10}]})");
+    const RenderResult r = render(*scene);
+    for (size_t i = 0; i < r.image.data.size(); ++i) {
+        const int c = int(i % 3);
+        // A shadow ray toward a point ends 1e-4 of its length short of it (spawn_ray_to), so its
+        // transmittance is over (1 − 1e-4) R.
+        const double expected = rho / M_PI * I / (R * R) * std::exp(-sa[c] * R * (1 - 1e-4));
+        // (float arithmetic along the path and the surface offsets: relative error about 2e-6)
+        ASSERT_NEAR(r.image.data[i], expected, 1e-5 * expected) << "value " << i << ", channel " << c;
+    }
+}
+
 std::string furnace_scene(const std::string& integrator, const std::string& boundary) {
     return std::string("{") + kFrontCamera + R"(,
         "film": {"width": 16, "height": 16}, "sampler": {"sample_count": 1024, "seed": 11},
