@@ -47,7 +47,7 @@ def test_render_releases_the_gil(tiny_scene_dict) -> None:
     d["film"] = {"width": 96, "height": 96}
     scene = pellucid.load_dict(d)
     done = threading.Event()
-    t = threading.Thread(target=lambda: (pellucid.render(scene, spp=48, threads=1), done.set()))
+    t = threading.Thread(target=lambda: (pellucid.render(scene, spp=256, threads=1), done.set()))
     start = time.perf_counter()
     t.start()
     ticks = 0

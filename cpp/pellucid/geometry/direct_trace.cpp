@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <type_traits>
 
 namespace pellucid::direct_trace {
 
@@ -23,191 +24,30 @@ struct Args {
     const float* const* soa;
     const bool* valid;
 };
-/// Eight lanes of floats and their masks (GCC/Clang vector extensions: one AVX2 register, or two
-/// SSE2 ones in the baseline variant; the same IEEE operation per element either way).
-typedef float VF8 __attribute__((vector_size(32)));
-typedef int32_t VI8 __attribute__((vector_size(32)));
-/// Triangle d against rays r (origin, direction) with tmax, on eight lanes (V = VF8) or one
-/// (V = float), the same IEEE operations either way: where it is hit in (0, tmax] (a lane mask, or
-/// a bool), with t and the barycentrics (u, v) of vertices 1 and 2. Möller and Trumbore 1997, "Fast,
-/// Minimum Storage Ray/Triangle Intersection", J. Graphics Tools 2(1), §2: with p = d × e2, s = o − v0
-/// and q = s × e1, det = e1·p, u = s·p/det, v = d·q/det, t = e2·q/det; the hit needs det ≠ 0, u, v ≥ 0
-/// and u + v ≤ 1 (edges and corners count, so a ray through a shared edge hits one of its triangles
-/// unless rounding puts it just outside both).
-template <class V>
-[[gnu::always_inline]] inline auto triangle_hit(const TriangleData& d, const V* r, V tmax, V* t_out, V* u_out, V* v_out) {
-    const V px = r[4] * d.e2[2] - r[5] * d.e2[1], py = r[5] * d.e2[0] - r[3] * d.e2[2], pz = r[3] * d.e2[1] - r[4] * d.e2[0];
-    const V det = d.e1[0] * px + d.e1[1] * py + d.e1[2] * pz;
-    const V tx = r[0] - d.v0[0], ty = r[1] - d.v0[1], tz = r[2] - d.v0[2];
-    const V qx = ty * d.e1[2] - tz * d.e1[1], qy = tz * d.e1[0] - tx * d.e1[2], qz = tx * d.e1[1] - ty * d.e1[0];
-    const auto nz = det != 0.f;
-    const V one = V{} + 1.f;
-    const V inv = one / (nz ? det : one);
-    const V u = (tx * px + ty * py + tz * pz) * inv;
-    const V v = (r[3] * qx + r[4] * qy + r[5] * qz) * inv;
-    const V t = (d.e2[0] * qx + d.e2[1] * qy + d.e2[2] * qz) * inv;
-    *t_out = t, *u_out = u, *v_out = v;
-    return nz & (u >= 0.f) & (v >= 0.f) & (u + v <= 1.f) & (t > 0.f) & (t <= tmax);
-}
-template <class T>
-[[gnu::always_inline]] inline T load8(const void* p) {
-    T v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-}
-template <class T>
-[[gnu::always_inline]] inline void store8(void* p, T v) {
-    std::memcpy(p, &v, sizeof v);
-}
-/// Rays [0, n) into N-lane arrays, tmax −1 (no hit possible) in lanes not valid or past n.
-template <int N>
-[[gnu::always_inline]] inline void load_rays(const Args& A, float (*r)[N], float* tmax) {
-    if (A.n == N) {
-        for (int k = 0; k < 6; ++k) std::memcpy(r[k], A.soa[k], sizeof(float) * N);
-        for (int i = 0; i < N; ++i) tmax[i] = A.valid[i] ? A.soa[6][i] : -1.f;
-        return;
-    }
-    for (int k = 0; k < 6; ++k) {
-        std::memcpy(r[k], A.soa[k], sizeof(float) * size_t(A.n));
-        for (int i = A.n; i < N; ++i) r[k][i] = 0.f;
-    }
-    for (int i = 0; i < N; ++i) tmax[i] = i < A.n && A.valid[i] ? A.soa[6][i] : -1.f;
-}
-[[gnu::always_inline]] inline VF8 fabs8(VF8 v) { return v < 0.f ? -v : v; }
-/// Whether any lane of a mask is set.
-[[gnu::always_inline]] inline bool any8(VI8 m) {
-    uint64_t w[4];
-    std::memcpy(w, &m, sizeof w);
-    return ((w[0] | w[1]) | (w[2] | w[3])) != 0;
-}
-/// Eight rays as the float pre-test reads them: origin × direction, |d|²·(1 + 10⁻⁵), the origin's
-/// L1 norm, and the lanes whose tmax is positive (or NaN).
-struct PreRays {
-    VF8 d[3], oxd[3], d2k, o_l1;
-    VI8 live;
-};
-[[gnu::always_inline]] inline PreRays pre_rays(const VF8* r, VF8 tmax) {
-    PreRays p;
-    for (int k = 0; k < 3; ++k) p.d[k] = r[3 + k];
-    p.oxd[0] = r[1] * r[5] - r[2] * r[4], p.oxd[1] = r[2] * r[3] - r[0] * r[5], p.oxd[2] = r[0] * r[4] - r[1] * r[3];
-    p.d2k = (r[3] * r[3] + r[4] * r[4] + r[5] * r[5]) * (1.f + 1e-5f);
-    p.o_l1 = fabs8(r[0]) + fabs8(r[1]) + fabs8(r[2]);
-    p.live = ~(tmax <= 0.f);
-    return p;
-}
-/// A conservative float pre-test of sphere s against eight rays: clear in a lane only where
-/// sphere_first_root cannot find a hit there (on s, or on any sphere inside it). A lane passes
-/// where it is live and the ray's line comes within s.r of the centre: |(c − o) × d|² ≤ r²|d|²,
-/// with (c − o) × d computed as c × d − o × d. The float operations round each term by a few ulps
-/// of |c||d| and |o||d|; the radius is widened by 10⁻⁵ of |c| + |o| (L1 norms), some hundred ulps
-/// of them, and the bound by a factor 1 + 10⁻⁵, far more than those errors and than
-/// sphere_first_root's rounding in double. The comparison is written as !(a > b), so that a NaN or
-/// an overflow passes the lane.
-[[gnu::always_inline]] inline VI8 sphere_may_hit(const FloatSphere& s, const PreRays& p) {
-    const VF8 cx = (s.c[1] * p.d[2] - s.c[2] * p.d[1]) - p.oxd[0];
-    const VF8 cy = (s.c[2] * p.d[0] - s.c[0] * p.d[2]) - p.oxd[1];
-    const VF8 cz = (s.c[0] * p.d[1] - s.c[1] * p.d[0]) - p.oxd[2];
-    const VF8 cross2 = cx * cx + cy * cy + cz * cz;
-    const VF8 rr = s.r + 1e-5f * (p.o_l1 + s.c_l1);
-    return ~(cross2 > (rr * rr) * p.d2k) & p.live;
-}
-/// Sphere s against the eight rays at lanes [c, c + 8) of r (origin, direction; local arrays, so
-/// that the loop vectorises) in (0, tmax]: t and the hit mask (−1 or 0) per lane.
-template <int N>
-[[gnu::always_inline]] inline void sphere_roots8(const SphereData& s, const float (*r)[N], int c, const float* tmax,
-                                                 float* t, int32_t* hit) {
-    for (int i = 0; i < 8; ++i) {
-        bool h;
-        const int l = c + i;
-        t[i] = sphere_first_root(s, r[0][l], r[1][l], r[2][l], r[3][l], r[4][l], r[5][l], 0.f, tmax[l], &h);
-        hit[i] = h ? -1 : 0;
-    }
-}
-/// Calls f(k), in the scene's order, for each sphere k whose float pre-tests (its cluster's where
-/// that holds others, then its own) pass in some lane of the eight-lane block at c, whose rays are
-/// r8 (origin, direction) and whose tmax the block's lanes of tmax hold. f may set a
-/// lane's tmax to −1 where Blocks (occlusion: the lane is blocked), which drops it from the later
-/// pre-tests.
-/// (f passes no vector by value: a lambda does not take the target attribute of the function it is
-/// written in, so a call to it that is not inlined would pass one under another ABI.)
-template <bool Blocks, class Fn>
-[[gnu::always_inline]] inline void for_spheres_near(const Args& A, const VF8* r8, int c, const float* tmax, Fn&& f) {
-    PreRays p = pre_rays(r8, load8<VF8>(tmax + c));
-    for (int g = 0; g < A.s.n_clusters && any8(p.live); ++g) {
-        const SphereCluster& cl = A.s.clusters[g];
-        if (cl.count > 1 && !any8(sphere_may_hit(cl.bound, p))) continue;
-        for (int k = cl.first; k < cl.first + cl.count; ++k)
-            if (any8(sphere_may_hit(A.s.spheres[k]->view, p))) {
-                f(k);
-                if (Blocks) p.live &= ~(load8<VF8>(tmax + c) <= 0.f);
-            }
-    }
-}
-template <int N>
-[[gnu::always_inline]] inline void intersect_n(const Args& A, HitLanes& out) {
-    alignas(32) float r[6][N], tb[N], ub[N], vb[N];
-    uint32_t gb[N], pb[N];
-    load_rays<N>(A, r, tb);
-    for (int i = 0; i < N; ++i) gb[i] = ~0u, pb[i] = 0, ub[i] = 0.f, vb[i] = 0.f;
-    for (int c = 0; c < N; c += 8) {
-        VF8 r8[6];
-        for (int k = 0; k < 6; ++k) r8[k] = load8<VF8>(r[k] + c);
-        VF8 tt = load8<VF8>(tb + c), uu = load8<VF8>(ub + c), vv = load8<VF8>(vb + c);
-        VI8 gg = load8<VI8>(gb + c), pp = load8<VI8>(pb + c);
-        for (int k = 0; k < A.s.n_tris; ++k) {
-            const TriangleData& d = A.s.tris[k];
-            VF8 t, u, v;
-            const VI8 h = triangle_hit<VF8>(d, r8, tt, &t, &u, &v);
-            tt = h ? t : tt, uu = h ? u : uu, vv = h ? v : vv;
-            gg = h ? VI8{} + int32_t(d.geom) : gg, pp = h ? VI8{} + int32_t(d.prim) : pp;
-        }
-        store8(tb + c, tt), store8(ub + c, uu), store8(vb + c, vv), store8(gb + c, gg), store8(pb + c, pp);
-        // The spheres in double, in the scene's order, on the blocks their pre-tests pass (which
-        // never fail a lane the double test hits: the same hits as testing every sphere).
-        for_spheres_near<false>(A, r8, c, tb, [&](int k) {
-            alignas(32) float t[8];
-            alignas(32) int32_t h[8];
-            sphere_roots8<N>(*A.s.spheres[k], r, c, tb, t, h);
-            const VI8 m = load8<VI8>(h), id = VI8{} + int32_t(A.s.sphere_ids[k]);
-            store8(tb + c, m ? load8<VF8>(t) : load8<VF8>(tb + c));
-            store8(ub + c, m ? VF8{} : load8<VF8>(ub + c));
-            store8(vb + c, m ? VF8{} : load8<VF8>(vb + c));
-            store8(gb + c, m ? id : load8<VI8>(gb + c));
-            store8(pb + c, m ? VI8{} : load8<VI8>(pb + c));
-        });
-    }
-    for (int i = 0; i < A.n; ++i) {
-        out.t[i] = A.valid[i] ? tb[i] : A.soa[6][i];
-        out.geom_id[i] = gb[i], out.prim_id[i] = pb[i], out.u[i] = ub[i], out.v[i] = vb[i];
-    }
-}
-template <int N>
-[[gnu::always_inline]] inline void occluded_n(const Args& A, bool* blocked) {
-    alignas(32) float r[6][N], tm[N];
-    bool b[N];
-    load_rays<N>(A, r, tm);
-    for (int c = 0; c < N; c += 8) {
-        VF8 r8[6];
-        for (int k = 0; k < 6; ++k) r8[k] = load8<VF8>(r[k] + c);
-        const VF8 tt = load8<VF8>(tm + c);
-        VI8 hit{};
-        for (int k = 0; k < A.s.n_tris; ++k) {
-            VF8 t, u, v;
-            hit |= triangle_hit<VF8>(A.s.tris[k], r8, tt, &t, &u, &v);
-        }
-        // A lane found blocked is not tested again: its tmax becomes −1, which no hit passes.
-        store8(tm + c, hit ? VF8{} - 1.f : tt);
-        for (int i = 0; i < 8; ++i) b[c + i] = hit[i] != 0;
-        for_spheres_near<true>(A, r8, c, tm, [&](int k) {
-            alignas(32) float t[8];
-            alignas(32) int32_t h[8];
-            sphere_roots8<N>(*A.s.spheres[k], r, c, tm, t, h);
-            for (int i = 0; i < 8; ++i) b[c + i] |= h[i] != 0;
-            store8(tm + c, load8<VI8>(h) ? VF8{} - 1.f : load8<VF8>(tm + c));
-        });
-    }
-    for (int i = 0; i < A.n; ++i) blocked[i] = b[i];
-}
+// The packet code, compiled for the baseline and, on x86-64 with GCC, for AVX2 and AVX-512, the
+// widest the CPU runs chosen once; the same IEEE operations every way (no contraction), so the same
+// bits.
+namespace baseline {
+constexpr int kTriangleLanes = 8;  // the lanes of one triangle test (16: one AVX-512 register)
+#include "pellucid/geometry/direct_trace_kernels.inc"
+}  // namespace baseline
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define PELLUCID_DIRECT_X86_VARIANTS 1
+#pragma GCC push_options
+#pragma GCC target("avx2")
+namespace avx2 {
+constexpr int kTriangleLanes = 8;
+#include "pellucid/geometry/direct_trace_kernels.inc"
+}  // namespace avx2
+#pragma GCC pop_options
+#pragma GCC push_options
+#pragma GCC target("avx512f,avx512dq,avx512vl,avx512bw")
+namespace avx512 {
+constexpr int kTriangleLanes = 16;
+#include "pellucid/geometry/direct_trace_kernels.inc"
+}  // namespace avx512
+#pragma GCC pop_options
+#endif
 
 /// One ray (r: origin, direction) with the lanes' tests, so the same bits: the closest hit in
 /// (0, tmax] and the index of its primitive (spheres after triangles), or −1.
@@ -216,7 +56,9 @@ int closest1(const Scene& s, const float* r, float tmax, float* t_out, float* u_
     float tb = tmax, ub = 0.f, vb = 0.f;
     for (int k = 0; k < s.n_tris; ++k) {
         float t, u, v;
-        if (triangle_hit<float>(s.tris[k], r, tb, &t, &u, &v)) tb = t, ub = u, vb = v, best = k;
+        const bool h = k < s.n_quads ? baseline::primitive_hit<true, float>(s.tris[k], r, tb, &t, &u, &v)
+                                     : baseline::primitive_hit<false, float>(s.tris[k], r, tb, &t, &u, &v);
+        if (h) tb = t, ub = u, vb = v, best = k;
     }
     for (int k = 0; k < s.n_spheres; ++k) {
         bool h;
@@ -226,26 +68,6 @@ int closest1(const Scene& s, const float* r, float tmax, float* t_out, float* u_
     *t_out = tb, *u_out = ub, *v_out = vb;
     return best;
 }
-
-/// The calls of one instruction-set variant: up to 8 rays as one 8-lane block, more as two.
-#define PELLUCID_DIRECT_CALLS(SUFFIX, ATTR)                                                            \
-    ATTR void intersect_##SUFFIX(const Args& a, HitLanes& h) {                                        \
-        if (a.n <= 8) return intersect_n<8>(a, h);                                                    \
-        intersect_n<16>(a, h);                                                                        \
-    }                                                                                                 \
-    ATTR void occluded_##SUFFIX(const Args& a, bool* blocked) {                                       \
-        if (a.n <= 8) return occluded_n<8>(a, blocked);                                               \
-        occluded_n<16>(a, blocked);                                                                   \
-    }
-// Compiled for the baseline and, on x86-64 with GCC, for AVX2 and AVX-512, the widest the CPU runs
-// chosen once; the same IEEE operations every way (no contraction), so the same bits.
-PELLUCID_DIRECT_CALLS(baseline, )
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define PELLUCID_DIRECT_X86_VARIANTS 1
-PELLUCID_DIRECT_CALLS(avx2, __attribute__((target("avx2"))))
-PELLUCID_DIRECT_CALLS(avx512, __attribute__((target("avx512f,avx512dq,avx512vl,avx512bw"))))
-#endif
-#undef PELLUCID_DIRECT_CALLS
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC pop_options
 #endif
@@ -259,10 +81,10 @@ Calls widest() {
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"))
-        return {intersect_avx512, occluded_avx512};
-    if (__builtin_cpu_supports("avx2")) return {intersect_avx2, occluded_avx2};
+        return {avx512::intersect_packet, avx512::occluded_packet};
+    if (__builtin_cpu_supports("avx2")) return {avx2::intersect_packet, avx2::occluded_packet};
 #endif
-    return {intersect_baseline, occluded_baseline};
+    return {baseline::intersect_packet, baseline::occluded_packet};
 }
 const Calls& calls() {
     static const Calls c = widest();
@@ -286,10 +108,12 @@ bool intersect(const Scene& s, const Ray& ray, RayHit& hit) {
         return false;
     }
     hit.t = t, hit.u = u, hit.v = v;
-    if (k < s.n_tris) {  // Ng as Embree reports it: e1 × e2, unnormalised
+    if (k < s.n_tris) {  // Ng as Embree reports it: (p1 − p0) × (p2 − p0), unnormalised
         const TriangleData& d = s.tris[k];
-        hit.geom_id = d.geom, hit.prim_id = d.prim;
-        hit.ng = cross(Vec3f(d.e1[0], d.e1[1], d.e1[2]), Vec3f(d.e2[0], d.e2[1], d.e2[2]));
+        hit.geom_id = d.geom;
+        baseline::decode_hit<float, uint32_t>(d.packed, u, v, &hit.prim_id, &hit.u, &hit.v);
+        const float* ng = hit.prim_id == d.prim ? d.ng_a : d.ng_b;
+        hit.ng = Vec3f(ng[0], ng[1], ng[2]);
         return true;
     }
     // A sphere's p − c in double, unnormalised (as Embree's callbacks report it).
@@ -304,7 +128,9 @@ bool occluded(const Scene& s, const Ray& ray) {
     const float r[6] = {ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z};
     for (int k = 0; k < s.n_tris; ++k) {
         float t, u, v;
-        if (triangle_hit<float>(s.tris[k], r, ray.tmax, &t, &u, &v)) return true;
+        if (k < s.n_quads ? baseline::primitive_hit<true, float>(s.tris[k], r, ray.tmax, &t, &u, &v)
+                          : baseline::primitive_hit<false, float>(s.tris[k], r, ray.tmax, &t, &u, &v))
+            return true;
     }
     for (int k = 0; k < s.n_spheres; ++k) {
         bool h;
@@ -312,6 +138,77 @@ bool occluded(const Scene& s, const Ray& ray) {
         if (h) return true;
     }
     return false;
+}
+
+namespace {
+/// Corners p0, p1, p2 of triangle t as pointers into v.
+void corners(const float* v, const uint32_t* idx, size_t t, const float* p[3]) {
+    for (int j = 0; j < 3; ++j) p[j] = v + 3 * size_t(idx[3 * t + size_t(j)]);
+}
+bool same_point(const float* a, const float* b) { return a[0] == b[0] && a[1] == b[1] && a[2] == b[2]; }
+/// Triangle (p0, p1, p2) as a primitive alone.
+TriangleData triangle(const float* const p[3], uint32_t geom, uint32_t prim) {
+    TriangleData d;
+    for (int k = 0; k < 3; ++k) d.v0[k] = p[0][k], d.e1[k] = p[1][k] - p[0][k], d.e2[k] = p[2][k] - p[0][k];
+    d.geom = geom, d.prim = prim;
+    set_derived(d);
+    d.ng_a[0] = d.e1[1] * d.e2[2] - d.e1[2] * d.e2[1];
+    d.ng_a[1] = d.e1[2] * d.e2[0] - d.e1[0] * d.e2[2];
+    d.ng_a[2] = d.e1[0] * d.e2[1] - d.e1[1] * d.e2[0];
+    return d;
+}
+/// Triangles a and b as one quad, if they make one (append_mesh).
+bool make_quad(const float* const a[3], const float* const b[3], TriangleData* out) {
+    // The corners of a that b shares: exactly two, and a's third corner (the quad's corner 0).
+    int shared[3], n_shared = 0, third = -1;
+    for (int i = 0; i < 3; ++i) {
+        int j = 0;
+        while (j < 3 && !same_point(a[i], b[j])) ++j;
+        if (j < 3) shared[n_shared++] = i;
+        else third = i;
+    }
+    if (n_shared != 2) return false;
+    int b_third = -1;
+    for (int j = 0; j < 3; ++j)
+        if (!same_point(b[j], a[shared[0]]) && !same_point(b[j], a[shared[1]])) b_third = j;
+    if (b_third < 0) return false;
+    const float *c0 = a[third], *c1 = a[shared[0]], *c2 = a[shared[1]], *c3 = b[b_third];
+    float scale = 0.f;
+    for (const float* c : {c0, c1, c2, c3})
+        for (int k = 0; k < 3; ++k) scale = std::max(scale, std::fabs(c[k]));
+    for (int k = 0; k < 3; ++k)  // corner 3 = corners 1 + 2 − 0, to rounding
+        if (!(std::fabs((c1[k] + c2[k]) - (c0[k] + c3[k])) <= 1e-6f * scale)) return false;
+    TriangleData d;
+    for (int k = 0; k < 3; ++k) d.v0[k] = c0[k], d.e1[k] = c1[k] - c0[k], d.e2[k] = c2[k] - c0[k];
+    set_derived(d);
+    d.quad = true;
+    auto corner = [&](const float* p) -> uint8_t {
+        return same_point(p, c0) ? 0 : same_point(p, c1) ? 1 : same_point(p, c2) ? 2 : 3;
+    };
+    d.a1 = corner(a[1]), d.a2 = corner(a[2]), d.b1 = corner(b[1]), d.b2 = corner(b[2]);
+    return *out = d, true;
+}
+}  // namespace
+
+void append_mesh(std::vector<TriangleData>& out, const float* v, const uint32_t* idx, size_t triangles, uint32_t geom) {
+    for (size_t t = 0; t < triangles; ++t) {
+        const float *a[3], *b[3];
+        corners(v, idx, t, a);
+        const TriangleData ta = triangle(a, geom, uint32_t(t));
+        TriangleData q;
+        if (t + 1 < triangles) {
+            corners(v, idx, t + 1, b);
+            if (make_quad(a, b, &q)) {
+                const TriangleData tb = triangle(b, geom, uint32_t(t + 1));
+                q.geom = geom, q.prim = uint32_t(t), q.packed = pack_hit(q);
+                std::copy(ta.ng_a, ta.ng_a + 3, q.ng_a), std::copy(tb.ng_a, tb.ng_a + 3, q.ng_b);
+                out.push_back(q);
+                ++t;
+                continue;
+            }
+        }
+        out.push_back(ta);
+    }
 }
 
 namespace {

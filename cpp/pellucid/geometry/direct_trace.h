@@ -39,12 +39,48 @@ struct SphereCluster {
     FloatSphere bound;
     int first, count;
 };
-/// A triangle as the direct trace reads it: its first corner and the edges to the other two (the
-/// float vertices Embree gets), and the ids a hit on it reports.
+/// A primitive of the direct trace's mesh part: a triangle, or a quad, the parallelogram that two
+/// triangles of a mesh sharing a diagonal make (append_mesh). Either is v0 + s·e1 + t·e2, over
+/// s, t ≥ 0 and s + t ≤ 1 for a triangle, s, t ≤ 1 for a quad; for a triangle v0, e1 and e2 are its
+/// first corner and the edges to the other two (the float vertices Embree gets). What the test
+/// precomputes (set_derived), the ids a hit reports and, for a quad, which of its triangles a hit
+/// lies in and their barycentrics (decode_hit, in direct_trace_kernels.inc).
 struct TriangleData {
     float v0[3], e1[3], e2[3];
+    float ne1[3];  ///< −e1
+    float n[3];    ///< e2 × e1 (the negated normal e1 × e2)
     uint32_t geom, prim;
+    bool quad = false;
+    /// A quad: triangle A (prim) covers s + t ≤ 1, triangle B (prim + 1) the rest. Its corners are
+    /// numbered 0: v0, 1: v0 + e1, 2: v0 + e2, 3: v0 + e1 + e2; a1, a2 (b1, b2) are those of A's
+    /// (B's) vertices 1 and 2 (a triangle's: corners 1 and 2).
+    uint8_t a1 = 1, a2 = 2, b1 = 0, b2 = 0;
+    /// Each triangle's unnormalised geometric normal as Embree reports it, (p1 − p0) × (p2 − p0).
+    float ng_a[3], ng_b[3];
+    /// prim, with quad and the corners of a1, a2, b1, b2 above it (pack_hit).
+    uint32_t packed;
 };
+/// A primitive's prim (below 2²³), quad and corners as one word: prim in bits 0–22, quad in bit 23,
+/// a1, a2, b1, b2 in two bits each from bit 24 (decode_hit, direct_trace_kernels.inc).
+inline uint32_t pack_hit(const TriangleData& d) {
+    return d.prim | uint32_t(d.quad) << 23 | uint32_t(d.a1) << 24 | uint32_t(d.a2) << 26 | uint32_t(d.b1) << 28 |
+           uint32_t(d.b2) << 30;
+}
+/// The word of a hit whose (s, t) are already its barycentrics (a triangle's, or a sphere's 0, 0).
+constexpr uint32_t kPlainHit = 1u << 24 | 2u << 26;
+/// Sets a primitive's ne1, n and packed from its other fields.
+inline void set_derived(TriangleData& d) {
+    for (int k = 0; k < 3; ++k) d.ne1[k] = -d.e1[k];
+    d.n[0] = d.e2[1] * d.e1[2] - d.e2[2] * d.e1[1];
+    d.n[1] = d.e2[2] * d.e1[0] - d.e2[0] * d.e1[2];
+    d.n[2] = d.e2[0] * d.e1[1] - d.e2[1] * d.e1[0];
+    d.packed = pack_hit(d);
+}
+/// Appends a mesh's triangles (positions v, three indices each in idx) to out as primitives:
+/// triangles t and t + 1 as one quad where they share two corners (equal positions) and their
+/// other corners complete a parallelogram (to float rounding: within 10⁻⁶ of the corners' largest
+/// coordinate), else each alone.
+void append_mesh(std::vector<TriangleData>& out, const float* v, const uint32_t* idx, size_t triangles, uint32_t geom);
 
 // The sphere test computes every lane and selects the results, which GCC vectorises only when it
 // may evaluate floating-point operations whose results a lane does not use (their exceptions are
@@ -81,8 +117,9 @@ struct TriangleData {
 /// A small scene's primitives: every ray is tested against each triangle, and against each
 /// sphere of each cluster its line comes near.
 struct Scene {
-    const TriangleData* tris = nullptr;
+    const TriangleData* tris = nullptr;  ///< the quads first
     int n_tris = 0;
+    int n_quads = 0;
     const SphereData* const* spheres = nullptr;  ///< in cluster order
     const uint32_t* sphere_ids = nullptr;        ///< the geometry id of each sphere
     int n_spheres = 0;

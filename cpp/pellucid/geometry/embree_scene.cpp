@@ -47,16 +47,20 @@ struct EmbreeScene::Impl {
     bool allow_direct = direct_tracing_default();  // set_direct_tracing
     bool committed = false;
     void decide_direct() {
-        direct = committed && allow_direct && direct_trace::worth_tracing_directly(triangle_count, spheres.size());
+        direct = committed && allow_direct && triangle_count <= 2 * direct_trace::kMaxPrimitives &&
+                 direct_trace::worth_tracing_directly(triangles.size(), spheres.size());
     }
-    std::vector<TriangleData> triangles;  // every mesh's, while there are at most kMaxPrimitives
+    // Every mesh's triangles as the direct trace's primitives, quads first (commit()), while there
+    // are at most 2 kMaxPrimitives triangles.
+    std::vector<TriangleData> triangles;
+    int quads = 0;
     size_t triangle_count = 0;
     // The spheres in the direct trace's cluster order, their ids alike, and the clusters.
     std::vector<const SphereData*> sphere_ptrs;
     std::vector<uint32_t> sphere_ptr_ids;
     std::vector<direct_trace::SphereCluster> clusters;
     direct_trace::Scene direct_scene() const {
-        return {triangles.data(),    int(triangles.size()),   sphere_ptrs.data(), sphere_ptr_ids.data(),
+        return {triangles.data(), int(triangles.size()), quads, sphere_ptrs.data(), sphere_ptr_ids.data(),
                 int(sphere_ptrs.size()), clusters.data(), int(clusters.size())};
     }
     const TraceCalls* trace = &trace_calls(EmbreeScene::packet_variants().back());
@@ -108,15 +112,8 @@ uint32_t EmbreeScene::add_mesh(const TriangleMesh& mesh) {
     rtcCommitGeometry(g);
     uint32_t id = m_impl->next_id++;
     m_impl->triangle_count += mesh.triangle_count();
-    if (m_impl->triangle_count <= direct_trace::kMaxPrimitives)  // (more: never traced directly)
-        for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-            TriangleData& d = m_impl->triangles.emplace_back();
-            const float* p0 = v + 3 * idx[3 * t];
-            const float* p1 = v + 3 * idx[3 * t + 1];
-            const float* p2 = v + 3 * idx[3 * t + 2];
-            for (int k = 0; k < 3; ++k) d.v0[k] = p0[k], d.e1[k] = p1[k] - p0[k], d.e2[k] = p2[k] - p0[k];
-            d.geom = id, d.prim = uint32_t(t);
-        }
+    if (m_impl->triangle_count <= 2 * direct_trace::kMaxPrimitives)  // (more: never traced directly)
+        direct_trace::append_mesh(m_impl->triangles, v, idx, mesh.triangle_count(), id);
     rtcAttachGeometryByID(m_impl->scene, g, id);
     rtcReleaseGeometry(g);
     m_impl->check();
@@ -276,6 +273,9 @@ void EmbreeScene::commit() {
     for (const SphereData& sd : m_impl->spheres) m_impl->sphere_ptrs.push_back(&sd);
     m_impl->sphere_ptr_ids = m_impl->sphere_ids;
     m_impl->clusters = direct_trace::build_clusters(m_impl->sphere_ptrs, m_impl->sphere_ptr_ids);
+    auto& tris = m_impl->triangles;
+    m_impl->quads = int(std::stable_partition(tris.begin(), tris.end(), [](const TriangleData& d) { return d.quad; }) -
+                        tris.begin());
     m_impl->committed = true;
     m_impl->decide_direct();
 }

@@ -322,15 +322,23 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
     // clusters, each culled as a whole by a float pre-test).
     const Point3f four[4] = {Point3f(0, 0, 0), Point3f(1.2f, 0.3f, -0.4f), Point3f(-2, 1, 0.5f), Point3f(0.4f, -1.5f, 1)};
     const float four_radii[4] = {1.f, 0.7f, 0.5f, 1.3f};
-    // Walls: a rectangle of half-size 5 facing the origin at distance 6 along ±z, then ±x.
-    const Transform walls[4] = {Transform::translate(Vec3f(0, 0, -6)) * Transform::scale(Vec3f(5, 5, 1)),
+    // Walls: a rectangle of half-size 5 facing the origin at distance 6 along ±z, then ±x; then a
+    // tilted cube above the spheres (its faces quads whose triangles are indexed unlike a
+    // rectangle's) and, below them, a rectangle with one corner lifted off its plane (two triangles
+    // that make no quad).
+    const Transform walls[6] = {Transform::translate(Vec3f(0, 0, -6)) * Transform::scale(Vec3f(5, 5, 1)),
                                 Transform::translate(Vec3f(0, 0, 6)) * Transform::scale(Vec3f(5, 5, 1)),
                                 Transform::translate(Vec3f(-6, 0, 0)) * Transform::rotate(Vec3f(0, 1, 0), 90.f) *
                                     Transform::scale(Vec3f(5, 5, 1)),
                                 Transform::translate(Vec3f(6, 0, 0)) * Transform::rotate(Vec3f(0, 1, 0), -90.f) *
-                                    Transform::scale(Vec3f(5, 5, 1))};
+                                    Transform::scale(Vec3f(5, 5, 1)),
+                                Transform::translate(Vec3f(0, 4.5f, 0)) * Transform::rotate(normalize(Vec3f(1, 1, 0)), 30.f) *
+                                    Transform::scale(Vec3f(1.2f, 1.2f, 1.2f)),
+                                Transform::translate(Vec3f(0, -4.5f, 0)) * Transform::rotate(Vec3f(1, 0, 0), 90.f) *
+                                    Transform::scale(Vec3f(3, 3, 1))};
     for (const int spheres : {1, 2, 4, 36, 60})
-    for (const int n_walls : {0, 2, 4}) {
+    for (const int n_walls : {0, 2, 4, 6}) {
+        if (spheres == 60 && n_walls == 6) continue;  // (more than the direct trace takes)
         const std::string what = std::to_string(spheres) + " spheres, " + std::to_string(n_walls) + " walls";
         std::vector<Point3f> centres;
         std::vector<float> radii;
@@ -352,7 +360,8 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
             EXPECT_EQ(embree.add_sphere(centres[size_t(k)], radii[size_t(k)]), uint32_t(k));
         }
         for (int w = 0; w < n_walls; ++w) {
-            TriangleMesh m = TriangleMesh::rectangle();
+            TriangleMesh m = w == 4 ? TriangleMesh::cube() : TriangleMesh::rectangle();
+            if (w == 5) m.positions[3].z += 0.7f;
             m.transform(walls[w]);
             direct.add_mesh(m), embree.add_mesh(m);
             meshes.push_back(m);
@@ -464,11 +473,11 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
     for (int k = 0; k < 36; ++k) many_spheres.add_sphere(Point3f(float(k), 0, 0), 0.4f);
     many_spheres.commit();
     EXPECT_TRUE(many_spheres.traced_directly());
-    for (int k = 36; k < 81; ++k) many_spheres.add_sphere(Point3f(float(k), 0, 0), 0.4f);
-    many_spheres.commit();  // 4 triangles and 81 spheres: more than 20 triangles' worth
+    for (int k = 36; k < 91; ++k) many_spheres.add_sphere(Point3f(float(k), 0, 0), 0.4f);
+    many_spheres.commit();  // 2 quads and 91 spheres: more than 20 primitives' worth
     EXPECT_FALSE(many_spheres.traced_directly());
-    EXPECT_TRUE(direct_trace::worth_tracing_directly(12, 4));   // bench/suite/veach_mis.json
-    EXPECT_FALSE(direct_trace::worth_tracing_directly(36, 0));  // bench/suite/cornell_lambert.json
+    EXPECT_TRUE(direct_trace::worth_tracing_directly(6, 4));   // bench/suite/veach_mis.json: 6 quads, 4 spheres
+    EXPECT_TRUE(direct_trace::worth_tracing_directly(18, 0));  // bench/suite/cornell_lambert.json: 18 quads
     EXPECT_TRUE(direct_trace::worth_tracing_directly(20, 0));
     EXPECT_FALSE(direct_trace::worth_tracing_directly(21, 0));
     EXPECT_TRUE(direct_trace::worth_tracing_directly(0, 100));
@@ -483,4 +492,40 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
     EXPECT_FALSE(one.traced_directly());
     one.set_direct_tracing(true);
     EXPECT_TRUE(one.traced_directly());
+}
+
+// The direct trace tests two triangles of a mesh as one quad where they make a parallelogram: a
+// rectangle's two, each face of a cube (indexed another way), but not a rectangle bent along its
+// diagonal, nor triangles that share only a corner.
+TEST(EmbreeScene, DirectTraceMakesQuadsOfParallelograms) {
+    auto primitives = [](const TriangleMesh& m, int* quads) {
+        std::vector<float> v;
+        for (const auto& p : m.positions) v.insert(v.end(), {p.x, p.y, p.z});
+        std::vector<direct_trace::TriangleData> out;
+        direct_trace::append_mesh(out, v.data(), m.indices.data(), m.triangle_count(), 7);
+        *quads = 0;
+        for (const auto& d : out) {
+            *quads += d.quad;
+            EXPECT_EQ(d.geom, 7u);
+        }
+        return int(out.size());
+    };
+    int quads = 0;
+    TriangleMesh rect = TriangleMesh::rectangle();
+    rect.transform(Transform::rotate(normalize(Vec3f(1, 2, 3)), 37.f) * Transform::scale(Vec3f(3, 0.5f, 1)));
+    EXPECT_EQ(primitives(rect, &quads), 1);
+    EXPECT_EQ(quads, 1);
+    TriangleMesh cube = TriangleMesh::cube();
+    cube.transform(Transform::translate(Vec3f(10, -3, 2)) * Transform::rotate(normalize(Vec3f(1, 1, 0)), 30.f));
+    EXPECT_EQ(primitives(cube, &quads), 6);
+    EXPECT_EQ(quads, 6);
+    TriangleMesh bent = TriangleMesh::rectangle();
+    bent.positions[3].z += 1e-3f;
+    EXPECT_EQ(primitives(bent, &quads), 2);
+    EXPECT_EQ(quads, 0);
+    TriangleMesh fan;  // two triangles sharing one corner
+    fan.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}};
+    fan.indices = {0, 1, 2, 0, 3, 4};
+    EXPECT_EQ(primitives(fan, &quads), 2);
+    EXPECT_EQ(quads, 0);
 }
