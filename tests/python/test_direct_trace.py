@@ -20,6 +20,8 @@ CLI = ROOT / "build" / "py" / "cpp" / "pellucid-render"
 
 
 def _render(tmp_path: Path, scene: str | Path, trace: str) -> np.ndarray:
+    """The image of a suite scene (by name) or of a scene file, traced directly where the scene
+    allows it (default) or by Embree."""
     env = {k: v for k, v in os.environ.items() if k != "PELLUCID_TRACE"}
     if trace == "embree":
         env["PELLUCID_TRACE"] = "embree"
@@ -30,10 +32,20 @@ def _render(tmp_path: Path, scene: str | Path, trace: str) -> np.ndarray:
     return np.asarray(pellucid.read_image(str(out)))
 
 
+# A small rectangle far below everything, which no path reaches: a scene of spheres with it is traced
+# directly (one of spheres alone goes to Embree).
+FAR_RECTANGLE = {"type": "rectangle", "material": "clay",
+                 "to_world": [{"scale": 0.01}, {"translate": [0, -1e5, 0]}]}
+
+
 @pytest.mark.skipif(not CLI.exists(), reason="pellucid-render is built by `make`")
 def test_spheres_render_the_same_image_either_way(tmp_path) -> None:
-    # env_spheres.json has a ground rectangle; env_diffuse.json is one sphere alone.
-    a, b = _render(tmp_path, "env_diffuse.json", "default"), _render(tmp_path, "env_diffuse.json", "embree")
+    # env_diffuse.json is one sphere alone.
+    scene = json.loads((ROOT / "bench" / "suite" / "env_diffuse.json").read_text())
+    scene["shapes"].append(FAR_RECTANGLE)
+    path = tmp_path / "sphere.json"
+    path.write_text(json.dumps(scene))
+    a, b = _render(tmp_path, path, "default"), _render(tmp_path, path, "embree")
     assert np.array_equal(a, b)
 
 
@@ -47,7 +59,7 @@ def test_many_spheres_render_the_same_image_either_way(tmp_path) -> None:
     scene["film"]["width"] = scene["film"]["height"] = 128
     scene["shapes"] = [{"type": "sphere", "center": [0.8 * i - 2.8, 0.1 * (i % 3), 0.8 * j - 2.8],
                         "radius": 0.3 + 0.02 * ((i + j) % 4), "material": "clay"}
-                       for i in range(8) for j in range(8)]
+                       for i in range(8) for j in range(8)] + [FAR_RECTANGLE]
     path = tmp_path / "spheres.json"
     path.write_text(json.dumps(scene))
     a, b = _render(tmp_path, path, "default"), _render(tmp_path, path, "embree")

@@ -133,19 +133,21 @@ constexpr int kClusterSpheres = 6;
 /// halves the largest extent of their centres at its median, recursively, and returns the clusters.
 std::vector<SphereCluster> build_clusters(std::vector<const SphereData*>& spheres, std::vector<uint32_t>& ids);
 
-/// The most triangles a scene traced directly has (less a fifth of its spheres, below). The direct
-/// trace's cost grows with every triangle, Embree's hardly: measured in the instructions of a
-/// render (bench/README.md, "Small scenes without Embree"), scenes of up to 17 primitives rendered
-/// with 9 to 21 % fewer instructions traced directly, while 36 triangles (the Cornell box) took 29 %
-/// more. A sphere costs much less than a triangle once its cluster's pre-test culls it: 4 triangles
-/// with 36 spheres (bench/suite/many_materials.json) took 16 % fewer instructions traced directly,
-/// and with 100 spheres 10 % fewer.
+/// The most primitives (quads and triangles) a scene traced directly has, less a fifth of its
+/// spheres (below). The direct trace's cost grows with every primitive, Embree's hardly. Render
+/// time traced directly over Embree's (bench/README.md, "Small scenes without Embree"): 0.79 for
+/// the Cornell box (18 quads), 0.90 for the fog box (19 quads), 0.85 to 0.93 for the suite's scenes
+/// of 1 to 7 quads with up to 5 spheres, and 0.91 for 2 quads with 36 spheres
+/// (bench/suite/many_materials.json), where a cluster's pre-test culls most spheres.
 constexpr size_t kMaxPrimitives = 20;
-/// Whether a scene of this many triangles and spheres is traced directly rather than by Embree:
-/// where testing every ray against every primitive costs less than Embree's packet call, a sphere
-/// counted as a fifth of a triangle (so at most 100 spheres).
-inline bool worth_tracing_directly(size_t triangles, size_t spheres) {
-    return 5 * triangles + spheres <= 5 * kMaxPrimitives;
+/// Whether a scene of this many primitives (quads and triangles) and spheres is traced directly
+/// rather than by Embree: where testing every ray against every primitive costs less than Embree's
+/// packet call, a sphere counted as a fifth of a primitive (so at most 100 spheres). A scene of
+/// spheres alone goes to Embree, whose packet call on its spheres' callbacks took 0.82 to 0.89 of
+/// the direct trace's render time (one sphere: bench/suite/env_diffuse.json, env_rough_metal.json;
+/// 4, 9 and 64 spheres: 0.88, 0.87, 0.74); with a mesh too, Embree traverses two kinds of geometry.
+inline bool worth_tracing_directly(size_t primitives, size_t spheres) {
+    return primitives > 0 && 5 * primitives + spheres <= 5 * kMaxPrimitives;
 }
 
 /// Rays [0, n ≤ 16) as arrays (soa: origin, direction, tmax) where valid[i]: the closest hit in

@@ -163,6 +163,14 @@ TEST(EmbreeScene, SphereRootsAreExactAndAgreeAcrossPacketsAndSingleRays) {
 namespace {
 /// 64 rectangles ([−1, 1]² each) in an 8 x 8 grid at z = −2, their centres 2.5 apart: enough
 /// triangles for a BVH with inner nodes, and too many for the direct trace.
+/// A small rectangle far from everything else, which no test ray reaches: a scene of spheres with
+/// it is traced directly (one of spheres alone goes to Embree). Returns the mesh it adds.
+TriangleMesh add_far_rectangle(EmbreeScene& s) {
+    TriangleMesh m = TriangleMesh::rectangle();
+    m.transform(Transform::translate(Vec3f(0, -1e5f, 0)) * Transform::scale(Vec3f(0.01f, 0.01f, 0.01f)));
+    s.add_mesh(m);
+    return m;
+}
 void add_quad_grid(EmbreeScene& s) {
     for (int k = 0; k < 64; ++k) {
         TriangleMesh quad = TriangleMesh::rectangle();
@@ -265,6 +273,7 @@ TEST(EmbreeScene, DirectTracePreTestKeepsGrazingHits) {
             centres.emplace_back(offset + 3.f * radius * float(k), offset * 0.5f, -offset);
             direct.add_sphere(centres.back(), radius), embree.add_sphere(centres.back(), radius);
         }
+        add_far_rectangle(direct), add_far_rectangle(embree);
         embree.set_direct_tracing(false);
         direct.commit(), embree.commit();
         ASSERT_TRUE(direct.traced_directly()) << what;
@@ -366,6 +375,7 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
             direct.add_mesh(m), embree.add_mesh(m);
             meshes.push_back(m);
         }
+        if (n_walls == 0) add_far_rectangle(direct), meshes.push_back(add_far_rectangle(embree));
         embree.set_direct_tracing(false);
         direct.commit(), embree.commit();
         ASSERT_TRUE(direct.traced_directly()) << what;
@@ -480,12 +490,17 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
     EXPECT_TRUE(direct_trace::worth_tracing_directly(18, 0));  // bench/suite/cornell_lambert.json: 18 quads
     EXPECT_TRUE(direct_trace::worth_tracing_directly(20, 0));
     EXPECT_FALSE(direct_trace::worth_tracing_directly(21, 0));
-    EXPECT_TRUE(direct_trace::worth_tracing_directly(0, 100));
-    EXPECT_FALSE(direct_trace::worth_tracing_directly(0, 101));
+    EXPECT_TRUE(direct_trace::worth_tracing_directly(1, 95));
+    EXPECT_FALSE(direct_trace::worth_tracing_directly(1, 96));
+    EXPECT_FALSE(direct_trace::worth_tracing_directly(0, 1));  // spheres alone: Embree
+    EXPECT_FALSE(direct_trace::worth_tracing_directly(0, 0));
     EXPECT_TRUE(direct_trace::worth_tracing_directly(16, 20));
     EXPECT_FALSE(direct_trace::worth_tracing_directly(16, 21));
     EmbreeScene one;
     one.add_sphere(Point3f(0, 0, 0), 1.f);
+    one.commit();
+    EXPECT_FALSE(one.traced_directly());  // a sphere alone
+    add_far_rectangle(one);
     one.commit();
     EXPECT_TRUE(one.traced_directly());
     one.set_direct_tracing(false);
