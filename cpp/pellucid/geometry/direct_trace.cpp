@@ -6,6 +6,10 @@
 #include <cstring>
 #include <type_traits>
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#include <immintrin.h>
+#endif
+
 namespace pellucid::direct_trace {
 
 namespace {
@@ -27,12 +31,15 @@ struct Args {
 // The packet code, compiled for the baseline and, on x86-64 with GCC, for AVX2 and AVX-512, the
 // widest the CPU runs chosen once; the same IEEE operations every way (no contraction), so the same
 // bits.
+#define PELLUCID_DIRECT_AVX2 0
 namespace baseline {
 constexpr int kTriangleLanes = 8;  // the lanes of one triangle test (16: one AVX-512 register)
 #include "pellucid/geometry/direct_trace_kernels.inc"
 }  // namespace baseline
+#undef PELLUCID_DIRECT_AVX2
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define PELLUCID_DIRECT_X86_VARIANTS 1
+#define PELLUCID_DIRECT_AVX2 1
 #pragma GCC push_options
 #pragma GCC target("avx2")
 namespace avx2 {
@@ -47,6 +54,7 @@ constexpr int kTriangleLanes = 16;
 #include "pellucid/geometry/direct_trace_kernels.inc"
 }  // namespace avx512
 #pragma GCC pop_options
+#undef PELLUCID_DIRECT_AVX2
 #endif
 
 /// One ray (r: origin, direction) with the lanes' tests, so the same bits: the closest hit in
