@@ -3,9 +3,13 @@
 #include "pellucid/geometry/direct_trace.h"
 
 #include <algorithm>
+#include <atomic>
+#include <string>
 #include <cstring>
 #include <limits>
 #include <type_traits>
+
+#include "pellucid/util/error.h"
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #include <immintrin.h>
@@ -85,21 +89,45 @@ struct Calls {
     void (*intersect)(const Args&, HitLanes&);
     void (*occluded)(const Args&, bool*);
 };
-Calls widest() {
+const Calls kBaseline{baseline::intersect_packet, baseline::occluded_packet};
 #ifdef PELLUCID_DIRECT_X86_VARIANTS
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"))
-        return {avx512::intersect_packet, avx512::occluded_packet};
-    if (__builtin_cpu_supports("avx2")) return {avx2::intersect_packet, avx2::occluded_packet};
+const Calls kAVX2{avx2::intersect_packet, avx2::occluded_packet};
+const Calls kAVX512{avx512::intersect_packet, avx512::occluded_packet};
 #endif
-    return {baseline::intersect_packet, baseline::occluded_packet};
+const Calls& calls_of(Variant v) {
+#ifdef PELLUCID_DIRECT_X86_VARIANTS
+    if (v == Variant::AVX512) return kAVX512;
+    if (v == Variant::AVX2) return kAVX2;
+#endif
+    (void)v;
+    return kBaseline;
 }
-const Calls& calls() {
-    static const Calls c = widest();
+/// The calls in use: the widest variant's unless set_variant chose another.
+std::atomic<const Calls*>& current() {
+    static std::atomic<const Calls*> c{&calls_of(available_variants().back())};
     return c;
 }
+const Calls& calls() { return *current().load(std::memory_order_relaxed); }
 }  // namespace
+
+std::vector<Variant> available_variants() {
+    std::vector<Variant> v{Variant::Baseline};
+#ifdef PELLUCID_DIRECT_X86_VARIANTS
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2")) v.push_back(Variant::AVX2);
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+        __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw"))
+        v.push_back(Variant::AVX512);
+#endif
+    return v;
+}
+
+void set_variant(Variant v) {
+    const std::vector<Variant> ok = available_variants();
+    if (std::find(ok.begin(), ok.end(), v) == ok.end())
+        throw Error("direct_trace::set_variant: variant " + std::to_string(int(v)) + " is not available on this CPU");
+    current().store(&calls_of(v), std::memory_order_relaxed);
+}
 
 void intersect(const Scene& s, int n, const float* const soa[7], const bool* valid, HitLanes& hits) {
     if (n > 0) calls().intersect(Args{s, n, soa, valid}, hits);

@@ -150,6 +150,15 @@ inline bool worth_tracing_directly(size_t primitives, size_t spheres) {
     return primitives > 0 && 5 * primitives + spheres <= 5 * kMaxPrimitives;
 }
 
+/// The instruction-set variants of the packet code (the same bits every way): the baseline
+/// (eight lanes a primitive test), AVX2 (eight) and AVX-512 (sixteen).
+enum class Variant { Baseline, AVX2, AVX512 };
+/// The variants this CPU runs, narrowest first; the calls use the last.
+std::vector<Variant> available_variants();
+/// Has the calls use variant v from now on, in every thread (tests compare the variants); throws
+/// pellucid::Error if this CPU cannot run it.
+void set_variant(Variant v);
+
 /// Rays [0, n ≤ 16) as arrays (soa: origin, direction, tmax) where valid[i]: the closest hit in
 /// (0, tmax] (t, geometry and primitive ids, a triangle's barycentrics u, v of vertices 1 and 2, 0
 /// on a sphere); lanes without one (and lanes not valid) report geom_id ~0u.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -345,10 +346,14 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
                                     Transform::scale(Vec3f(1.2f, 1.2f, 1.2f)),
                                 Transform::translate(Vec3f(0, -4.5f, 0)) * Transform::rotate(Vec3f(1, 0, 0), 90.f) *
                                     Transform::scale(Vec3f(3, 3, 1))};
+    // Every instruction-set variant of the direct trace this CPU runs.
+    for (const direct_trace::Variant variant : direct_trace::available_variants())
     for (const int spheres : {1, 2, 4, 36, 60})
     for (const int n_walls : {0, 2, 4, 6}) {
         if (spheres == 60 && n_walls == 6) continue;  // (more than the direct trace takes)
-        const std::string what = std::to_string(spheres) + " spheres, " + std::to_string(n_walls) + " walls";
+        direct_trace::set_variant(variant);
+        const std::string what = std::to_string(spheres) + " spheres, " + std::to_string(n_walls) + " walls, variant " +
+                                 std::to_string(int(variant));
         std::vector<Point3f> centres;
         std::vector<float> radii;
         for (int k = 0; k < spheres; ++k) {
@@ -473,6 +478,7 @@ TEST(EmbreeScene, DirectTraceGivesEmbreesHits) {
         else EXPECT_GT(wall_hits, 1024 / 8) << what;
         EXPECT_GT(blocked_count, 1024 / 4) << what;
     }
+    direct_trace::set_variant(direct_trace::available_variants().back());
     // A scene of many primitives goes to Embree, and direct tracing can be switched off and on.
     EmbreeScene big;
     add_quad_grid(big);
@@ -543,4 +549,79 @@ TEST(EmbreeScene, DirectTraceMakesQuadsOfParallelograms) {
     fan.indices = {0, 1, 2, 0, 3, 4};
     EXPECT_EQ(primitives(fan, &quads), 2);
     EXPECT_EQ(quads, 0);
+}
+
+// Each instruction-set variant of the direct trace gives the baseline's bits: packets of 16, 8 and
+// 5 rays, their occlusion, and single rays, on quads, triangles and spheres.
+TEST(EmbreeScene, DirectTraceVariantsGiveTheSameBits) {
+    EmbreeScene s;
+    for (int k = 0; k < 12; ++k) s.add_sphere(Point3f(1.5f * float(k % 4) - 2.f, 0.4f * float(k / 4) - 0.3f, 0.5f), 0.45f);
+    TriangleMesh floor = TriangleMesh::rectangle(), cube = TriangleMesh::cube(), bent = TriangleMesh::rectangle();
+    floor.transform(Transform::translate(Vec3f(0, -1, 0)) * Transform::rotate(Vec3f(1, 0, 0), -90.f) * Transform::scale(Vec3f(4, 4, 1)));
+    cube.transform(Transform::translate(Vec3f(0.3f, 1.8f, -0.5f)) * Transform::rotate(normalize(Vec3f(1, 1, 0)), 30.f) * Transform::scale(Vec3f(0.6f, 0.6f, 0.6f)));
+    bent.positions[3].z += 0.5f;
+    bent.transform(Transform::translate(Vec3f(0, 0, -2)) * Transform::scale(Vec3f(3, 3, 1)));
+    s.add_mesh(floor), s.add_mesh(cube), s.add_mesh(bent);
+    s.commit();
+    ASSERT_TRUE(s.traced_directly());
+    const std::vector<direct_trace::Variant> variants = direct_trace::available_variants();
+    uint64_t state = 4242;
+    auto next = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return float(state >> 40) / float(1 << 24);
+    };
+    int hits = 0;
+    for (int packet = 0; packet < 128; ++packet) {
+        float soa[7][16];
+        bool valid[16];
+        for (int i = 0; i < 16; ++i) {
+            const Vec3f o(6.f * next() - 3.f, 4.f * next() - 1.f, 4.f * next() - 1.f);
+            const Vec3f d = normalize(Vec3f(2.f * next() - 1.f, 2.f * next() - 1.f, 2.f * next() - 1.f));
+            const float v[7] = {o.x, o.y, o.z, d.x, d.y, d.z, i % 4 == 3 ? 3.f * next() : kInfinity};
+            for (int k = 0; k < 7; ++k) soa[k][i] = v[k];
+            valid[i] = (packet + i) % 5 != 2;
+        }
+        const float* const p[7] = {soa[0], soa[1], soa[2], soa[3], soa[4], soa[5], soa[6]};
+        for (int m : {16, 8, 5}) {
+            HitLanes base;
+            bool base_blocked[16];
+            RayHit base_single[16];
+            for (size_t v = 0; v < variants.size(); ++v) {
+                direct_trace::set_variant(variants[v]);
+                HitLanes h;
+                bool blocked[16];
+                s.intersect_lanes(m, p, valid, h);
+                s.occluded_lanes(m, p, valid, blocked);
+                for (int i = 0; i < m; ++i) {
+                    const std::string at = "variant " + std::to_string(int(variants[v])) + ", packet " +
+                                           std::to_string(packet) + " of " + std::to_string(m) + ", lane " + std::to_string(i);
+                    const Ray r{Vec3f(soa[0][i], soa[1][i], soa[2][i]), Vec3f(soa[3][i], soa[4][i], soa[5][i]), soa[6][i]};
+                    RayHit single;
+                    const bool single_hit = s.intersect(r, single);
+                    if (valid[i]) {
+                        EXPECT_EQ(single_hit, h.hit(i)) << at;
+                        EXPECT_EQ(s.occluded(r), blocked[i]) << at;
+                    }
+                    if (v == 0) {
+                        base_blocked[i] = blocked[i], base_single[i] = single;
+                        hits += m == 16 && h.hit(i);
+                        continue;
+                    }
+                    EXPECT_EQ(blocked[i], base_blocked[i]) << at;
+                    ASSERT_EQ(h.geom_id[i], base.geom_id[i]) << at;
+                    if (!h.hit(i)) continue;
+                    EXPECT_EQ(h.prim_id[i], base.prim_id[i]) << at;
+                    EXPECT_EQ(std::memcmp(&h.t[i], &base.t[i], 4), 0) << at;
+                    EXPECT_EQ(std::memcmp(&h.u[i], &base.u[i], 4), 0) << at;
+                    EXPECT_EQ(std::memcmp(&h.v[i], &base.v[i], 4), 0) << at;
+                    EXPECT_EQ(std::memcmp(&single.t, &base_single[i].t, 4), 0) << at;
+                    EXPECT_EQ(std::memcmp(&single.u, &base_single[i].u, 4), 0) << at;
+                    EXPECT_EQ(single.prim_id, base_single[i].prim_id) << at;
+                }
+                if (v == 0) base = h;
+            }
+        }
+    }
+    direct_trace::set_variant(variants.back());
+    EXPECT_GT(hits, 128 * 16 / 4);  // the rays do reach the primitives
 }
