@@ -4,9 +4,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <string>
 #include <cstring>
 #include <limits>
+#include <string>
 #include <type_traits>
 
 #include "pellucid/util/error.h"
@@ -34,8 +34,8 @@ struct Args {
     const bool* valid;
 };
 // The packet code, compiled for the baseline and, on x86-64 with GCC, for AVX2 and AVX-512, the
-// widest the CPU runs chosen once; the same IEEE operations every way (no contraction), so the same
-// bits.
+// widest the CPU runs chosen at start-up (set_variant chooses another); the same IEEE operations
+// every way (no contraction), so the same bits.
 #define PELLUCID_DIRECT_AVX2 0
 namespace baseline {
 constexpr int kTriangleLanes = 8;  // the lanes of one triangle test (16: one AVX-512 register)
